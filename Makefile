@@ -1,0 +1,30 @@
+# Fenestra: `make demo`, `make test`, `make bench`. Everything runs with Debian's /usr/bin/python3.
+PYTHON := /usr/bin/python3
+BUILD  := build
+JOBS   ?= $(shell nproc)
+
+.PHONY: deps build test cpp-test py-test demo bench clean
+
+deps:
+	@./scripts/install-deps.sh
+
+build: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=$(PYTHON) >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS)
+
+cpp-test: build
+	$(BUILD)/cpp_tests/fenestra_tests
+
+py-test: build
+	cd python_tests && $(PYTHON) -m pytest -q
+
+test: cpp-test py-test
+
+demo: build
+	@./scripts/demo.sh $(BUILD)
+
+bench: build
+	$(BUILD)/bench/fenestra_bench
+
+clean:
+	rm -rf $(BUILD)

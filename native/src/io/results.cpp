@@ -1,0 +1,151 @@
+#include "io/results.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/atomic_file.h"
+#include "io/npz_writer.h"
+
+namespace fenestra {
+
+using nlohmann::json;
+
+namespace {
+
+std::vector<double> row_major(const Eigen::MatrixXd& m) {
+  std::vector<double> out(static_cast<size_t>(m.size()));
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) out[static_cast<size_t>(i * m.cols() + j)] = m(i, j);
+  return out;
+}
+
+std::vector<double> to_vector(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+json vec_json(const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
+
+}  // namespace
+
+json elements_json(const Scene& scene) {
+  json list = json::array();
+  const auto& elements = scene.domain.elements();
+  for (size_t k = 0; k < elements.size(); ++k) {
+    const Element& e = elements[k];
+    json corners = json::array();
+    for (const auto& c : e.corners) corners.push_back(vec_json(c));
+    list.push_back({{"index", k}, {"panel", e.panel}, {"row", e.row}, {"col", e.col}, {"corners", corners}});
+  }
+  return list;
+}
+
+std::pair<std::string, std::string> write_contributions(const Scene& scene, const Contributions& c,
+                                                        const std::string& out) {
+  const bool has_ext = out.size() > 4 && out.compare(out.size() - 4, 4, ".npz") == 0;
+  const std::string stem = has_ext ? out.substr(0, out.size() - 4) : out;
+  const std::string npz_path = stem + ".npz", json_path = stem + ".json";
+
+  const size_t ns = c.sensor_count(), no = c.element_count();
+  NpzWriter npz;
+  npz.add("E", row_major(c.E), {ns, no});
+  npz.add("E_stderr", row_major(c.E_stderr), {ns, no});
+  npz.add("A", row_major(c.A), {ns, no});
+  npz.add("T", row_major(c.T), {no, no});
+  npz.add("closed", to_vector(c.closed.value), {ns});
+  npz.add("closed_stderr", to_vector(c.closed.stderr), {ns});
+  npz.add("all_open", to_vector(c.all_open.value), {ns});
+  npz.add("all_open_stderr", to_vector(c.all_open.stderr), {ns});
+  std::vector<int32_t> panel, row, col;
+  std::vector<double> corners;
+  for (const auto& e : scene.domain.elements()) {
+    panel.push_back(e.panel), row.push_back(e.row), col.push_back(e.col);
+    for (const auto& p : e.corners) corners.insert(corners.end(), {p.x(), p.y(), p.z()});
+  }
+  npz.add("element_panel", panel, {no});
+  npz.add("element_row", row, {no});
+  npz.add("element_col", col, {no});
+  npz.add("element_corners", corners, {no, 4, 3});
+
+  json panels = json::array();
+  for (const auto& p : scene.domain.panels())
+    panels.push_back({{"label", p.label}, {"rows", p.rows}, {"cols", p.cols}, {"area_m2", p.area},
+                      {"origin", vec_json(p.origin)}, {"u_axis", vec_json(p.u_axis)}, {"v_axis", vec_json(p.v_axis)},
+                      {"normal", vec_json(p.normal)}});
+  json summary = {
+      {"format", "fenestra-contributions"},
+      {"version", 1},
+      {"scene", scene.source},
+      {"arrays", npz_path},
+      {"units", "luminance-weighted irradiance: lux for a sky in cd/m^2"},
+      {"sensors", ns},
+      {"element_count", no},
+      {"element_size_m", scene.domain.element_size()},
+      {"paths_per_sensor", c.paths_per_sensor},
+      {"seconds", c.seconds},
+      {"closed", to_vector(c.closed.value)},
+      {"all_open", to_vector(c.all_open.value)},
+      {"panels", panels},
+      {"elements", elements_json(scene)},
+  };
+  write_atomically(npz_path, [&](std::ostream& o) { npz.write(o); });
+  try {
+    write_json(json_path, summary);
+  } catch (...) {
+    std::remove(npz_path.c_str());
+    throw;
+  }
+  return {npz_path, json_path};
+}
+
+std::vector<Rectangle> parse_openings(const json& j, const std::string& source) {
+  auto fail = [&](const std::string& m) -> void { throw std::invalid_argument("openings '" + source + "': " + m); };
+  if (!j.is_object() || !j.contains("openings") || !j.at("openings").is_array())
+    fail("expected an object with an \"openings\" list");
+  std::vector<Rectangle> out;
+  const json& list = j.at("openings");
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string where = "opening " + std::to_string(i);
+    const json& o = list[i];
+    if (!o.is_object() || !o.contains("corners") || !o.at("corners").is_array() || o.at("corners").size() != 4)
+      fail(where + ": expected \"corners\": four [x, y, z] points");
+    Rectangle r;
+    for (int c = 0; c < 4; ++c) {
+      const json& p = o.at("corners")[c];
+      if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
+        fail(where + ": corner " + std::to_string(c) + " is not [x, y, z]");
+      r[c] = Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+      if (!is_finite(r[c])) fail(where + ": corner " + std::to_string(c) + " is not finite");
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+std::vector<Rectangle> read_openings(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("cannot open openings file '" + path + "'");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw std::invalid_argument("openings '" + path + "' is not valid JSON: " + e.what());
+  }
+  return parse_openings(j, path);
+}
+
+json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor) {
+  json sensors = json::array();
+  for (Eigen::Index i = 0; i < values.value.size(); ++i)
+    sensors.push_back({{"value", values.value[i]}, {"stderr", values.stderr[i]}});
+  return {{"units", "luminance-weighted irradiance: lux for a sky in cd/m^2"},
+          {"openings", openings},
+          {"paths_per_sensor", paths_per_sensor},
+          {"sensors", sensors}};
+}
+
+void write_json(const std::string& path, const json& j) {
+  write_atomically(path, [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+}
+
+}  // namespace fenestra

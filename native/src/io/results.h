@@ -1,0 +1,28 @@
+#pragma once
+// Files the CLI and Python read and write: contribution archives, openings, evaluations.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+#include "trace/contributions.h"
+#include "trace/evaluate.h"
+
+namespace fenestra {
+
+// The elements of the opening domain: index, panel, row, column and four corners (meters).
+nlohmann::json elements_json(const Scene& scene);
+
+// Writes OUT.npz (arrays) and OUT.json (summary); `out` may end in .npz or be the stem.
+// Returns the two paths written.
+std::pair<std::string, std::string> write_contributions(const Scene& scene, const Contributions& c,
+                                                        const std::string& out);
+
+// Reads {"openings": [{"corners": [[x,y,z] x 4]}, ...]}; throws naming the file and opening.
+std::vector<Rectangle> read_openings(const std::string& path);
+std::vector<Rectangle> parse_openings(const nlohmann::json& j, const std::string& source);
+
+nlohmann::json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor);
+void write_json(const std::string& path, const nlohmann::json& j);
+
+}  // namespace fenestra

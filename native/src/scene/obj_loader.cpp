@@ -1,0 +1,158 @@
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "scene/mesh.h"
+
+namespace fenestra {
+
+void Mesh::append(const Mesh& other) {
+  const uint32_t base = static_cast<uint32_t>(positions.size());
+  positions.insert(positions.end(), other.positions.begin(), other.positions.end());
+  for (const auto& t : other.triangles) triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  triangle_material.insert(triangle_material.end(), other.triangle_material.begin(), other.triangle_material.end());
+  const int group_base = static_cast<int>(group_names.size());
+  for (int g : other.triangle_group) triangle_group.push_back(g < 0 ? -1 : g + group_base);
+  group_names.insert(group_names.end(), other.group_names.begin(), other.group_names.end());
+}
+
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument("cannot open geometry file '" + path + "'");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// tinyobjloader resolves `usemtl` only against materials read through `mtllib`; the scene
+// file, not an MTL file, defines Fenestra's materials, so we hand it one MTL naming them all.
+std::string prepare_obj_text(const std::string& text, std::set<std::string>* used) {
+  std::istringstream in(text);
+  std::ostringstream out;
+  out << "mtllib fenestra_materials.mtl\n";
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "mtllib") {
+      out << "#\n";
+      continue;
+    }
+    if (keyword == "usemtl") {
+      std::string name;
+      std::getline(words, name);
+      name.erase(0, name.find_first_not_of(" \t"));
+      name.erase(name.find_last_not_of(" \t\r") + 1);
+      used->insert(name);
+    }
+    out << line << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace
+
+Mesh load_obj(const std::string& path, const std::vector<std::string>& material_names) {
+  std::set<std::string> used;
+  const std::string obj_text = prepare_obj_text(read_text(path), &used);
+  for (const auto& name : used) {
+    if (std::find(material_names.begin(), material_names.end(), name) == material_names.end())
+      throw std::invalid_argument("geometry '" + path + "' uses material '" + name +
+                                  "', which the scene file's \"materials\" does not define");
+  }
+  std::ostringstream mtl;
+  for (const auto& name : used) mtl << "newmtl " << name << "\n";
+
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromString(obj_text, mtl.str(), config)) {
+    throw std::invalid_argument("cannot parse geometry '" + path + "': " + reader.Error());
+  }
+  const auto& attrib = reader.GetAttrib();
+  const auto& shapes = reader.GetShapes();
+  const auto& mtls = reader.GetMaterials();
+
+  Mesh mesh;
+  const size_t vertex_count = attrib.vertices.size() / 3;
+  mesh.positions.reserve(vertex_count);
+  for (size_t i = 0; i < vertex_count; ++i) {
+    const Vec3 p(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+    if (!is_finite(p)) {
+      std::ostringstream s;
+      s << "geometry '" << path << "': vertex " << i + 1 << " has a non-finite coordinate";
+      throw std::invalid_argument(s.str());
+    }
+    mesh.positions.push_back(p);
+  }
+
+  std::map<std::string, int> group_index;
+  const int default_material = [&] {
+    auto it = std::find(material_names.begin(), material_names.end(), "default");
+    return it == material_names.end() ? -1 : static_cast<int>(it - material_names.begin());
+  }();
+  for (const auto& shape : shapes) {
+    int group = -1;
+    if (!shape.name.empty()) {
+      auto it = group_index.find(shape.name);
+      if (it == group_index.end()) {
+        group = static_cast<int>(mesh.group_names.size());
+        group_index[shape.name] = group;
+        mesh.group_names.push_back(shape.name);
+      } else {
+        group = it->second;
+      }
+    }
+    const auto& m = shape.mesh;
+    size_t offset = 0;
+    for (size_t f = 0; f < m.num_face_vertices.size(); ++f) {
+      const int n = m.num_face_vertices[f];
+      if (n != 3) {
+        offset += n;
+        continue;  // lines or points left by the triangulator
+      }
+      std::array<uint32_t, 3> tri;
+      for (int k = 0; k < 3; ++k) {
+        const int vi = m.indices[offset + k].vertex_index;
+        if (vi < 0 || static_cast<size_t>(vi) >= vertex_count)
+          throw std::invalid_argument("geometry '" + path + "': a face refers to a missing vertex");
+        tri[k] = static_cast<uint32_t>(vi);
+      }
+      offset += 3;
+      int material = default_material;
+      const int mid = m.material_ids[f];
+      if (mid >= 0) {
+        const std::string& name = mtls[mid].name;
+        material = static_cast<int>(std::find(material_names.begin(), material_names.end(), name) -
+                                    material_names.begin());
+      }
+      if (material < 0) {
+        throw std::invalid_argument("geometry '" + path + "': faces of group '" + shape.name +
+                                    "' have no material (no usemtl, and no material named \"default\")");
+      }
+      mesh.triangles.push_back(tri);
+      mesh.triangle_material.push_back(material);
+      mesh.triangle_group.push_back(group);
+      const float area2 = mesh.area_normal(mesh.triangles.size() - 1).norm();
+      if (!(area2 > 1e-10f)) {
+        std::ostringstream s;
+        s << "geometry '" << path << "': face " << f + 1 << " of group '" << shape.name
+          << "' is degenerate (zero area)";
+        throw std::invalid_argument(s.str());
+      }
+    }
+  }
+  if (mesh.triangles.empty()) throw std::invalid_argument("geometry '" + path + "' has no faces");
+  return mesh;
+}
+
+}  // namespace fenestra

@@ -1,0 +1,68 @@
+#pragma once
+// The opening domain: faces allowed to host openings, grouped into planar panels, each
+// diced virtually into a grid of square elements. No geometry is modified.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "math/vec.h"
+#include "scene/cutter.h"
+#include "scene/mesh.h"
+
+namespace fenestra {
+
+struct Panel {
+  Vec3 origin;                  // grid corner (row 0, column 0), on the panel plane
+  Vec3 u_axis, v_axis, normal;  // u along rows (horizontal on walls), v up the panel
+  int rows = 0, cols = 0;
+  std::vector<int> grid;        // rows * cols: element index, or -1 where the square leaves the panel
+  std::vector<uint32_t> triangles;
+  int material = -1;            // material of the panel's faces (reveals use it)
+  std::string label;            // material and group names, for messages
+  double area = 0.0;            // m^2
+};
+
+struct Element {
+  int panel = 0, row = 0, col = 0;
+  std::array<Vec3, 4> corners;  // counter-clockwise about the panel normal
+  Vec3 center;
+};
+
+struct OpeningDomainSelection {
+  std::vector<std::string> materials, groups;
+  float element_size = 0.25f;  // meters
+  float thickness = 0.0f;      // meters of wall behind the domain faces (along -normal)
+};
+
+class OpeningDomain {
+ public:
+  OpeningDomain() = default;
+  static OpeningDomain build(const Mesh& mesh, const std::vector<std::string>& material_names,
+                             const OpeningDomainSelection& selection);
+
+  const std::vector<Panel>& panels() const { return panels_; }
+  const std::vector<Element>& elements() const { return elements_; }
+  size_t element_count() const { return elements_.size(); }
+  float element_size() const { return element_size_; }
+  float thickness() const { return thickness_; }
+
+  // Panel of a scene triangle, or -1 when the triangle is not in the domain.
+  int panel_of_triangle(size_t tri) const { return tri < triangle_panel_.size() ? triangle_panel_[tri] : -1; }
+  // Element containing point p of panel `panel`, or -1 (the panel's margin).
+  int element_at(int panel, const Vec3& p) const;
+  // The cutter that opens one element: its square, through the wall thickness.
+  CutterBox element_cutter(int element) const;
+  // Cutter of an arbitrary rectangle (corners in order) on the domain; throws if it lies on no panel.
+  CutterBox rectangle_cutter(const std::array<Vec3, 4>& corners, int* panel_out) const;
+  // Outward (through the wall) extent of a cutter, meters.
+  float cutter_depth() const { return thickness_ + 1e-3f; }
+
+ private:
+  std::vector<Panel> panels_;
+  std::vector<Element> elements_;
+  std::vector<int> triangle_panel_;
+  float element_size_ = 0.25f;
+  float thickness_ = 0.0f;
+};
+
+}  // namespace fenestra

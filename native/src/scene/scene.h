@@ -1,0 +1,49 @@
+#pragma once
+// Everything a computation needs: geometry, materials, opening domain, sensors, sky, settings.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/material.h"
+#include "scene/mesh.h"
+#include "scene/opening_domain.h"
+#include "scene/sky.h"
+
+namespace fenestra {
+
+struct Sensors {
+  std::vector<Vec3> points;   // meters
+  std::vector<Vec3> normals;  // unit
+  std::vector<double> goals;  // empty when the scene gives none
+  std::string goal_units = "normalized";  // "normalized" or "lux"
+  size_t size() const { return points.size(); }
+};
+
+struct RenderSettings {
+  int paths_per_sensor = 4096;
+  int max_bounces = 8;  // surface interactions after the sensor, inside and outside
+  uint64_t seed = 1;
+  int threads = 0;      // 0: all hardware threads
+  std::string to_string() const;
+};
+
+struct Scene {
+  std::string source;  // scene file, for messages
+  Mesh mesh;
+  std::vector<Material> materials;
+  OpeningDomain domain;
+  Sensors sensors;
+  std::shared_ptr<const Sky> sky;
+  RenderSettings render;
+
+  std::vector<std::string> material_names() const;
+  std::string to_string() const;
+};
+
+// Reads a scene file (JSON + OBJ, see docs/scene-format.md). Throws std::invalid_argument
+// naming the file and the offending key or value.
+Scene load_scene(const std::string& path);
+// Same from JSON text; relative paths resolve against `base_dir`.
+Scene parse_scene(const std::string& json_text, const std::string& base_dir, const std::string& source_name);
+
+}  // namespace fenestra

@@ -1,0 +1,268 @@
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "scene/bsdf.h"
+#include "scene/scene.h"
+
+namespace fenestra {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+class ScenePath {
+ public:
+  explicit ScenePath(std::string source) : source_(std::move(source)) {}
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+    throw std::invalid_argument("scene '" + source_ + "': " + key + ": " + message);
+  }
+  const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+};
+
+double number(const ScenePath& sp, const json& j, const std::string& key) {
+  if (!j.is_number()) sp.fail(key, "expected a number, got " + j.dump());
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) sp.fail(key, "must be finite");
+  return v;
+}
+
+double number_or(const ScenePath& sp, const json& obj, const std::string& name, const std::string& key, double fallback) {
+  return obj.contains(name) ? number(sp, obj.at(name), key + "." + name) : fallback;
+}
+
+Rgb colour(const ScenePath& sp, const json& j, const std::string& key) {
+  if (j.is_number()) return Rgb::Constant(static_cast<float>(number(sp, j, key)));
+  if (j.is_array() && j.size() == 3)
+    return Rgb(number(sp, j[0], key), number(sp, j[1], key), number(sp, j[2], key));
+  sp.fail(key, "expected a number or [r, g, b], got " + j.dump());
+}
+
+Vec3 point(const ScenePath& sp, const json& j, const std::string& key) {
+  if (!j.is_array() || j.size() != 3) sp.fail(key, "expected [x, y, z], got " + j.dump());
+  return Vec3(number(sp, j[0], key), number(sp, j[1], key), number(sp, j[2], key));
+}
+
+std::vector<std::string> names(const ScenePath& sp, const json& obj, const std::string& name, const std::string& key) {
+  std::vector<std::string> out;
+  if (!obj.contains(name)) return out;
+  const json& j = obj.at(name);
+  if (!j.is_array()) sp.fail(key + "." + name, "expected a list of names");
+  for (const auto& e : j) {
+    if (!e.is_string()) sp.fail(key + "." + name, "expected names, got " + e.dump());
+    out.push_back(e.get<std::string>());
+  }
+  return out;
+}
+
+void check_range(const ScenePath& sp, const Rgb& c, float lo, float hi, const std::string& key) {
+  if ((c < lo).any() || (c > hi).any()) {
+    std::ostringstream s;
+    s << "must lie in [" << lo << ", " << hi << "], got [" << c.transpose() << "]";
+    sp.fail(key, s.str());
+  }
+}
+
+Material parse_material(const ScenePath& sp, const std::string& name, const json& j) {
+  const std::string key = "materials." + name;
+  if (!j.is_object()) sp.fail(key, "expected an object");
+  Material m;
+  m.name = name;
+  const std::string type = j.value("type", std::string("diffuse"));
+  if (j.contains("reflectance")) m.reflectance = colour(sp, j.at("reflectance"), key + ".reflectance");
+  if (type == "diffuse") {
+    m.type = MaterialType::Diffuse;
+    check_range(sp, m.reflectance, 0.0f, 1.0f, key + ".reflectance");
+  } else if (type == "glossy") {
+    m.type = MaterialType::Glossy;
+    check_range(sp, m.reflectance, 0.0f, 1.0f, key + ".reflectance");
+    m.roughness = static_cast<float>(number_or(sp, j, "roughness", key, 0.5));
+    m.metallic = static_cast<float>(number_or(sp, j, "metallic", key, 0.0));
+    if (m.roughness < 0 || m.roughness > 1) sp.fail(key + ".roughness", "must lie in [0, 1]");
+    if (m.metallic < 0 || m.metallic > 1) sp.fail(key + ".metallic", "must lie in [0, 1]");
+  } else if (type == "glass") {
+    m.type = MaterialType::Glass;
+    if (j.contains("transmittance")) m.transmittance = colour(sp, j.at("transmittance"), key + ".transmittance");
+    check_range(sp, m.transmittance, 0.0f, 1.0f, key + ".transmittance");
+    m.ior = static_cast<float>(number_or(sp, j, "ior", key, 1.52));
+    if (!(m.ior >= 1.0f && m.ior <= 4.0f)) sp.fail(key + ".ior", "must lie in [1, 4]");
+    const std::string kind = j.value("kind", std::string("thin"));
+    if (kind != "thin" && kind != "solid") sp.fail(key + ".kind", "must be \"thin\" or \"solid\"");
+    m.thin = kind == "thin";
+    if (m.thin) {
+      try {
+        m.internal_transmittance = thin_glass_internal_transmittance(m.transmittance, m.ior, name);
+      } catch (const std::invalid_argument& e) {
+        sp.fail(key + ".transmittance", e.what());
+      }
+    }
+  } else {
+    sp.fail(key + ".type", "unknown material type '" + type + "' (diffuse, glass or glossy)");
+  }
+  return m;
+}
+
+std::shared_ptr<const Sky> parse_sky(const ScenePath& sp, const json& j, const fs::path& base) {
+  if (!j.is_object()) sp.fail("sky", "expected an object");
+  const std::string type = j.value("type", std::string("uniform"));
+  if (type == "uniform") {
+    const Rgb l = j.contains("radiance") ? colour(sp, j.at("radiance"), "sky.radiance") : Rgb::Constant(1000.0f / kPi);
+    if ((l < 0.0f).any()) sp.fail("sky.radiance", "must not be negative");
+    return std::make_shared<UniformSky>(l);
+  }
+  if (type == "envmap") {
+    if (!j.contains("file") || !j.at("file").is_string()) sp.fail("sky.file", "an envmap sky needs a \"file\"");
+    const fs::path file = base / j.at("file").get<std::string>();
+    const float scale = static_cast<float>(number_or(sp, j, "scale", "sky", 1.0));
+    const float rotation = static_cast<float>(number_or(sp, j, "rotation_deg", "sky", 0.0));
+    if (scale < 0.0f) sp.fail("sky.scale", "must not be negative");
+    try {
+      return EnvironmentMap::load(file.string(), scale, rotation);
+    } catch (const std::invalid_argument& e) {
+      sp.fail("sky.file", e.what());
+    }
+  }
+  sp.fail("sky.type", "unknown sky type '" + type + "' (uniform or envmap)");
+}
+
+Sensors parse_sensors(const ScenePath& sp, const json& j) {
+  if (!j.is_object()) sp.fail("sensors", "expected an object");
+  Sensors s;
+  if (!j.contains("points") || !j.at("points").is_array() || j.at("points").empty())
+    sp.fail("sensors.points", "the scene has no sensors");
+  for (size_t i = 0; i < j.at("points").size(); ++i)
+    s.points.push_back(point(sp, j.at("points")[i], "sensors.points[" + std::to_string(i) + "]"));
+  json normals = j.value("normals", json::array({json::array({0, 0, 1})}));
+  if (normals.is_array() && normals.size() == 3 && normals[0].is_number()) normals = json::array({normals});
+  if (!normals.is_array() || (normals.size() != 1 && normals.size() != s.points.size()))
+    sp.fail("sensors.normals", "give one normal for all sensors or one per sensor");
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    const std::string key = "sensors.normals[" + std::to_string(normals.size() == 1 ? 0 : i) + "]";
+    Vec3 n = point(sp, normals[normals.size() == 1 ? 0 : i], key);
+    if (!(n.norm() > 1e-6f)) sp.fail(key, "a normal must not be zero");
+    s.normals.push_back(n.normalized());
+  }
+  if (j.contains("goals") && !j.at("goals").is_null()) {
+    const json& g = j.at("goals");
+    if (!g.is_array() || g.size() != s.points.size())
+      sp.fail("sensors.goals", "expected one goal per sensor (" + std::to_string(s.points.size()) + ")");
+    for (size_t i = 0; i < g.size(); ++i)
+      s.goals.push_back(g[i].is_null() ? std::nan("") : number(sp, g[i], "sensors.goals[" + std::to_string(i) + "]"));
+  }
+  s.goal_units = j.value("goal_units", std::string("normalized"));
+  if (s.goal_units != "normalized" && s.goal_units != "lux")
+    sp.fail("sensors.goal_units", "must be \"normalized\" or \"lux\"");
+  return s;
+}
+
+RenderSettings parse_render(const ScenePath& sp, const json& j) {
+  RenderSettings r;
+  if (j.is_null()) return r;
+  if (!j.is_object()) sp.fail("render", "expected an object");
+  auto integer = [&](const char* name, long long fallback, long long lo, long long hi) {
+    if (!j.contains(name)) return fallback;
+    const double v = number(sp, j.at(name), std::string("render.") + name);
+    if (v != std::floor(v) || v < lo || v > hi)
+      sp.fail(std::string("render.") + name,
+              "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return static_cast<long long>(v);
+  };
+  r.paths_per_sensor = static_cast<int>(integer("paths_per_sensor", r.paths_per_sensor, 1, 1LL << 30));
+  r.max_bounces = static_cast<int>(integer("max_bounces", r.max_bounces, 0, 1000));
+  r.seed = static_cast<uint64_t>(integer("seed", 1, 0, 1LL << 53));
+  r.threads = static_cast<int>(integer("threads", 0, 0, 4096));
+  return r;
+}
+
+}  // namespace
+
+std::vector<std::string> Scene::material_names() const {
+  std::vector<std::string> out;
+  for (const auto& m : materials) out.push_back(m.name);
+  return out;
+}
+
+std::string RenderSettings::to_string() const {
+  std::ostringstream s;
+  s << "RenderSettings(paths_per_sensor=" << paths_per_sensor << ", max_bounces=" << max_bounces << ", seed=" << seed
+    << ", threads=" << threads << ")";
+  return s.str();
+}
+
+std::string Scene::to_string() const {
+  std::ostringstream s;
+  s << "Scene('" << source << "', " << mesh.triangle_count() << " triangles, " << materials.size() << " materials, "
+    << domain.panels().size() << " panels, " << domain.element_count() << " elements of " << domain.element_size()
+    << " m, " << sensors.size() << " sensors, " << (sky ? sky->to_string() : "no sky") << ")";
+  return s.str();
+}
+
+Scene parse_scene(const std::string& text, const std::string& base_dir, const std::string& source_name) {
+  const ScenePath sp(source_name);
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw std::invalid_argument("scene '" + source_name + "' is not valid JSON: " + e.what());
+  }
+  if (!j.is_object()) sp.fail("(top level)", "expected a JSON object");
+  if (!j.contains("fenestra") || !j.at("fenestra").is_number_integer() || j.at("fenestra").get<int>() != 1)
+    sp.fail("fenestra", "expected the format version 1 (\"fenestra\": 1)");
+
+  Scene scene;
+  scene.source = source_name;
+  const fs::path base(base_dir);
+  try {
+    if (!j.contains("materials") || !j.at("materials").is_object() || j.at("materials").empty())
+      sp.fail("materials", "the scene defines no materials");
+    for (const auto& [name, m] : j.at("materials").items()) scene.materials.push_back(parse_material(sp, name, m));
+
+    if (!j.contains("geometry") || !j.at("geometry").is_string()) sp.fail("geometry", "expected the OBJ file name");
+    try {
+      scene.mesh = load_obj((base / j.at("geometry").get<std::string>()).string(), scene.material_names());
+    } catch (const std::invalid_argument& e) {
+      sp.fail("geometry", e.what());
+    }
+
+    if (!j.contains("opening_domain") || !j.at("opening_domain").is_object())
+      sp.fail("opening_domain", "expected an object naming the materials or groups that may host openings");
+    const json& od = j.at("opening_domain");
+    OpeningDomainSelection sel;
+    sel.materials = names(sp, od, "materials", "opening_domain");
+    sel.groups = names(sp, od, "groups", "opening_domain");
+    sel.element_size = static_cast<float>(number_or(sp, od, "element_size", "opening_domain", 0.25));
+    sel.thickness = static_cast<float>(number_or(sp, od, "thickness", "opening_domain", 0.0));
+    try {
+      scene.domain = OpeningDomain::build(scene.mesh, scene.material_names(), sel);
+    } catch (const std::invalid_argument& e) {
+      sp.fail("opening_domain", e.what());
+    }
+
+    if (!j.contains("sensors")) sp.fail("sensors", "the scene has no sensors");
+    scene.sensors = parse_sensors(sp, j.at("sensors"));
+    scene.sky = parse_sky(sp, j.value("sky", json::object()), base);
+    scene.render = parse_render(sp, j.value("render", json()));
+  } catch (const json::exception& e) {
+    sp.fail("(structure)", e.what());
+  }
+  return scene;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument("cannot open scene file '" + path + "'");
+  std::ostringstream s;
+  s << in.rdbuf();
+  const fs::path p(path);
+  return parse_scene(s.str(), p.parent_path().string().empty() ? "." : p.parent_path().string(), path);
+}
+
+}  // namespace fenestra

@@ -1,0 +1,115 @@
+#include "scene/sky.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "sampling/warp.h"
+
+namespace fenestra {
+
+Vec3 UniformSky::sample(const Vec2& u, float* pdf) const {
+  const Vec3 d = square_to_uniform_sphere(u);
+  *pdf = square_to_uniform_sphere_pdf(d);
+  return d;
+}
+
+float UniformSky::pdf(const Vec3& d) const { return square_to_uniform_sphere_pdf(d); }
+
+std::string UniformSky::to_string() const {
+  std::ostringstream s;
+  s << "UniformSky(radiance=[" << radiance_.transpose() << "])";
+  return s.str();
+}
+
+EnvironmentMap::EnvironmentMap(int width, int height, std::vector<Rgb> pixels, float scale, float rotation_deg,
+                               std::string source)
+    : width_(width), height_(height), pixels_(std::move(pixels)), scale_(scale), source_(std::move(source)) {
+  if (width < 1 || height < 1 || pixels_.size() != static_cast<size_t>(width) * height)
+    throw std::invalid_argument("environment map " + source_ + ": pixel count does not match its size");
+  const float rot = rotation_deg * kPi / 180.0f;
+  cos_rot_ = std::cos(rot);
+  sin_rot_ = std::sin(rot);
+  std::vector<double> weights(pixels_.size());
+  for (int y = 0; y < height; ++y) {
+    const double sin_theta = std::sin(kPi * (y + 0.5) / height);
+    for (int x = 0; x < width; ++x) {
+      const Rgb& p = pixels_[static_cast<size_t>(y) * width + x];
+      if (!p.isFinite().all() || (p < 0.0f).any())
+        throw std::invalid_argument("environment map " + source_ + ": negative or non-finite pixel values");
+      weights[static_cast<size_t>(y) * width + x] = std::max(0.0, static_cast<double>(luminance(p))) * sin_theta;
+    }
+  }
+  distribution_ = Distribution2D(weights, width, height);
+}
+
+std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, float scale, float rotation_deg) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::invalid_argument("cannot read environment map '" + path + "': " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  const int w = spec.width, h = spec.height, channels = spec.nchannels;
+  if (w < 2 || h < 1) throw std::invalid_argument("environment map '" + path + "' is empty");
+  std::vector<float> data(static_cast<size_t>(w) * h * channels);
+  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
+    throw std::invalid_argument("cannot read environment map '" + path + "': " + in->geterror());
+  }
+  in->close();
+  std::vector<Rgb> pixels(static_cast<size_t>(w) * h);
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    const float* p = &data[i * channels];
+    pixels[i] = channels >= 3 ? Rgb(p[0], p[1], p[2]) : Rgb::Constant(p[0]);
+  }
+  return std::make_shared<EnvironmentMap>(w, h, std::move(pixels), scale, rotation_deg, "'" + path + "'");
+}
+
+Vec2 EnvironmentMap::direction_to_uv(const Vec3& dir) const {
+  // Undo the map's rotation about +Z, then Blender's equirectangular projection.
+  const float x = cos_rot_ * dir.x() + sin_rot_ * dir.y();
+  const float y = -sin_rot_ * dir.x() + cos_rot_ * dir.y();
+  float u = 0.5f - std::atan2(y, x) / (2.0f * kPi);
+  u -= std::floor(u);
+  const float v = std::acos(std::clamp(dir.z(), -1.0f, 1.0f)) / kPi;
+  return Vec2(std::min(u, std::nextafter(1.0f, 0.0f)), std::min(v, std::nextafter(1.0f, 0.0f)));
+}
+
+Vec3 EnvironmentMap::uv_to_direction(const Vec2& uv) const {
+  const float theta = uv.y() * kPi;
+  const float phi = (0.5f - uv.x()) * 2.0f * kPi;
+  const float st = std::sin(theta);
+  const float x = st * std::cos(phi), y = st * std::sin(phi);
+  return Vec3(cos_rot_ * x - sin_rot_ * y, sin_rot_ * x + cos_rot_ * y, std::cos(theta));
+}
+
+int EnvironmentMap::pixel_index(const Vec2& uv) const {
+  const int x = std::clamp(static_cast<int>(uv.x() * width_), 0, width_ - 1);
+  const int y = std::clamp(static_cast<int>(uv.y() * height_), 0, height_ - 1);
+  return y * width_ + x;
+}
+
+Rgb EnvironmentMap::radiance(const Vec3& dir) const { return pixels_[pixel_index(direction_to_uv(dir))] * scale_; }
+
+Vec3 EnvironmentMap::sample(const Vec2& u, float* pdf) const {
+  float pdf_uv = 0.0f;
+  const Vec2 uv = distribution_.sample(u, &pdf_uv);
+  const float sin_theta = std::sin(uv.y() * kPi);
+  *pdf = sin_theta > 0.0f ? pdf_uv / (2.0f * kPi * kPi * sin_theta) : 0.0f;
+  return uv_to_direction(uv);
+}
+
+float EnvironmentMap::pdf(const Vec3& dir) const {
+  const Vec2 uv = direction_to_uv(dir);
+  const float sin_theta = std::sin(uv.y() * kPi);
+  if (sin_theta <= 0.0f) return 0.0f;
+  return distribution_.pdf(uv) / (2.0f * kPi * kPi * sin_theta);
+}
+
+std::string EnvironmentMap::to_string() const {
+  std::ostringstream s;
+  s << "EnvironmentMap(" << source_ << ", " << width_ << "x" << height_ << ", scale=" << scale_ << ")";
+  return s.str();
+}
+
+}  // namespace fenestra

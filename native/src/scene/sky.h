@@ -1,0 +1,66 @@
+#pragma once
+// Distant light: radiance arriving from each direction (cd/m^2 per colour channel when the
+// sensor values are to be lux). Blender's world convention: +Z up.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "math/vec.h"
+#include "sampling/distribution.h"
+
+namespace fenestra {
+
+class Sky {
+ public:
+  virtual ~Sky() = default;
+  // Radiance arriving from direction `dir` (unit, pointing away from the scene).
+  virtual Rgb radiance(const Vec3& dir) const = 0;
+  // Importance-samples a direction; pdf in solid angle.
+  virtual Vec3 sample(const Vec2& u, float* pdf) const = 0;
+  virtual float pdf(const Vec3& dir) const = 0;
+  virtual std::string to_string() const = 0;
+};
+
+class UniformSky final : public Sky {
+ public:
+  explicit UniformSky(const Rgb& radiance) : radiance_(radiance) {}
+  Rgb radiance(const Vec3&) const override { return radiance_; }
+  Vec3 sample(const Vec2& u, float* pdf) const override;
+  float pdf(const Vec3&) const override;
+  std::string to_string() const override;
+
+ private:
+  Rgb radiance_;
+};
+
+// Equirectangular map as Blender's Environment Texture reads it: the top row is the zenith,
+// u = 0.5 - atan2(y, x) / (2 pi) (the image centre looks along +X), rows uniform in polar angle.
+// Pixels are piecewise constant; sampling follows luminance x sin(theta).
+class EnvironmentMap final : public Sky {
+ public:
+  EnvironmentMap(int width, int height, std::vector<Rgb> pixels, float scale, float rotation_deg,
+                 std::string source = "");
+  static std::shared_ptr<EnvironmentMap> load(const std::string& path, float scale, float rotation_deg);
+
+  Rgb radiance(const Vec3& dir) const override;
+  Vec3 sample(const Vec2& u, float* pdf) const override;
+  float pdf(const Vec3& dir) const override;
+  std::string to_string() const override;
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // Map coordinates in [0,1)^2 (u across, v down from the zenith) of a world direction, and back.
+  Vec2 direction_to_uv(const Vec3& dir) const;
+  Vec3 uv_to_direction(const Vec2& uv) const;
+
+ private:
+  int pixel_index(const Vec2& uv) const;
+  int width_, height_;
+  std::vector<Rgb> pixels_;
+  float scale_;
+  float cos_rot_, sin_rot_;
+  std::string source_;
+  Distribution2D distribution_;
+};
+
+}  // namespace fenestra

@@ -1,0 +1,185 @@
+#include "trace/contributions.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "trace/parallel.h"
+#include "trace/path_tracer.h"
+
+namespace fenestra {
+namespace {
+
+// Running sums of per-path estimates, turned into a mean and its standard error.
+struct Moments {
+  double sum = 0.0, sum_sq = 0.0;
+  void add(double x) { sum += x, sum_sq += x * x; }
+};
+
+void finish(double sum, double sum_sq, size_t n, double* mean, double* stderr) {
+  const double m = sum / static_cast<double>(n);
+  const double var = n > 1 ? std::max(0.0, (sum_sq / static_cast<double>(n) - m * m)) / static_cast<double>(n - 1) : 0.0;
+  *mean = m;
+  *stderr = std::sqrt(var);
+}
+
+struct Touched {
+  int element;
+  double light_alone = 0.0;  // light whose shadow rays cross only this element (before it escapes)
+  int escape_event = -1;     // first escape event through this element
+};
+
+// Per-path analysis: E's row, A, T and the closed / all-open values from the event list.
+void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Contributions* out) {
+  const size_t n_paths = rec.path_count();
+  std::vector<double> e_sum(elements, 0.0), e_sq(elements, 0.0), a_sum(elements, 0.0);
+  Moments closed, open;
+  std::vector<Touched> touched;
+  std::vector<double> base_suffix, all_suffix;
+  for (size_t p = 0; p < n_paths; ++p) {
+    const uint32_t b = rec.path_begin[p], e = rec.path_begin[p + 1];
+    const size_t m = e - b;
+    base_suffix.assign(m + 1, 0.0);
+    all_suffix.assign(m + 1, 0.0);
+    for (size_t j = m; j-- > 0;) {
+      const PathEvent& ev = rec.events[b + j];
+      base_suffix[j] = base_suffix[j + 1] + (!ev.is_escape() && ev.crossed_count == 0 ? ev.value : 0.0);
+      all_suffix[j] = all_suffix[j + 1] + ev.value;
+    }
+    closed.add(base_suffix[0]);
+
+    double open_value = 0.0;
+    bool escaped = false;
+    touched.clear();
+    auto entry = [&](int k) -> Touched& {
+      for (auto& t : touched)
+        if (t.element == k) return t;
+      touched.push_back(Touched{k});
+      return touched.back();
+    };
+    for (size_t j = 0; j < m; ++j) {
+      const PathEvent& ev = rec.events[b + j];
+      if (!escaped) open_value += ev.value;
+      if (ev.is_escape()) {
+        escaped = true;
+        Touched& t = entry(ev.element);
+        if (t.escape_event < 0) {
+          t.escape_event = static_cast<int>(j);
+          a_sum[ev.element] += all_suffix[j + 1];
+        }
+        continue;
+      }
+      if (ev.crossed_count == 0) continue;
+      const int k = rec.crossed[ev.crossed_begin];
+      bool single = true;
+      for (uint32_t c = 1; c < ev.crossed_count; ++c) single = single && rec.crossed[ev.crossed_begin + c] == k;
+      if (single) {
+        Touched& t = entry(k);
+        if (t.escape_event < 0) t.light_alone += ev.value;
+      }
+    }
+    open.add(open_value);
+    for (const Touched& t : touched) {
+      double c = t.light_alone;
+      if (t.escape_event >= 0) c += rec.events[b + t.escape_event].value - base_suffix[t.escape_event + 1];
+      e_sum[t.element] += c;
+      e_sq[t.element] += c * c;
+    }
+  }
+  for (size_t k = 0; k < elements; ++k) {
+    finish(e_sum[k], e_sq[k], n_paths, &out->E(sensor, k), &out->E_stderr(sensor, k));
+    out->A(sensor, k) = a_sum[k] / static_cast<double>(n_paths);
+  }
+  finish(closed.sum, closed.sum_sq, n_paths, &out->closed.value[sensor], &out->closed.stderr[sensor]);
+  finish(open.sum, open.sum_sq, n_paths, &out->all_open.value[sensor], &out->all_open.stderr[sensor]);
+}
+
+// Light leaving through element n on paths that reflected off element m before, summed.
+void accumulate_transport(const SensorRecord& rec, Eigen::MatrixXd* transport) {
+  for (size_t p = 0; p < rec.path_count(); ++p) {
+    const uint32_t b = rec.path_begin[p], e = rec.path_begin[p + 1];
+    for (uint32_t j = b; j < e; ++j) {
+      const PathEvent& first = rec.events[j];
+      if (!first.is_escape()) continue;
+      for (uint32_t l = j + 1; l < e; ++l) {
+        const PathEvent& later = rec.events[l];
+        if (later.is_escape() && later.element != first.element)
+          (*transport)(first.element, later.element) += later.value;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+SensorValues Contributions::evaluate(const std::vector<uint8_t>& open) const {
+  if (open.size() != element_count())
+    throw std::invalid_argument("open-element mask has " + std::to_string(open.size()) + " entries, expected " +
+                                std::to_string(element_count()));
+  SensorValues out;
+  out.value.resize(records.size());
+  out.stderr.resize(records.size());
+  tbb::parallel_for(size_t(0), records.size(), [&](size_t i) {
+    Moments mo;
+    for (size_t p = 0; p < records[i].path_count(); ++p) mo.add(path_value(records[i], p, open));
+    finish(mo.sum, mo.sum_sq, records[i].path_count(), &out.value[i], &out.stderr[i]);
+  });
+  return out;
+}
+
+size_t Contributions::memory_bytes() const {
+  size_t bytes = sizeof(double) * (E.size() * 3 + T.size());
+  for (const auto& r : records) bytes += r.memory_bytes();
+  return bytes;
+}
+
+Contributions compute_contributions(const Scene& scene, Progress* progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const PathTracer tracer(scene, {}, Mesh{});
+  tracer.check_sensors();
+
+  const size_t sensors = scene.sensors.size();
+  const size_t elements = scene.domain.element_count();
+  const int paths = scene.render.paths_per_sensor;
+  const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
+  std::vector<SensorRecord> chunks(sensors * tasks_per_sensor);
+  if (progress) progress->start("tracing contribution paths", chunks.size());
+  parallel_tasks(chunks.size(), scene.render.threads, progress, [&](size_t task) {
+    const size_t sensor = task / tasks_per_sensor;
+    const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
+    const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
+    SensorRecord& rec = chunks[task];
+    for (size_t p = first; p < last; ++p) {
+      Rng rng(mix_seed(scene.render.seed, sensor), p);
+      tracer.record_sensor_path(sensor, rng, &rec);
+    }
+  });
+
+  Contributions c;
+  c.paths_per_sensor = paths;
+  c.records.resize(sensors);
+  c.E.setZero(sensors, elements);
+  c.E_stderr.setZero(sensors, elements);
+  c.A.setZero(sensors, elements);
+  c.closed.value.setZero(sensors), c.closed.stderr.setZero(sensors);
+  c.all_open.value.setZero(sensors), c.all_open.stderr.setZero(sensors);
+  if (progress) progress->start("assembling the contribution matrix", sensors);
+  parallel_tasks(sensors, scene.render.threads, progress, [&](size_t i) {
+    SensorRecord& rec = c.records[i];
+    for (size_t t = 0; t < tasks_per_sensor; ++t) {
+      rec.append(chunks[i * tasks_per_sensor + t]);
+      SensorRecord().events.swap(chunks[i * tasks_per_sensor + t].events);
+    }
+    analyse_sensor(rec, i, elements, &c);
+  });
+  c.T.setZero(elements, elements);
+  for (const auto& rec : c.records) accumulate_transport(rec, &c.T);
+  c.T = (c.T + c.T.transpose()).eval() / static_cast<double>(paths * sensors);
+  for (const auto& r : c.records) c.events += r.events.size();
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return c;
+}
+
+}  // namespace fenestra

@@ -1,0 +1,41 @@
+#pragma once
+// The opening contribution matrix and everything kept with it, from one set of paths per sensor.
+#include <Eigen/Core>
+#include <vector>
+
+#include "scene/scene.h"
+#include "trace/path_record.h"
+#include "util/progress.h"
+
+namespace fenestra {
+
+struct SensorValues {
+  Eigen::VectorXd value;   // luminance-weighted irradiance per sensor (lux for a sky in cd/m^2)
+  Eigen::VectorXd stderr;  // standard error of each value (same units)
+};
+
+struct Contributions {
+  int paths_per_sensor = 0;
+  // E(i, k): what element k, alone open, adds to sensor i (value with {k} open minus all closed).
+  Eigen::MatrixXd E, E_stderr;
+  // A(i, k): light reaching sensor i on paths after they reflected off element k while it was closed.
+  Eigen::MatrixXd A;
+  // T(m, n): symmetric transport between elements m and n: light leaving through n on paths that
+  // reflected off m before (and vice versa), averaged over all paths of all sensors.
+  Eigen::MatrixXd T;
+  SensorValues closed;    // every element closed
+  SensorValues all_open;  // every element open
+  std::vector<SensorRecord> records;  // per sensor, per path: events for exact evaluation
+  double seconds = 0.0;
+  uint64_t events = 0;
+
+  size_t sensor_count() const { return records.size(); }
+  size_t element_count() const { return static_cast<size_t>(E.cols()); }
+  // Exact value of every sensor with the elements where open[k] != 0 open, from the same paths.
+  SensorValues evaluate(const std::vector<uint8_t>& open) const;
+  size_t memory_bytes() const;
+};
+
+Contributions compute_contributions(const Scene& scene, Progress* progress = nullptr);
+
+}  // namespace fenestra

@@ -1,0 +1,28 @@
+#include "trace/parallel.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <xmmintrin.h>
+#include <pmmintrin.h>
+
+namespace fenestra {
+
+void parallel_tasks(size_t count, int threads, Progress* progress, const std::function<void(size_t)>& fn) {
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1), [&](const tbb::blocked_range<size_t>& range) {
+      // Embree recommends flush-to-zero / denormals-are-zero in every thread that traces rays.
+      _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+      _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+      for (size_t task = range.begin(); task != range.end(); ++task) {
+        if (progress && progress->cancelled()) return;
+        fn(task);
+        if (progress) progress->advance();
+      }
+    });
+  });
+  if (progress) progress->throw_if_cancelled();
+}
+
+}  // namespace fenestra

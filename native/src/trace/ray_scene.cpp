@@ -1,0 +1,114 @@
+#include "trace/ray_scene.h"
+
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+namespace fenestra {
+namespace {
+
+// Context extension: Embree hands the context to the filter, so per-ray cutters need no globals.
+struct CutterContext {
+  RTCIntersectContext base;
+  const CutterSet* cutters;
+};
+
+void embree_error(void*, RTCError code, const char* message) {
+  std::fprintf(stderr, "fenestra: Embree error %d: %s\n", static_cast<int>(code), message ? message : "");
+}
+
+void check_device(const char* what) {
+  const RTCError err = rtcGetDeviceError(embree_device());
+  if (err != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree failed to ") + what + " (error " + std::to_string(err) + ")");
+}
+
+// Stateless: decides from the hit position alone, so it may be called repeatedly in any order.
+void cutter_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* ctx = reinterpret_cast<const CutterContext*>(args->context);
+  if (!ctx->cutters || ctx->cutters->empty()) return;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const float t = RTCRayN_tfar(args->ray, args->N, i);
+    const Vec3 org(RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+                   RTCRayN_org_z(args->ray, args->N, i));
+    const Vec3 dir(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                   RTCRayN_dir_z(args->ray, args->N, i));
+    if (any_contains(*ctx->cutters, org + t * dir)) args->valid[i] = 0;
+  }
+}
+
+RTCGeometry make_triangles(const Mesh& mesh) {
+  RTCGeometry g = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), mesh.positions.size()));
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.positions[i][k];
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(unsigned), mesh.triangles.size()));
+  for (size_t i = 0; i < mesh.triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.triangles[i][k];
+  return g;
+}
+
+}  // namespace
+
+RTCDevice embree_device() {
+  static RTCDevice device = [] {
+    RTCDevice d = rtcNewDevice(nullptr);
+    if (!d) throw std::runtime_error("cannot create an Embree device");
+    rtcSetDeviceErrorFunction(d, embree_error, nullptr);
+    return d;
+  }();
+  return device;
+}
+
+RayScene::RayScene(const Mesh& mesh, const Mesh& reveals) {
+  scene_ = rtcNewScene(embree_device());
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry g = make_triangles(mesh);
+  rtcSetGeometryIntersectFilterFunction(g, cutter_filter);
+  rtcCommitGeometry(g);
+  rtcAttachGeometryByID(scene_, g, kSceneGeometry);
+  rtcReleaseGeometry(g);
+  if (!reveals.triangles.empty()) {
+    RTCGeometry r = make_triangles(reveals);
+    rtcCommitGeometry(r);
+    rtcAttachGeometryByID(scene_, r, kRevealGeometry);
+    rtcReleaseGeometry(r);
+  }
+  rtcCommitScene(scene_);
+  check_device("build the scene");
+}
+
+RayScene::~RayScene() {
+  if (scene_) rtcReleaseScene(scene_);
+}
+
+Hit RayScene::intersect(const Vec3& org, const Vec3& dir, float tnear, float tfar, const CutterSet* cutters) const {
+  CutterContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.cutters = cutters;
+  RTCRayHit rh;
+  rh.ray.org_x = org.x(), rh.ray.org_y = org.y(), rh.ray.org_z = org.z();
+  rh.ray.dir_x = dir.x(), rh.ray.dir_y = dir.y(), rh.ray.dir_z = dir.z();
+  rh.ray.tnear = tnear;
+  rh.ray.tfar = tfar;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xFFFFFFFF;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &ctx.base, &rh);
+  Hit hit;
+  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+    hit.t = rh.ray.tfar;
+    hit.geometry = rh.hit.geomID;
+    hit.primitive = rh.hit.primID;
+  }
+  return hit;
+}
+
+}  // namespace fenestra

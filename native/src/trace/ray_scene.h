@@ -1,0 +1,41 @@
+#pragma once
+// Embree device and scene as RAII types, with per-ray cutters riding in an extended context.
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <vector>
+
+#include "scene/cutter.h"
+#include "scene/mesh.h"
+
+namespace fenestra {
+
+// One Embree device per process; errors are turned into exceptions at the call that caused them.
+RTCDevice embree_device();
+
+struct Hit {
+  float t = 0.0f;
+  uint32_t geometry = RTC_INVALID_GEOMETRY_ID;  // kSceneGeometry or kRevealGeometry
+  uint32_t primitive = 0;
+  bool valid() const { return geometry != RTC_INVALID_GEOMETRY_ID; }
+};
+
+class RayScene {
+ public:
+  static constexpr uint32_t kSceneGeometry = 0;
+  static constexpr uint32_t kRevealGeometry = 1;
+
+  // `reveals` are faces added by cutters (never cut themselves); may be empty.
+  RayScene(const Mesh& mesh, const Mesh& reveals);
+  ~RayScene();
+  RayScene(const RayScene&) = delete;
+  RayScene& operator=(const RayScene&) = delete;
+
+  // Closest hit with t in (tnear, tfar); surfaces of geometry 0 inside any of `cutters` are skipped.
+  Hit intersect(const Vec3& org, const Vec3& dir, float tnear, float tfar, const CutterSet* cutters) const;
+
+ private:
+  RTCScene scene_ = nullptr;
+};
+
+}  // namespace fenestra
