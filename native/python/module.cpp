@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "io/image_writer.h"
 #include "io/results.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
@@ -156,8 +157,12 @@ PYBIND11_MODULE(_core, m) {
           [](const Contributions& c, py::array_t<uint8_t, py::array::c_style | py::array::forcecast> open) {
             if (open.ndim() != 1) throw std::invalid_argument("open mask must be one-dimensional");
             std::vector<uint8_t> mask(open.data(), open.data() + open.size());
-            py::gil_scoped_release release;
-            return c.evaluate(mask);
+            SensorValues v;
+            {
+              py::gil_scoped_release release;
+              v = c.evaluate(mask);
+            }
+            return values_tuple(std::move(v));
           },
           py::arg("open"),
           "Exact (value, stderr) per sensor with the elements where open is true open, from the recorded paths.")
@@ -167,8 +172,6 @@ PYBIND11_MODULE(_core, m) {
         return "Contributions(" + std::to_string(c.sensor_count()) + " sensors x " + std::to_string(c.element_count()) +
                " elements, " + std::to_string(c.paths_per_sensor) + " paths per sensor)";
       });
-
-  py::class_<SensorValues>(m, "SensorValues");
 
   m.def(
       "compute_contributions",
@@ -191,6 +194,16 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
       "Path-traces the scene with rectangles (n, 4, 3) cut; returns (value, stderr) per sensor.");
+  m.def(
+      "write_image",
+      [](const std::string& path, py::array_t<float, py::array::c_style | py::array::forcecast> image) {
+        if (image.ndim() != 3) throw std::invalid_argument("image must have shape (height, width, channels)");
+        std::vector<float> pixels(image.data(), image.data() + image.size());
+        write_image(path, static_cast<int>(image.shape(1)), static_cast<int>(image.shape(0)),
+                    static_cast<int>(image.shape(2)), pixels);
+      },
+      py::arg("path"), py::arg("image"),
+      "Writes a linear float image (height, width, channels), top row first, e.g. an environment map (.exr/.hdr).");
   m.def("read_openings", [](const std::string& path) {
     const auto rects = read_openings(path);
     py::array_t<double> a({static_cast<py::ssize_t>(rects.size()), py::ssize_t(4), py::ssize_t(3)});

@@ -152,7 +152,7 @@ Contributions compute_contributions(const Scene& scene, Progress* progress) {
     const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
     SensorRecord& rec = chunks[task];
     for (size_t p = first; p < last; ++p) {
-      Rng rng(mix_seed(scene.render.seed, sensor), p);
+      Rng rng = path_rng(scene.render.seed, sensor, p);
       tracer.record_sensor_path(sensor, rng, &rec);
     }
   });

@@ -69,7 +69,7 @@ SensorValues evaluate_openings(const Scene& scene, const std::vector<Rectangle>&
     const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
     const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
     for (size_t p = first; p < last; ++p) {
-      Rng rng(mix_seed(scene.render.seed ^ kEvaluateStream, sensor), p);
+      Rng rng = path_rng(scene.render.seed ^ kEvaluateStream, sensor, p);
       const double v = tracer.sensor_sample(sensor, rng);
       sum[task] += v;
       sum_sq[task] += v * v;

@@ -39,4 +39,11 @@ inline uint64_t mix_seed(uint64_t a, uint64_t b) {
   return z ^ (z >> 31);
 }
 
+// Generator of path `path` of sensor `sensor`: PCG streams that share a start state are
+// correlated, so both the state and the stream are hashed from all three indices.
+inline Rng path_rng(uint64_t seed, uint64_t sensor, uint64_t path) {
+  const uint64_t key = mix_seed(mix_seed(seed, sensor), path);
+  return Rng(key, mix_seed(key, 0x5EED));
+}
+
 }  // namespace fenestra

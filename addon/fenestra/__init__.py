@@ -1,0 +1,50 @@
+"""Fenestra: design windows and skylights from daylight goals.
+
+This package is both the Python API (importable in any Python 3.11 with NumPy, no Blender
+needed) and the Blender add-on. Only the Blender modules import bpy.
+
+    import fenestra
+    scene = fenestra.load_scene("examples/reference_room/scene.json")
+    c = fenestra.contributions(scene)          # E, A, T, closed / all-open values
+    values, stderr = fenestra.evaluate(scene, fenestra.read_openings("openings.json"))
+
+Sensor values are luminance-weighted irradiance: lux when the sky is given in cd/m^2.
+"""
+
+bl_info = {
+    "name": "Fenestra",
+    "author": "Fenestra developers",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "Properties > Scene > Fenestra",
+    "description": "Design openings (windows, skylights) from daylight goals",
+    "category": "Lighting",
+}
+
+from .api import (  # noqa: E402
+    Cancelled,
+    Contributions,
+    Progress,
+    Scene,
+    contributions,
+    evaluate,
+    load_scene,
+    openings_array,
+    read_openings,
+    scene_from_dict,
+    write_image,
+)
+
+__all__ = [
+    "Cancelled",
+    "Contributions",
+    "Progress",
+    "Scene",
+    "contributions",
+    "evaluate",
+    "load_scene",
+    "openings_array",
+    "read_openings",
+    "scene_from_dict",
+    "write_image",
+]

@@ -1,0 +1,79 @@
+"""NumPy-level API over the native core (no bpy here)."""
+
+import json
+import os
+import threading
+
+import numpy as np
+
+from ._core import Cancelled, Contributions, Progress, Scene, read_openings, write_image
+from . import _core
+
+
+def load_scene(path):
+    """Reads a scene file (JSON + OBJ). Raises ValueError naming the file and the problem."""
+    return Scene.load(os.fspath(path))
+
+
+def scene_from_dict(scene, base_dir="."):
+    """Builds a scene from a dict in the scene-file format; relative paths resolve against base_dir."""
+    return Scene.from_json(json.dumps(scene), os.fspath(base_dir), "<dict>")
+
+
+def openings_array(openings):
+    """Rectangles as an (n, 4, 3) float array from an array, a list of corner lists, a list of
+    {"corners": ...} dicts or an openings-file dict {"openings": [...]}."""
+    if isinstance(openings, dict):
+        openings = openings.get("openings", [])
+    if isinstance(openings, np.ndarray):
+        rects = openings
+    else:
+        rects = [o["corners"] if isinstance(o, dict) else o for o in openings]
+    arr = np.asarray(rects, dtype=np.float64)
+    if arr.size == 0:
+        return np.zeros((0, 4, 3))
+    if arr.ndim != 3 or arr.shape[1:] != (4, 3):
+        raise ValueError("openings must be rectangles of four [x, y, z] corners, got shape %s" % (arr.shape,))
+    return arr
+
+
+def _run(work, progress, callback):
+    """Runs `work(progress)` (which releases the GIL); calls callback(fraction, status) about ten
+    times a second from this thread; a callback returning False cancels (raises Cancelled)."""
+    progress = progress if progress is not None else Progress()
+    if callback is None:
+        return work(progress)
+    result, error = {}, {}
+
+    def target():
+        try:
+            result["value"] = work(progress)
+        except BaseException as exc:  # re-raised in the caller's thread
+            error["value"] = exc
+
+    thread = threading.Thread(target=target, daemon=True)
+    thread.start()
+    try:
+        while thread.is_alive():
+            thread.join(0.1)
+            if callback(progress.fraction, progress.status) is False:
+                progress.cancel()
+    except BaseException:
+        progress.cancel()
+        thread.join()
+        raise
+    if "value" in error:
+        raise error["value"]
+    return result["value"]
+
+
+def contributions(scene, progress=None, callback=None):
+    """One pass of paths per sensor: returns a Contributions with E, E_stderr, A, T, closed,
+    all_open (and their standard errors) and evaluate(open_mask) for exact values of any set."""
+    return _run(lambda p: _core.compute_contributions(scene, p), progress, callback)
+
+
+def evaluate(scene, openings, progress=None, callback=None):
+    """Path-traces the scene with the openings really cut. Returns (value, stderr) arrays."""
+    rects = openings_array(openings)
+    return _run(lambda p: _core.evaluate(scene, rects, p), progress, callback)
