@@ -11,7 +11,7 @@ struct CutterBox {
   Vec3 origin;                 // a corner of the rectangle
   Vec3 u_axis, v_axis, normal;  // orthonormal
   float width = 0, height = 0;  // rectangle extent along u and v (meters)
-  float depth_back = 0, depth_front = 0;  // extent behind (-normal) and in front (+normal) of the plane
+  float depth_back = 0, depth_front = 0;  // extent along -normal and along +normal from the plane
 
   bool contains(const Vec3& p) const {
     const Vec3 d = p - origin;

@@ -133,6 +133,7 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
     panel.area = 0.5 * n.norm();
     n.normalize();
     panel.normal = n;
+    panel.outward = n;
     panel_axes(n, &panel.u_axis, &panel.v_axis);
 
     const Vec3 o = mesh.vertex(comp.front(), 0);
@@ -195,6 +196,31 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
   return domain;
 }
 
+void OpeningDomain::orient(const std::vector<Vec3>& sensor_points) {
+  for (Panel& panel : panels_) {
+    double side = 0.0;
+    for (const Vec3& p : sensor_points) side += (p - panel.origin).dot(panel.normal) > 0.0f ? 1.0 : -1.0;
+    panel.outward = side > 0.0 ? Vec3(-panel.normal) : panel.normal;
+  }
+}
+
+namespace {
+// Box from a rectangle through the wall: a hair on the room side, the thickness (and a hair) outside.
+CutterBox through_wall(const Vec3& origin, const Vec3& u, const Vec3& v, float w, float h, const Vec3& outward,
+                       float thickness) {
+  CutterBox box;
+  box.origin = origin;
+  box.u_axis = u;
+  box.v_axis = v;
+  box.normal = outward;
+  box.width = w;
+  box.height = h;
+  box.depth_back = 1e-3f;
+  box.depth_front = thickness + 1e-3f;
+  return box;
+}
+}  // namespace
+
 int OpeningDomain::element_at(int panel_index, const Vec3& p) const {
   const Panel& panel = panels_[panel_index];
   const Vec3 d = p - panel.origin;
@@ -209,15 +235,8 @@ int OpeningDomain::element_at(int panel_index, const Vec3& p) const {
 CutterBox OpeningDomain::element_cutter(int element) const {
   const Element& e = elements_[element];
   const Panel& panel = panels_[e.panel];
-  CutterBox box;
-  box.origin = e.corners[0];
-  box.u_axis = panel.u_axis;
-  box.v_axis = panel.v_axis;
-  box.normal = panel.normal;
-  box.width = box.height = element_size_;
-  box.depth_back = cutter_depth();
-  box.depth_front = 1e-3f;
-  return box;
+  return through_wall(e.corners[0], panel.u_axis, panel.v_axis, element_size_, element_size_, panel.outward,
+                      thickness_);
 }
 
 CutterBox OpeningDomain::rectangle_cutter(const std::array<Vec3, 4>& c, int* panel_out) const {
@@ -239,16 +258,10 @@ CutterBox OpeningDomain::rectangle_cutter(const std::array<Vec3, 4>& c, int* pan
     const float margin = element_size_;  // the grid may sit inside the panel's edge by up to one element
     if (a < -margin || b < -margin || a > (panel.cols + 1) * element_size_ || b > (panel.rows + 1) * element_size_)
       continue;
-    CutterBox box;
-    box.origin = c[0];
-    box.u_axis = e1 / w;
-    box.normal = panel.normal;
-    box.v_axis = panel.normal.cross(box.u_axis);
-    if (box.v_axis.dot(e2) < 0.0f) box.v_axis = -box.v_axis;
-    box.width = w;
-    box.height = std::abs(e2.dot(box.v_axis));
-    box.depth_back = cutter_depth();
-    box.depth_front = 1e-3f;
+    const Vec3 u = e1 / w;
+    Vec3 v = panel.normal.cross(u);
+    if (v.dot(e2) < 0.0f) v = -v;
+    const CutterBox box = through_wall(c[0], u, v, w, std::abs(e2.dot(v)), panel.outward, thickness_);
     if (panel_out) *panel_out = static_cast<int>(i);
     return box;
   }

@@ -13,7 +13,8 @@ namespace fenestra {
 
 struct Panel {
   Vec3 origin;                  // grid corner (row 0, column 0), on the panel plane
-  Vec3 u_axis, v_axis, normal;  // u along rows (horizontal on walls), v up the panel
+  Vec3 u_axis, v_axis, normal;  // u along rows (horizontal on walls), v up the panel; u x v = normal
+  Vec3 outward;                 // +-normal, pointing away from the sensors: where the wall's thickness lies
   int rows = 0, cols = 0;
   std::vector<int> grid;        // rows * cols: element index, or -1 where the square leaves the panel
   std::vector<uint32_t> triangles;
@@ -31,7 +32,7 @@ struct Element {
 struct OpeningDomainSelection {
   std::vector<std::string> materials, groups;
   float element_size = 0.25f;  // meters
-  float thickness = 0.0f;      // meters of wall behind the domain faces (along -normal)
+  float thickness = 0.0f;      // meters of wall behind the domain faces, on the side away from the sensors
 };
 
 class OpeningDomain {
@@ -39,6 +40,9 @@ class OpeningDomain {
   OpeningDomain() = default;
   static OpeningDomain build(const Mesh& mesh, const std::vector<std::string>& material_names,
                              const OpeningDomainSelection& selection);
+
+  // Points each panel's `outward` away from the sensors (the wall body lies on the far side).
+  void orient(const std::vector<Vec3>& sensor_points);
 
   const std::vector<Panel>& panels() const { return panels_; }
   const std::vector<Element>& elements() const { return elements_; }
@@ -54,8 +58,6 @@ class OpeningDomain {
   CutterBox element_cutter(int element) const;
   // Cutter of an arbitrary rectangle (corners in order) on the domain; throws if it lies on no panel.
   CutterBox rectangle_cutter(const std::array<Vec3, 4>& corners, int* panel_out) const;
-  // Outward (through the wall) extent of a cutter, meters.
-  float cutter_depth() const { return thickness_ + 1e-3f; }
 
  private:
   std::vector<Panel> panels_;

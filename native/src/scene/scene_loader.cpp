@@ -248,6 +248,7 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
 
     if (!j.contains("sensors")) sp.fail("sensors", "the scene has no sensors");
     scene.sensors = parse_sensors(sp, j.at("sensors"));
+    scene.domain.orient(scene.sensors.points);
     scene.sky = parse_sky(sp, j.value("sky", json::object()), base);
     scene.render = parse_render(sp, j.value("render", json()));
   } catch (const json::exception& e) {

@@ -40,7 +40,7 @@ OpeningsGeometry build_openings(const Scene& scene, const std::vector<Rectangle>
     g.cutters.push_back(box);
     if (t > 0.0f) {
       const int material = scene.domain.panels()[panel].material;
-      const Vec3 back = -t * box.normal;
+      const Vec3 back = t * box.normal;  // cutter normals point out through the wall
       const Vec3 c0 = box.origin, c1 = c0 + box.width * box.u_axis, c3 = c0 + box.height * box.v_axis;
       const Vec3 c2 = c1 + box.height * box.v_axis;
       const Vec3 ring[4] = {c0, c1, c2, c3};

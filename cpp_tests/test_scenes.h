@@ -1,0 +1,96 @@
+#pragma once
+// Small scenes written to a temporary directory, for tests with analytic answers.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "math/vec.h"
+#include "scene/scene.h"
+
+namespace fenestra::test {
+
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    path_ = std::filesystem::temp_directory_path() /
+            ("fenestra_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(file(name)) << text; }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// OBJ text built from quads; each quad is its own group with a material.
+class ObjBuilder {
+ public:
+  void quad(const std::string& group, const std::string& material, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+            const Vec3& p3) {
+    s_ << "o " << group << "\nusemtl " << material << "\n";
+    for (const Vec3* p : {&p0, &p1, &p2, &p3}) s_ << "v " << p->x() << " " << p->y() << " " << p->z() << "\n";
+    s_ << "f " << n_ + 1 << " " << n_ + 2 << " " << n_ + 3 << " " << n_ + 4 << "\n";
+    n_ += 4;
+  }
+  // Axis-aligned closed box; `material_of(face)` with face in {floor, ceiling, south, north, west, east}.
+  template <typename F>
+  void box(const Vec3& lo, const Vec3& hi, F material_of) {
+    const float x0 = lo.x(), y0 = lo.y(), z0 = lo.z(), x1 = hi.x(), y1 = hi.y(), z1 = hi.z();
+    quad("floor", material_of("floor"), {x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}, {x1, y0, z0});
+    quad("ceiling", material_of("ceiling"), {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1});
+    quad("south", material_of("south"), {x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1});
+    quad("north", material_of("north"), {x0, y1, z0}, {x0, y1, z1}, {x1, y1, z1}, {x1, y1, z0});
+    quad("west", material_of("west"), {x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1}, {x0, y1, z0});
+    quad("east", material_of("east"), {x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, y0, z1});
+  }
+  std::string str() const { return s_.str(); }
+
+ private:
+  std::ostringstream s_;
+  int n_ = 0;
+};
+
+// View factor from a differential area at p with unit normal n to a planar polygon wholly in
+// front of it (Lambert's closed form: sum over edges of the angle they subtend times n . edge normal).
+inline double polygon_view_factor(const Vec3& p, const Vec3& n, const std::vector<Vec3>& polygon) {
+  double sum = 0.0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector3d a = (polygon[i] - p).cast<double>().normalized();
+    const Eigen::Vector3d b = (polygon[(i + 1) % polygon.size()] - p).cast<double>().normalized();
+    const double angle = std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+    sum += angle * n.cast<double>().dot(a.cross(b).normalized());
+  }
+  return std::abs(sum) / (2.0 * M_PI);
+}
+
+// Differential area to a parallel rectangle a x b at distance c, the normal through one corner
+// (the classical corner formula, e.g. Howell's catalogue B-3).
+inline double parallel_corner_view_factor(double a, double b, double c) {
+  const double x = a / c, y = b / c;
+  const double sx = std::sqrt(1 + x * x), sy = std::sqrt(1 + y * y);
+  return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2.0 * M_PI);
+}
+
+// |a - b| within k combined standard errors.
+inline ::testing::AssertionResult within_sigma(double a, double sa, double b, double sb, double k = 4.0) {
+  const double sigma = std::sqrt(sa * sa + sb * sb);
+  if (std::abs(a - b) <= k * sigma) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << a << " and " << b << " differ by " << std::abs(a - b) << " > " << k
+                                       << " x " << sigma << " (combined standard error)";
+}
+
+}  // namespace fenestra::test
