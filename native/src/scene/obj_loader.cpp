@@ -1,6 +1,8 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <set>
@@ -33,15 +35,31 @@ std::string read_text(const std::string& path) {
 
 // tinyobjloader resolves `usemtl` only against materials read through `mtllib`; the scene
 // file, not an MTL file, defines Fenestra's materials, so we hand it one MTL naming them all.
-std::string prepare_obj_text(const std::string& text, std::set<std::string>* used) {
+// tinyobjloader reads "nan" or "1e999" as some number; we refuse them with the line number.
+void check_vertex_line(const std::string& path, size_t line_number, std::istringstream& words) {
+  for (int k = 0; k < 3; ++k) {
+    std::string token;
+    words >> token;
+    char* end = nullptr;
+    const double v = std::strtod(token.c_str(), &end);
+    if (token.empty() || *end != '\0' || !std::isfinite(v))
+      throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(line_number) +
+                                  ": vertex coordinate '" + token + "' is not a finite number");
+  }
+}
+
+std::string prepare_obj_text(const std::string& path, const std::string& text, std::set<std::string>* used) {
   std::istringstream in(text);
   std::ostringstream out;
   out << "mtllib fenestra_materials.mtl\n";
   std::string line;
+  size_t line_number = 0;
   while (std::getline(in, line)) {
+    ++line_number;
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
+    if (keyword == "v") check_vertex_line(path, line_number, words);
     if (keyword == "mtllib") {
       out << "#\n";
       continue;
@@ -62,7 +80,7 @@ std::string prepare_obj_text(const std::string& text, std::set<std::string>* use
 
 Mesh load_obj(const std::string& path, const std::vector<std::string>& material_names) {
   std::set<std::string> used;
-  const std::string obj_text = prepare_obj_text(read_text(path), &used);
+  const std::string obj_text = prepare_obj_text(path, read_text(path), &used);
   for (const auto& name : used) {
     if (std::find(material_names.begin(), material_names.end(), name) == material_names.end())
       throw std::invalid_argument("geometry '" + path + "' uses material '" + name +
