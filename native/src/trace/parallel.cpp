@@ -1,5 +1,7 @@
 #include "trace/parallel.h"
 
+#include "trace/ray_scene.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -15,11 +17,13 @@ void parallel_tasks(size_t count, int threads, Progress* progress, const std::fu
       // Embree recommends flush-to-zero / denormals-are-zero in every thread that traces rays.
       _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
       _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+      const uint64_t rays_before = thread_ray_count();
       for (size_t task = range.begin(); task != range.end(); ++task) {
-        if (progress && progress->cancelled()) return;
+        if (progress && progress->cancelled()) break;
         fn(task);
         if (progress) progress->advance();
       }
+      add_rays_traced(thread_ray_count() - rays_before);
     });
   });
   if (progress) progress->throw_if_cancelled();

@@ -1,5 +1,6 @@
 #include "trace/ray_scene.h"
 
+#include <atomic>
 #include <cstdio>
 #include <limits>
 #include <mutex>
@@ -54,6 +55,17 @@ RTCGeometry make_triangles(const Mesh& mesh) {
 
 }  // namespace
 
+namespace {
+std::atomic<uint64_t> g_rays_traced{0};
+}
+
+uint64_t& thread_ray_count() {
+  thread_local uint64_t count = 0;
+  return count;
+}
+uint64_t rays_traced() { return g_rays_traced.load(); }
+void add_rays_traced(uint64_t n) { g_rays_traced += n; }
+
 RTCDevice embree_device() {
   static RTCDevice device = [] {
     RTCDevice d = rtcNewDevice(nullptr);
@@ -102,6 +114,7 @@ Hit RayScene::intersect(const Vec3& org, const Vec3& dir, float tnear, float tfa
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &ctx.base, &rh);
+  ++thread_ray_count();
   Hit hit;
   if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
     hit.t = rh.ray.tfar;

@@ -13,6 +13,12 @@ namespace fenestra {
 // One Embree device per process; errors are turned into exceptions at the call that caused them.
 RTCDevice embree_device();
 
+// Rays traced by this thread so far (intersect calls); parallel_tasks adds them to rays_traced().
+uint64_t& thread_ray_count();
+// Rays traced by all parallel_tasks since the process started.
+uint64_t rays_traced();
+void add_rays_traced(uint64_t n);
+
 struct Hit {
   float t = 0.0f;
   uint32_t geometry = RTC_INVALID_GEOMETRY_ID;  // kSceneGeometry or kRevealGeometry
