@@ -1,0 +1,87 @@
+"""The fenestra command-line program: outputs, formats and errors."""
+
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+from conftest import CLI, EXAMPLES
+
+
+def run(*args):
+    return subprocess.run([CLI, *map(str, args)], capture_output=True, text=True)
+
+
+def test_contributions_writes_npz_and_summary(small_room, tmp_path):
+    out = tmp_path / "contrib.npz"
+    r = run("contributions", small_room, "-o", out, "--paths", 256, "--quiet")
+    assert r.returncode == 0, r.stderr
+    with np.load(out) as data:
+        assert data["E"].shape == (3, 30)
+        assert data["T"].shape == (30, 30)
+        E = data["E"]
+    summary = json.loads((tmp_path / "contrib.json").read_text())
+    assert summary["element_count"] == 30 and summary["sensors"] == 3
+    first = summary["elements"][0]
+    assert {"index", "panel", "row", "col", "corners"} <= set(first)
+    assert np.array(first["corners"]).shape == (4, 3)
+    assert len(summary["all_open"]) == 3
+    assert np.isfinite(E).all()
+
+
+def test_evaluate_reads_openings_and_writes_values(small_room, tmp_path):
+    openings = tmp_path / "openings.json"
+    openings.write_text(json.dumps({"openings": [{"corners": [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1, 0, 2]]}]}))
+    out = tmp_path / "eval.json"
+    r = run("evaluate", small_room, "--openings", openings, "-o", out, "--paths", 512, "--quiet")
+    assert r.returncode == 0, r.stderr
+    sensors = json.loads(out.read_text())["sensors"]
+    assert len(sensors) == 3
+    assert all(s["value"] > 0 and s["stderr"] > 0 for s in sensors)
+
+
+def test_reference_room_example_runs(tmp_path):
+    scene = os.path.join(EXAMPLES, "reference_room", "scene.json")
+    window = os.path.join(EXAMPLES, "reference_room", "window.json")
+    r = run("evaluate", scene, "--openings", window, "-o", tmp_path / "e.json", "--paths", 256, "--quiet")
+    assert r.returncode == 0, r.stderr
+
+
+@pytest.mark.parametrize("content, fragment", [
+    ("{", "not valid JSON"),
+    ('{"fenestra": 1}', "materials"),
+    ('{"fenestra": 2}', "version"),
+])
+def test_bad_scene_fails_cleanly_without_output(tmp_path, content, fragment):
+    scene = tmp_path / "bad.json"
+    scene.write_text(content)
+    out = tmp_path / "out.npz"
+    r = run("contributions", scene, "-o", out, "--quiet")
+    assert r.returncode == 1
+    assert fragment in r.stderr and "bad.json" in r.stderr
+    assert list(tmp_path.iterdir()) == [scene]  # nothing half-written
+
+
+def test_bad_openings_fail_cleanly(small_room, tmp_path):
+    openings = tmp_path / "openings.json"
+    openings.write_text(json.dumps({"openings": [{"corners": [[1, 3, 1], [2, 3, 1], [2, 3, 2], [1, 3, 2]]}]}))
+    out = tmp_path / "eval.json"
+    r = run("evaluate", small_room, "--openings", openings, "-o", out, "--quiet")
+    assert r.returncode == 1 and "opening 0" in r.stderr
+    assert not out.exists()
+    r = run("evaluate", small_room, "--openings", tmp_path / "missing.json", "-o", out, "--quiet")
+    assert r.returncode == 1 and "missing.json" in r.stderr
+
+
+def test_missing_output_directory_is_an_error(small_room, tmp_path):
+    r = run("contributions", small_room, "-o", tmp_path / "no" / "such" / "dir" / "c.npz", "--paths", 8, "--quiet")
+    assert r.returncode == 1 and "does not exist" in r.stderr
+
+
+@pytest.mark.parametrize("args", [[], ["frobnicate", "x"], ["contributions"], ["contributions", "s.json"],
+                                  ["evaluate", "s.json", "-o", "x.json"], ["contributions", "s", "-o", "x", "--paths", "-3"]])
+def test_usage_errors_exit_2(args):
+    r = run(*args)
+    assert r.returncode == 2 and "usage" in r.stderr
