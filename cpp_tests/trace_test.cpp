@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "scene/bsdf.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
@@ -223,6 +224,39 @@ TEST(Trace, SameSeedSameNumbersWhateverTheThreadCount) {
   EXPECT_GT(c1.E.sum(), 0.0);
   const Rectangle hole = {Vec3(1, 0, 1), Vec3(2, 0, 1), Vec3(2, 0, 2), Vec3(1, 0, 2)};
   EXPECT_TRUE(evaluate_openings(one, {hole}).value == evaluate_openings(two, {hole}).value);
+}
+
+TEST(Trace, ThinGlassPaneAbsorbsWhatFresnelAndItsBodySay) {
+  // A horizontal 20 x 20 m pane 1 m above an upward sensor, uniform sky in every direction: light
+  // through the pane from above and light the pane reflects from below both reach the sensor, so
+  // E = pi L - L * integral over the pane of absorptance(theta) cos(theta) d(omega).
+  TempDir dir;
+  ObjBuilder obj;
+  obj.quad("pane", "pane", {-10, -10, 1}, {10, -10, 1}, {10, 10, 1}, {-10, 10, 1});
+  obj.quad("slab", "slab", {-1, -1, -10}, {1, -1, -10}, {1, 1, -10}, {-1, 1, -10});
+  dir.write("scene.obj", obj.str());
+  dir.write("scene.json",
+            scene_json(R"({"pane": {"type": "glass", "transmittance": 0.6, "ior": 1.5}, "slab": {"reflectance": 0.5}})",
+                       R"({"materials": ["slab"]})", R"({"points": [[0, 0, 0]], "normals": [0, 0, 1]})", 1 << 15));
+  const Scene scene = load_scene(dir.file("scene.json"));
+  const Material& pane = scene.materials[0].name == "pane" ? scene.materials[0] : scene.materials[1];
+  double absorbed = 0.0;  // integral of A(theta) cos(theta) d(omega) over directions meeting the pane
+  const int n = 800;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double theta = (i + 0.5) / n * M_PI / 2, phi = (j + 0.5) / n * 2 * M_PI;
+      const double t = std::tan(theta);
+      if (std::abs(t * std::cos(phi)) > 10 || std::abs(t * std::sin(phi)) > 10) continue;
+      const float c = static_cast<float>(std::cos(theta));
+      const double a = 1.0 - luminance(thin_glass_transmittance(pane, c)) - luminance(thin_glass_reflectance(pane, c));
+      absorbed += a * std::cos(theta) * std::sin(theta) * (M_PI / 2 / n) * (2 * M_PI / n);
+    }
+  ASSERT_GT(absorbed, 0.2);  // the pane absorbs a fair share: the test can tell
+  const double expected = kRadiance * (M_PI - absorbed);
+  const SensorValues v = evaluate_openings(scene, {});
+  EXPECT_TRUE(within_sigma(v.value[0], v.stderr[0], expected, 0.0));
+  const Contributions c = compute_contributions(scene);
+  EXPECT_TRUE(within_sigma(c.closed.value[0], c.closed.stderr[0], expected, 0.0));
 }
 
 TEST(Trace, ThickWallCutHasReveals) {
