@@ -1,0 +1,71 @@
+"""Type stubs for the native module fenestra._core (see native/python/module.cpp)."""
+
+from typing import Optional, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+class Cancelled(Exception): ...
+
+class Progress:
+    def __init__(self) -> None: ...
+    @property
+    def fraction(self) -> float: ...
+    @property
+    def status(self) -> str: ...
+    @property
+    def cancelled(self) -> bool: ...
+    def cancel(self) -> None: ...
+
+class RenderSettings:
+    paths_per_sensor: int
+    max_bounces: int
+    seed: int
+    threads: int
+
+class Scene:
+    @staticmethod
+    def load(path: str) -> "Scene": ...
+    @staticmethod
+    def from_json(text: str, base_dir: str = ".", name: str = "<json>") -> "Scene": ...
+    source: str
+    render: RenderSettings
+    @property
+    def sensor_count(self) -> int: ...
+    @property
+    def element_count(self) -> int: ...
+    @property
+    def element_size(self) -> float: ...
+    @property
+    def sensor_points(self) -> npt.NDArray[np.float64]: ...  # (sensors, 3), meters
+    @property
+    def goals(self) -> Optional[npt.NDArray[np.float64]]: ...
+    @property
+    def goal_units(self) -> str: ...
+    @property
+    def element_corners(self) -> npt.NDArray[np.float64]: ...  # (elements, 4, 3), meters
+    @property
+    def element_grid(self) -> npt.NDArray[np.int32]: ...  # (elements, 3): panel, row, column
+    def elements_json(self) -> str: ...
+
+class Contributions:
+    E: npt.NDArray[np.float64]  # (sensors, elements), lux for a sky in cd/m^2
+    E_stderr: npt.NDArray[np.float64]
+    A: npt.NDArray[np.float64]
+    T: npt.NDArray[np.float64]  # (elements, elements)
+    closed: npt.NDArray[np.float64]
+    closed_stderr: npt.NDArray[np.float64]
+    all_open: npt.NDArray[np.float64]
+    all_open_stderr: npt.NDArray[np.float64]
+    paths_per_sensor: int
+    seconds: float
+    events: int
+    memory_bytes: int
+    def evaluate(self, open: npt.ArrayLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+    def save(self, scene: Scene, path: str) -> Tuple[str, str]: ...
+
+def compute_contributions(scene: Scene, progress: Optional[Progress] = None) -> Contributions: ...
+def evaluate(scene: Scene, openings: npt.ArrayLike, progress: Optional[Progress] = None
+             ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+def write_image(path: str, image: npt.ArrayLike) -> None: ...
+def read_openings(path: str) -> npt.NDArray[np.float64]: ...
