@@ -106,7 +106,8 @@ def paper_scale():
     obj = Obj()
     room(obj, 6, 6, 3, "wall_south", n=4)
     obj.box("table", "furniture", (1.5, 2.0, 0.0), (4.5, 3.2, 0.72))
-    obj.box("shelf", "furniture", (0.2, 5.4, 0.0), (2.6, 5.8, 2.0))
+    # Behind the last sensor row (y = 5.7): a sensor inside a solid sees only back faces.
+    obj.box("shelf", "furniture", (0.2, 5.75, 0.0), (2.6, 5.98, 2.0))
     obj.box("neighbour", "facade", (-4.0, -14.0, -0.05), (10.0, -10.0, 7.0))
     obj.quad("ground", "ground", (-60, -60, -0.05), (60, -60, -0.05), (-60, 60, -0.05), 40, 40)
     obj.write(os.path.join(out, "scene.obj"))
