@@ -64,6 +64,10 @@ class ObjBuilder {
   int n_ = 0;
 };
 
+// Rays leave a sensor from 0.1 mm along its normal (the tracer's ray offset); the stratified
+// estimates are precise enough to see it, so closed forms are evaluated there too.
+constexpr float kSensorLift = 1e-4f;
+
 // View factor from a differential area at p with unit normal n to a planar polygon wholly in
 // front of it (Lambert's closed form: sum over edges of the angle they subtend times n . edge normal).
 inline double polygon_view_factor(const Vec3& p, const Vec3& n, const std::vector<Vec3>& polygon) {

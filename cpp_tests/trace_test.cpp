@@ -82,7 +82,7 @@ TEST(Trace, BlackBoxRoofOpeningMatchesParallelRectangleViewFactor) {
   const Contributions c = compute_contributions(scene);
   const SensorValues exact = c.evaluate(mask_of_elements_inside(scene, hole));
   for (int i = 0; i < 2; ++i) {
-    const Vec3 p = scene.sensors.points[i];
+    const Vec3 p = scene.sensors.points[i] + Vec3(0, 0, test::kSensorLift);
     const double expected = M_PI * kRadiance * test::polygon_view_factor(p, {0, 0, 1}, {hole.begin(), hole.end()});
     EXPECT_TRUE(within_sigma(v.value[i], v.stderr[i], expected, 0.0)) << "evaluate, sensor " << i;
     EXPECT_TRUE(within_sigma(exact.value[i], exact.stderr[i], expected, 0.0)) << "exact records, sensor " << i;
@@ -106,8 +106,8 @@ TEST(Trace, VerticalWindowWithSillAtWorkPlaneMatchesClosedForm) {
   ASSERT_EQ(std::count(mask.begin(), mask.end(), 1), 40);
   const SensorValues exact = c.evaluate(mask);
   for (int i = 0; i < 2; ++i) {
-    const double expected =
-        M_PI * kRadiance * test::polygon_view_factor(scene.sensors.points[i], {0, 0, 1}, {window.begin(), window.end()});
+    const Vec3 p = scene.sensors.points[i] + Vec3(0, 0, test::kSensorLift);
+    const double expected = M_PI * kRadiance * test::polygon_view_factor(p, {0, 0, 1}, {window.begin(), window.end()});
     EXPECT_TRUE(within_sigma(v.value[i], v.stderr[i], expected, 0.0)) << "evaluate, sensor " << i;
     EXPECT_TRUE(within_sigma(exact.value[i], exact.stderr[i], expected, 0.0)) << "exact records, sensor " << i;
   }

@@ -33,7 +33,11 @@ float Distribution1D::sample(float u, int* index, float* pdf) const {
   du = std::clamp(du, 0.0, std::nextafter(1.0, 0.0));
   if (index) *index = i;
   if (pdf) *pdf = static_cast<float>(func_[i] / normaliser_);
-  return std::min(static_cast<float>((i + du) / n), std::nextafter(1.0f, 0.0f));
+  float x = std::min(static_cast<float>((i + du) / n), std::nextafter(1.0f, 0.0f));
+  // Rounding to float can carry x across a cell edge; keep it in cell i as pdf() locates it.
+  while (x > 0.0f && static_cast<int>(x * n) > i) x = std::nextafter(x, 0.0f);
+  while (x < 1.0f && static_cast<int>(x * n) < i) x = std::nextafter(x, 1.0f);
+  return x;
 }
 
 float Distribution1D::pdf(float x) const {

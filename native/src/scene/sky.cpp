@@ -101,7 +101,9 @@ Vec3 EnvironmentMap::sample(const Vec2& u, float* pdf) const {
 
 float EnvironmentMap::pdf(const Vec3& dir) const {
   const Vec2 uv = direction_to_uv(dir);
-  const float sin_theta = std::sin(uv.y() * kPi);
+  // sin(theta) of the direction itself: in float, sin(v * pi) with v < 1 never drops below
+  // ~1.5e-7, so every direction within 2.4e-4 rad of the nadir got a pdf up to ~1000x too large.
+  const float sin_theta = std::sqrt(dir.x() * dir.x() + dir.y() * dir.y());
   if (sin_theta <= 0.0f) return 0.0f;
   return distribution_.pdf(uv) / (2.0f * kPi * kPi * sin_theta);
 }

@@ -8,22 +8,11 @@
 
 #include "trace/parallel.h"
 #include "trace/path_tracer.h"
+#include "trace/replicates.h"
 
 namespace fenestra {
 namespace {
 
-// Running sums of per-path estimates, turned into a mean and its standard error.
-struct Moments {
-  double sum = 0.0, sum_sq = 0.0;
-  void add(double x) { sum += x, sum_sq += x * x; }
-};
-
-void finish(double sum, double sum_sq, size_t n, double* mean, double* stderr) {
-  const double m = sum / static_cast<double>(n);
-  const double var = n > 1 ? std::max(0.0, (sum_sq / static_cast<double>(n) - m * m)) / static_cast<double>(n - 1) : 0.0;
-  *mean = m;
-  *stderr = std::sqrt(var);
-}
 
 struct Touched {
   int element;
@@ -34,8 +23,8 @@ struct Touched {
 // Per-path analysis: E's row, A, T and the closed / all-open values from the event list.
 void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Contributions* out) {
   const size_t n_paths = rec.path_count();
-  std::vector<double> e_sum(elements, 0.0), e_sq(elements, 0.0), a_sum(elements, 0.0);
-  Moments closed, open;
+  std::vector<double> e_sum(elements * kReplicates, 0.0), a_sum(elements, 0.0);
+  ReplicateSums closed, open;
   std::vector<Touched> touched;
   std::vector<double> base_suffix, all_suffix;
   for (size_t p = 0; p < n_paths; ++p) {
@@ -48,7 +37,7 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
       base_suffix[j] = base_suffix[j + 1] + (!ev.is_escape() && ev.crossed_count == 0 ? ev.value : 0.0);
       all_suffix[j] = all_suffix[j + 1] + ev.value;
     }
-    closed.add(base_suffix[0]);
+    closed.add(p, base_suffix[0]);
 
     double open_value = 0.0;
     bool escaped = false;
@@ -80,20 +69,19 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
         if (t.escape_event < 0) t.light_alone += ev.value;
       }
     }
-    open.add(open_value);
+    open.add(p, open_value);
     for (const Touched& t : touched) {
       double c = t.light_alone;
       if (t.escape_event >= 0) c += rec.events[b + t.escape_event].value - base_suffix[t.escape_event + 1];
-      e_sum[t.element] += c;
-      e_sq[t.element] += c * c;
+      e_sum[t.element * kReplicates + replicate_of(p)] += c;
     }
   }
   for (size_t k = 0; k < elements; ++k) {
-    finish(e_sum[k], e_sq[k], n_paths, &out->E(sensor, k), &out->E_stderr(sensor, k));
+    replicate_estimate(&e_sum[k * kReplicates], n_paths, &out->E(sensor, k), &out->E_stderr(sensor, k));
     out->A(sensor, k) = a_sum[k] / static_cast<double>(n_paths);
   }
-  finish(closed.sum, closed.sum_sq, n_paths, &out->closed.value[sensor], &out->closed.stderr[sensor]);
-  finish(open.sum, open.sum_sq, n_paths, &out->all_open.value[sensor], &out->all_open.stderr[sensor]);
+  closed.estimate(n_paths, &out->closed.value[sensor], &out->closed.stderr[sensor]);
+  open.estimate(n_paths, &out->all_open.value[sensor], &out->all_open.stderr[sensor]);
 }
 
 // Light leaving through element n on paths that reflected off element m before, summed.
@@ -122,9 +110,9 @@ SensorValues Contributions::evaluate(const std::vector<uint8_t>& open) const {
   out.value.resize(records.size());
   out.stderr.resize(records.size());
   tbb::parallel_for(size_t(0), records.size(), [&](size_t i) {
-    Moments mo;
-    for (size_t p = 0; p < records[i].path_count(); ++p) mo.add(path_value(records[i], p, open));
-    finish(mo.sum, mo.sum_sq, records[i].path_count(), &out.value[i], &out.stderr[i]);
+    ReplicateSums sums;
+    for (size_t p = 0; p < records[i].path_count(); ++p) sums.add(p, path_value(records[i], p, open));
+    sums.estimate(records[i].path_count(), &out.value[i], &out.stderr[i]);
   });
   return out;
 }
@@ -153,7 +141,7 @@ Contributions compute_contributions(const Scene& scene, Progress* progress) {
     SensorRecord& rec = chunks[task];
     for (size_t p = first; p < last; ++p) {
       Rng rng = path_rng(scene.render.seed, sensor, p);
-      tracer.record_sensor_path(sensor, rng, &rec);
+      tracer.record_sensor_path(sensor, p, rng, &rec);
     }
   });
 

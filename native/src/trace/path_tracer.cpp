@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
 #include "sampling/warp.h"
 #include "scene/bsdf.h"
+#include "trace/replicates.h"
 
 namespace fenestra {
 namespace {
@@ -17,9 +19,10 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr int kRouletteDepth = 3;
 constexpr int kMaxCrossed = 16;
 
-float power_heuristic(float pdf_a, float pdf_b) {
-  const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
-  return a + b > 0.0f ? a / (a + b) : 0.0f;
+// Power heuristic for the strategy with density `pdf` against two others.
+float power_heuristic(float pdf, float other, float third = 0.0f) {
+  const float a = pdf * pdf, sum = a + other * other + third * third;
+  return sum > 0.0f ? a / sum : 0.0f;
 }
 
 Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
@@ -38,6 +41,14 @@ struct PathTracer::PathState {
   Rgb beta;                   // throughput so far (includes the sensor's pi for cosine sampling)
   float prev_pdf = 0.0f;      // BSDF pdf of the direction being followed, for MIS at sky hits
   bool prev_specular = false;
+  bool portals = false;        // the vertex that chose this direction also sampled portals
+  bool from_sensor = false;    // ... and that vertex was the sensor
+  Vec3 vertex;                 // that vertex
+  float portal_pdf = 0.0f;     // portal density of this direction, once known (at an escape)
+  bool by_portal = false;      // this direction was chosen by portal sampling (else by the BSDF)
+  // At the sensor, portal samples alone carry the light that comes through elements: they are
+  // stratified over each element, far better than MIS weights computed from densities assume.
+  bool portal_exclusive = false;
   int depth = 0;              // surface interactions so far
 };
 
@@ -51,7 +62,9 @@ struct PathTracer::Shadow {
   bool visible = false;
   Rgb attenuation = Rgb::Ones();
   std::array<int32_t, kMaxCrossed> crossed;
+  std::array<float, kMaxCrossed> crossed_distance;
   int crossed_count = 0;
+  bool first_is_element = false;  // the ray met an element before anything else (portals reach it)
 };
 
 // Where a path's light goes: summed (closed mode) or recorded as events (recording mode).
@@ -59,8 +72,8 @@ class PathTracer::Sink {
  public:
   explicit Sink(SensorRecord* record) : record_(record) {}
   bool recording() const { return record_ != nullptr; }
-  void light(const Rgb& c, const int32_t* crossed, int count) {
-    const float v = luminance(c);
+  void light(const Rgb& c, const int32_t* crossed, int count) { light(luminance(c), crossed, count); }
+  void light(float v, const int32_t* crossed, int count) {
     if (!(v > 0.0f) || !std::isfinite(v)) return;
     if (!record_) {
       sum_ += v;
@@ -85,6 +98,93 @@ PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals)
   scene_normals_ = unit_normals(scene_.mesh);
   reveal_normals_ = unit_normals(reveals_);
   rays_ = std::make_unique<RayScene>(scene_.mesh, reveals_);
+  const float a = scene_.domain.element_size();
+  element_area_ = a * a;
+  for (const Element& e : scene_.domain.elements()) {
+    const Panel& panel = scene_.domain.panels()[e.panel];
+    portals_.push_back({e.corners[0], a * panel.u_axis, a * panel.v_axis, panel.normal});
+  }
+}
+
+namespace {
+float radical_inverse(uint32_t index, uint32_t base) {
+  const float inv = 1.0f / static_cast<float>(base);
+  float result = 0.0f, digit = inv;
+  for (; index > 0; index /= base, digit *= inv) result += static_cast<float>(index % base) * digit;
+  return result;
+}
+}  // namespace
+
+void PathTracer::sensor_portals(size_t sensor, size_t path, SensorPortal* out) const {
+  // Within each replicate group (replicates.h) the sensor's portal samples sweep the elements in
+  // turn from a random start, so every element gets its share of samples up to one; successive
+  // visits to an element take successive Halton points with a random shift (Cranley-Patterson),
+  // evenly spread over it, which nearby elements need. Groups are independent randomisations.
+  const size_t no = portals_.size();
+  const size_t group = replicate_of(path);
+  const size_t group_paths = replicate_size(group, static_cast<size_t>(scene_.render.paths_per_sensor));
+  const uint64_t key = mix_seed(mix_seed(scene_.render.seed, sensor), 0x9047A1 + group);
+  const size_t start = Rng(key, 0).next_u32() % no;
+  const size_t first = start + (path / kReplicates) * kSensorPortals;
+  const size_t end = start + group_paths * kSensorPortals;  // the group's samples: [start, end)
+  for (size_t j = 0; j < kSensorPortals; ++j) {
+    const size_t t = first + j;
+    const size_t k = t % no;
+    const size_t first_visit = start + (k + no - start % no) % no;  // first t >= start with t % no == k
+    const size_t visits = (end - 1 - first_visit) / no + 1;
+    const uint32_t visit = static_cast<uint32_t>((t - first_visit) / no);
+    Rng shift(key, 1 + k);
+    const float a = radical_inverse(visit, 2) + shift.uniform(), b = radical_inverse(visit, 3) + shift.uniform();
+    out[j].element = static_cast<int>(k);
+    out[j].uv = Vec2(std::min(a - std::floor(a), 0.99999994f), std::min(b - std::floor(b), 0.99999994f));
+    out[j].samples_per_path = static_cast<float>(visits) / static_cast<float>(group_paths);
+  }
+}
+
+
+float PathTracer::portal_pdf(const int32_t* crossed, const float* distance, int count, const Vec3& dir) const {
+  // Element chosen with probability 1/No, then a uniform point on it, converted to solid angle.
+  float pdf = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    const float cos = std::abs(dir.dot(portals_[crossed[i]].normal));
+    if (cos > 1e-6f) pdf += distance[i] * distance[i] / (element_area_ * cos);
+  }
+  return pdf / static_cast<float>(portals_.size());
+}
+
+template <typename BsdfOfDirection>
+void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec3& x, const Vec3& n,
+                               const PathState& st, Rng& rng, BsdfOfDirection f_and_pdf, Sink& sink) const {
+  const Portal& portal = portals_[k];
+  const Vec3 y = portal.corner + uv.x() * portal.u + uv.y() * portal.v;
+  Vec3 dir = y - x;
+  const float dist = dir.norm();
+  if (!(dist > 1e-5f)) return;
+  dir /= dist;
+  if (dir.dot(n) <= 0.0f) return;
+  float bsdf_pdf = 0.0f;
+  const Rgb f = f_and_pdf(dir, &bsdf_pdf);
+  if (!(f > 0.0f).any()) return;
+  // Portals only reach what lies beyond the element the ray meets first.
+  const Hit h = rays_->intersect(x, dir, 0.0f, kInfinity, nullptr);
+  if (!h.valid()) return;
+  const Surface s = surface(h);
+  if (s.panel < 0 || scene_.domain.element_at(s.panel, x + h.t * dir) != k) return;
+  const float cos_y = std::abs(dir.dot(portal.normal));
+  if (!(cos_y > 1e-6f)) return;
+  const float pdf = selection * h.t * h.t / (element_area_ * cos_y);
+  // Everything that arrives through k along dir: sky, and light from outdoor surfaces.
+  PathState through_state = st;
+  through_state.beta = st.beta * f / pdf;
+  through_state.prev_pdf = bsdf_pdf;
+  through_state.prev_specular = false;
+  through_state.portals = false;
+  through_state.portal_pdf = pdf;
+  through_state.by_portal = true;
+  const CutterSet through{scene_.domain.element_cutter(k)};
+  Sink outside(nullptr);
+  trace(x, dir, through_state, &through, rng, outside);
+  sink.light(outside.sum(), &k, 1);
 }
 
 PathTracer::Surface PathTracer::surface(const Hit& hit) const {
@@ -104,6 +204,7 @@ void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutte
   out->visible = false;
   out->attenuation = Rgb::Ones();
   out->crossed_count = 0;
+  out->first_is_element = false;
   CutterSet crossed_cutters;  // elements crossed so far are cut, through the wall thickness
   float tnear = 0.0f;
   for (int i = 0; i < 64; ++i) {
@@ -118,6 +219,8 @@ void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutte
     if (collect && s.panel >= 0) {
       const int k = scene_.domain.element_at(s.panel, org + h.t * dir);
       if (k < 0 || out->crossed_count == kMaxCrossed) return;  // the panel's margin is always wall
+      if (i == 0) out->first_is_element = true;
+      out->crossed_distance[out->crossed_count] = h.t;
       out->crossed[out->crossed_count++] = k;
       crossed_cutters.push_back(scene_.domain.element_cutter(k));
       continue;
@@ -135,21 +238,39 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
   for (;;) {
     const Hit h = rays_->intersect(org, dir, 0.0f, kInfinity, cutters);
     if (!h.valid()) {
-      const float w = st.prev_specular ? 1.0f : power_heuristic(st.prev_pdf, sky.pdf(dir));
+      const float sky_pdf = sky.pdf(dir);
+      float w = st.prev_specular ? 1.0f
+                : st.by_portal   ? power_heuristic(st.portal_pdf, st.prev_pdf, sky_pdf)
+                                 : power_heuristic(st.prev_pdf, sky_pdf, st.portal_pdf);
+      if (st.portal_exclusive && st.portal_pdf > 0.0f) w = st.by_portal ? 1.0f : 0.0f;
       sink.light(st.beta * sky.radiance(dir) * w, nullptr, 0);
       return;
     }
     const Vec3 p = org + h.t * dir;
     const Surface s = surface(h);
+    if (st.portal_pdf > 0.0f) {
+      // First outdoor surface beyond an element: reached by BSDF and portal sampling alike.
+      if (st.portal_exclusive)
+        st.beta *= st.by_portal ? 1.0f : 0.0f;
+      else
+        st.beta *= st.by_portal ? power_heuristic(st.portal_pdf, st.prev_pdf) : power_heuristic(st.prev_pdf, st.portal_pdf);
+      st.portal_pdf = 0.0f;
+      st.by_portal = false;
+    }
 
     if (sink.recording() && s.panel >= 0) {
       const int k = scene_.domain.element_at(s.panel, p);
       if (k >= 0) {
         // What would arrive through k if it were open: the same ray, continued with k cut.
         const CutterSet through{scene_.domain.element_cutter(k)};
+        PathState outside_state = st;
+        if (st.portals) {
+          const float distance = (p - st.vertex).norm();
+          outside_state.portal_pdf = portal_pdf(&k, &distance, 1, dir);
+        }
         Sink outside(nullptr);
-        trace(org, dir, st, &through, rng, outside);
-        sink.escape(k, outside.sum());
+        if (!(st.portals && st.from_sensor)) trace(org, dir, outside_state, &through, rng, outside);
+        sink.escape(k, outside.sum());  // from the sensor, portal samples carry this light
       }
     }
     if (st.depth >= max_bounces) return;
@@ -170,14 +291,28 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
           Shadow sh;
           shadow(offset_origin(p, s.normal, wl), wl, cutters, sink.recording(), &sh);
           if (sh.visible) {
-            const float w = power_heuristic(light_pdf, bsdf_pdf(m, wo, wl_local));
+            const float portal = sink.recording() && sh.first_is_element
+                                     ? portal_pdf(sh.crossed.data(), sh.crossed_distance.data(), 1, wl)
+                                     : 0.0f;
+            const float w = power_heuristic(light_pdf, bsdf_pdf(m, wo, wl_local), portal);
             sink.light(st.beta * f * sky.radiance(wl) * sh.attenuation * (w / light_pdf), sh.crossed.data(),
                        sh.crossed_count);
           }
         }
       }
-    } else {
-      rng.uniform(), rng.uniform();  // keep the random sequence aligned across materials
+      if (sink.recording() && !portals_.empty()) {
+        const int k = std::min(static_cast<int>(rng.uniform() * portals_.size()), static_cast<int>(portals_.size()) - 1);
+        PathState from_here = st;
+        ++from_here.depth;
+        const Vec2 uv(rng.uniform(), rng.uniform());
+        sample_portal(k, uv, 1.0f / static_cast<float>(portals_.size()), offset_origin(p, s.normal, n), n, from_here, rng,
+                      [&](const Vec3& d, float* pdf) {
+                        const Vec3 local = frame.to_local(d);
+                        *pdf = bsdf_pdf(m, wo, local);
+                        return bsdf_eval(m, wo, local);
+                      },
+                      sink);
+      }
     }
 
     BsdfSample bs;
@@ -189,6 +324,10 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
     if (!bs.straight) {
       st.prev_pdf = bs.pdf;
       st.prev_specular = bs.specular;
+      st.portals = sink.recording() && !m.is_glass();
+      st.from_sensor = false;
+      st.vertex = p;
+      st.portal_pdf = 0.0f;
     }
     ++st.depth;
     org = offset_origin(p, s.normal, wi);
@@ -202,7 +341,7 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
   }
 }
 
-void PathTracer::trace_sensor(size_t i, Rng& rng, const CutterSet* cutters, Sink& sink) const {
+void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* cutters, Sink& sink) const {
   const Sky& sky = *scene_.sky;
   const Vec3& n = scene_.sensors.normals[i];
   const Vec3 p = scene_.sensors.points[i] + kRayEpsilon * n;
@@ -212,17 +351,36 @@ void PathTracer::trace_sensor(size_t i, Rng& rng, const CutterSet* cutters, Sink
   float light_pdf = 0.0f;
   const Vec3 wl = sky.sample(Vec2(rng.uniform(), rng.uniform()), &light_pdf);
   const float cos_l = wl.dot(n);
+  const bool portals = sink.recording() && !portals_.empty();
   if (light_pdf > 0.0f && cos_l > 0.0f) {
     Shadow sh;
     shadow(p, wl, cutters, sink.recording(), &sh);
-    if (sh.visible) {
+    if (sh.visible && !(portals && sh.first_is_element)) {  // through elements: portal samples
       const float w = power_heuristic(light_pdf, cos_l * kInvPi);
       sink.light(sky.radiance(wl) * sh.attenuation * (cos_l * w / light_pdf), sh.crossed.data(), sh.crossed_count);
     }
   }
-  const Vec3 local = square_to_cosine_hemisphere(Vec2(rng.uniform(), rng.uniform()));
   PathState st;
   st.beta = Rgb::Constant(kPi);
+  st.portals = portals;
+  st.from_sensor = true;
+  st.vertex = p;
+  if (portals) {
+    PathState from_sensor = st;
+    from_sensor.beta = Rgb::Ones();
+    from_sensor.portal_exclusive = true;
+    SensorPortal samples[kSensorPortals];
+    sensor_portals(i, path, samples);
+    for (const SensorPortal& sp : samples)
+      sample_portal(sp.element, sp.uv, sp.samples_per_path, p, n, from_sensor, rng,
+                    [&](const Vec3& d, float* pdf) {
+                      const float c = std::max(0.0f, d.dot(n));
+                      *pdf = c * kInvPi;
+                      return Rgb::Constant(c);
+                    },
+                    sink);
+  }
+  const Vec3 local = square_to_cosine_hemisphere(Vec2(rng.uniform(), rng.uniform()));
   st.prev_pdf = square_to_cosine_hemisphere_pdf(local);
   if (st.prev_pdf <= 0.0f) return;
   trace(p, frame.to_world(local), st, cutters, rng, sink);
@@ -230,13 +388,13 @@ void PathTracer::trace_sensor(size_t i, Rng& rng, const CutterSet* cutters, Sink
 
 float PathTracer::sensor_sample(size_t sensor, Rng& rng) const {
   Sink sink(nullptr);
-  trace_sensor(sensor, rng, &openings_, sink);
+  trace_sensor(sensor, 0, rng, &openings_, sink);
   return sink.sum();
 }
 
-void PathTracer::record_sensor_path(size_t sensor, Rng& rng, SensorRecord* record) const {
+void PathTracer::record_sensor_path(size_t sensor, size_t path, Rng& rng, SensorRecord* record) const {
   Sink sink(record);
-  trace_sensor(sensor, rng, nullptr, sink);
+  trace_sensor(sensor, path, rng, nullptr, sink);
   record->end_path();
 }
 

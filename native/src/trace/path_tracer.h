@@ -7,6 +7,9 @@
 //  - recording (one pass for all elements): the opening domain is closed, and every time a path
 //    segment or a shadow ray reaches an element the tracer records what would arrive through it if it
 //    were open (the path continued outside with that element cut), then carries on as if it were closed;
+//    In this mode the elements are also light portals: every vertex sends one extra shadow ray
+//    toward a point on an element (at the sensor, path p aims at element p mod No, so each
+//    element gets the same number of samples), combined with the other two strategies by MIS;
 //  - closed: plain radiance estimates with the given cutters really cut (ground truth `evaluate`).
 #include <memory>
 
@@ -24,8 +27,8 @@ class PathTracer {
 
   // Closed mode: one-path estimate of sensor i's value (luminance-weighted irradiance).
   float sensor_sample(size_t sensor, Rng& rng) const;
-  // Recording mode: appends one path's events to `record` (and ends the path).
-  void record_sensor_path(size_t sensor, Rng& rng, SensorRecord* record) const;
+  // Recording mode: appends the events of path `path` (0 <= path < paths_per_sensor) to `record`.
+  void record_sensor_path(size_t sensor, size_t path, Rng& rng, SensorRecord* record) const;
 
   // Throws std::invalid_argument naming the first sensor that sits inside a closed solid.
   void check_sensors() const;
@@ -36,7 +39,29 @@ class PathTracer {
   struct Shadow;
   class Sink;
 
-  void trace_sensor(size_t sensor, Rng& rng, const CutterSet* cutters, Sink& sink) const;
+  struct Portal {
+    Vec3 corner, u, v, normal;  // element square: corner + s u + t v, s, t in [0, 1)
+  };
+
+  void trace_sensor(size_t sensor, size_t path, Rng& rng, const CutterSet* cutters, Sink& sink) const;
+  // Solid-angle density with which portal sampling at a vertex yields `dir`, which crosses the
+  // listed elements at the listed distances.
+  float portal_pdf(const int32_t* crossed, const float* distance, int count, const Vec3& dir) const;
+  // Portal sample through point uv of element k from vertex x (normal n, path state st): a direction through a
+  // random point of k, followed outside with k cut; recorded as light that needs k open.
+  // f_and_pdf(dir, &pdf) gives the vertex's BSDF times cosine and BSDF density toward dir.
+  template <typename BsdfOfDirection>
+  // `selection` is the expected number of samples aimed at k per path (the element's pdf).
+  void sample_portal(int k, const Vec2& uv, float selection, const Vec3& x, const Vec3& n, const PathState& st,
+                     Rng& rng, BsdfOfDirection f_and_pdf, Sink& sink) const;
+  // The portal samples a sensor's path sends: element, point on it, and that element's selection.
+  static constexpr size_t kSensorPortals = 4;
+  struct SensorPortal {
+    int element;
+    Vec2 uv;
+    float samples_per_path;
+  };
+  void sensor_portals(size_t sensor, size_t path, SensorPortal* out) const;
   void trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutters, Rng& rng, Sink& sink) const;
   Surface surface(const Hit& hit) const;
   void shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutters, bool collect, Shadow* out) const;
@@ -46,6 +71,8 @@ class PathTracer {
   Mesh reveals_;
   std::vector<Vec3> scene_normals_, reveal_normals_;
   std::unique_ptr<RayScene> rays_;
+  std::vector<Portal> portals_;
+  float element_area_ = 0.0f;
 };
 
 }  // namespace fenestra
