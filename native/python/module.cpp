@@ -6,6 +6,7 @@
 
 #include "io/image_writer.h"
 #include "io/results.h"
+#include "trace/ray_scene.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
@@ -204,6 +205,7 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("path"), py::arg("image"),
       "Writes a linear float image (height, width, channels), top row first, e.g. an environment map (.exr/.hdr).");
+  m.def("rays_traced", &rays_traced, "Rays traced by parallel computations since the module was loaded.");
   m.def("read_openings", [](const std::string& path) {
     const auto rects = read_openings(path);
     py::array_t<double> a({static_cast<py::ssize_t>(rects.size()), py::ssize_t(4), py::ssize_t(3)});

@@ -371,7 +371,7 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
     from_sensor.portal_exclusive = true;
     SensorPortal samples[kSensorPortals];
     sensor_portals(i, path, samples);
-    for (const SensorPortal& sp : samples)
+    for (const SensorPortal& sp : samples) {
       sample_portal(sp.element, sp.uv, sp.samples_per_path, p, n, from_sensor, rng,
                     [&](const Vec3& d, float* pdf) {
                       const float c = std::max(0.0f, d.dot(n));
@@ -379,6 +379,7 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
                       return Rgb::Constant(c);
                     },
                     sink);
+    }
   }
   const Vec3 local = square_to_cosine_hemisphere(Vec2(rng.uniform(), rng.uniform()));
   st.prev_pdf = square_to_cosine_hemisphere_pdf(local);

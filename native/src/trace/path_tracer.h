@@ -55,6 +55,7 @@ class PathTracer {
   void sample_portal(int k, const Vec2& uv, float selection, const Vec3& x, const Vec3& n, const PathState& st,
                      Rng& rng, BsdfOfDirection f_and_pdf, Sink& sink) const;
   // The portal samples a sensor's path sends: element, point on it, and that element's selection.
+  // 4 balances the direct term (stratified, cheap to improve) against the indirect paths.
   static constexpr size_t kSensorPortals = 4;
   struct SensorPortal {
     int element;
