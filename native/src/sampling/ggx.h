@@ -15,7 +15,9 @@ struct Ggx {
     if (h.z() <= 0.0f) return 0.0f;
     const float a2 = alpha * alpha;
     const float c2 = h.z() * h.z();
-    const float d = c2 * (a2 - 1.0f) + 1.0f;
+    // c2 (a2 - 1) + 1 with 1 - c2 = sin^2 taken from x and y: near the peak the usual form
+    // cancels catastrophically (6e-8 / a2 relative error: 6% at the smallest alpha, 1e-3).
+    const float d = c2 * a2 + (h.x() * h.x() + h.y() * h.y());
     return a2 / (kPi * d * d);
   }
   float lambda(const Vec3& w) const {

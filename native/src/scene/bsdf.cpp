@@ -34,8 +34,17 @@ Rgb glossy_eval(const Material& m, const Vec3& wo, const Vec3& wi) {
   if (wo.z() <= 0.0f || wi.z() <= 0.0f) return Rgb::Zero();
   const Ggx ggx = ggx_of(m);
   const Vec3 h = (wo + wi).normalized();
-  const Rgb spec = schlick(specular_f0(m), wo.dot(h)) * (ggx.D(h) * ggx.G2(wo, wi) / (4.0f * wo.z()));
-  return spec + diffuse_albedo(m) * (kInvPi * wi.z());
+  const Rgb f0 = specular_f0(m);
+  const Rgb spec = schlick(f0, wo.dot(h)) * (ggx.D(h) * ggx.G2(wo, wi) / (4.0f * wo.z()));
+  // The diffuse base sees only what the specular layer does not reflect: 1 - F at both macro
+  // cosines (reciprocal), normalised by 1 - (cosine-weighted mean of F = f0 + (1 - f0) / 21) so its
+  // albedo from wo is diffuse_albedo * (1 - F(wo.z)). Adding it to the specular lobe unweighted
+  // made white glossy surfaces reflect up to 1.3x the incident energy at grazing incidence. The
+  // lobe's own albedo stays below F(wo.z) except at mid angles for roughness 0.15-0.35 (by up to
+  // 1.3e-3, facets tilted towards grazing), so only a base colour above ~0.99 can exceed 1.
+  const Rgb one = Rgb::Ones();
+  const Rgb through = (one - schlick(f0, wo.z())) * (one - schlick(f0, wi.z())) / (one - (f0 + (one - f0) / 21.0f)).max(1e-6f);
+  return spec + diffuse_albedo(m) * through * (kInvPi * wi.z());
 }
 
 float glossy_pdf(const Material& m, const Vec3& wo, const Vec3& wi) {
@@ -112,9 +121,10 @@ Rgb thin_glass_internal_transmittance(const Rgb& total, float ior, const std::st
     } else if (r * r * T < 1e-12f) {
       tau[c] = T / t2;
     } else {
-      // T r^2 tau^2 + t^2 tau - T = 0
+      // T r^2 tau^2 + t^2 tau - T = 0, positive root in the form without cancellation
+      // ((-t2 + sqrt(...)) / 2a loses all precision for dark panes, T of a few percent).
       const float a = T * r * r;
-      tau[c] = (-t2 + std::sqrt(t2 * t2 + 4.0f * a * T)) / (2.0f * a);
+      tau[c] = 2.0f * T / (t2 + std::sqrt(t2 * t2 + 4.0f * a * T));
     }
     tau[c] = std::clamp(tau[c], 0.0f, 1.0f);
   }
