@@ -21,13 +21,9 @@ using fenestra_test::Chi2Result;
 using fenestra_test::kPiD;
 using fenestra_test::SphereGrid;
 
-constexpr double kSignificance = 0.01;  // family-wise, per TEST (Sidak-corrected inside loops)
+using fenestra_test::kSignificance;
+using fenestra_test::next2;
 
-Vec2 next2(Rng& rng) {
-  const float a = rng.uniform();
-  const float b = rng.uniform();
-  return Vec2(a, b);
-}
 
 Vec3 spherical_deg(double theta_deg, double phi_rad) {
   return SphereGrid::direction(theta_deg * kPiD / 180.0, phi_rad);

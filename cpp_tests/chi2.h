@@ -20,6 +20,15 @@
 
 namespace fenestra_test {
 
+constexpr double kSignificance = 0.01;  // family-wise, per TEST (Sidak-corrected inside loops)
+
+// Two uniforms in a fixed order (argument evaluation order is unspecified).
+inline fenestra::Vec2 next2(fenestra::Rng& rng) {
+  const float a = rng.uniform();
+  const float b = rng.uniform();
+  return fenestra::Vec2(a, b);
+}
+
 using fenestra::Vec2;
 using fenestra::Vec3;
 

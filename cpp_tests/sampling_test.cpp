@@ -22,14 +22,10 @@ using fenestra_test::Chi2Result;
 using fenestra_test::kPiD;
 using fenestra_test::SphereGrid;
 
-constexpr double kSignificance = 0.01;  // family-wise, per TEST (Sidak-corrected inside loops)
+using fenestra_test::kSignificance;
+using fenestra_test::next2;
 constexpr int kChi2Samples = 1000000;
 
-Vec2 next2(Rng& rng) {
-  const float a = rng.uniform();
-  const float b = rng.uniform();
-  return Vec2(a, b);
-}
 
 SphereGrid hemisphere_grid() {
   SphereGrid g;
