@@ -63,9 +63,9 @@ TEST(Trace, UnobstructedUniformSkyGivesPiL) {
   const SensorValues v = evaluate_openings(scene, {});
   const Contributions c = compute_contributions(scene);
   for (int i = 0; i < 2; ++i) {
-    EXPECT_TRUE(within_sigma(v.value[i], v.stderr[i], M_PI * kRadiance, 0.0)) << "sensor " << i;
-    EXPECT_TRUE(within_sigma(c.closed.value[i], c.closed.stderr[i], M_PI * kRadiance, 0.0)) << "sensor " << i;
-    EXPECT_LT(v.stderr[i], 0.01 * M_PI * kRadiance);
+    EXPECT_TRUE(within_sigma(v.value[i], v.standard_error[i], M_PI * kRadiance, 0.0)) << "sensor " << i;
+    EXPECT_TRUE(within_sigma(c.closed.value[i], c.closed.standard_error[i], M_PI * kRadiance, 0.0)) << "sensor " << i;
+    EXPECT_LT(v.standard_error[i], 0.01 * M_PI * kRadiance);
   }
 }
 
@@ -84,9 +84,9 @@ TEST(Trace, BlackBoxRoofOpeningMatchesParallelRectangleViewFactor) {
   for (int i = 0; i < 2; ++i) {
     const Vec3 p = scene.sensors.points[i] + Vec3(0, 0, test::kSensorLift);
     const double expected = M_PI * kRadiance * test::polygon_view_factor(p, {0, 0, 1}, {hole.begin(), hole.end()});
-    EXPECT_TRUE(within_sigma(v.value[i], v.stderr[i], expected, 0.0)) << "evaluate, sensor " << i;
-    EXPECT_TRUE(within_sigma(exact.value[i], exact.stderr[i], expected, 0.0)) << "exact records, sensor " << i;
-    EXPECT_GT(v.stderr[i], 0.0);
+    EXPECT_TRUE(within_sigma(v.value[i], v.standard_error[i], expected, 0.0)) << "evaluate, sensor " << i;
+    EXPECT_TRUE(within_sigma(exact.value[i], exact.standard_error[i], expected, 0.0)) << "exact records, sensor " << i;
+    EXPECT_GT(v.standard_error[i], 0.0);
   }
 }
 
@@ -108,8 +108,8 @@ TEST(Trace, VerticalWindowWithSillAtWorkPlaneMatchesClosedForm) {
   for (int i = 0; i < 2; ++i) {
     const Vec3 p = scene.sensors.points[i] + Vec3(0, 0, test::kSensorLift);
     const double expected = M_PI * kRadiance * test::polygon_view_factor(p, {0, 0, 1}, {window.begin(), window.end()});
-    EXPECT_TRUE(within_sigma(v.value[i], v.stderr[i], expected, 0.0)) << "evaluate, sensor " << i;
-    EXPECT_TRUE(within_sigma(exact.value[i], exact.stderr[i], expected, 0.0)) << "exact records, sensor " << i;
+    EXPECT_TRUE(within_sigma(v.value[i], v.standard_error[i], expected, 0.0)) << "evaluate, sensor " << i;
+    EXPECT_TRUE(within_sigma(exact.value[i], exact.standard_error[i], expected, 0.0)) << "exact records, sensor " << i;
   }
 }
 
@@ -137,7 +137,7 @@ TEST(Trace, ReferenceRoomMatchesRadiance) {
                             30.73, 36.73, 36.73, 30.73, 22.83, 25.33, 25.33, 22.83};
   for (int i = 0; i < 16; ++i) {
     // The reference is itself known to 0.3 % (Radiance and radiosity agree that closely).
-    EXPECT_TRUE(within_sigma(v.value[i], v.stderr[i], table[i], 0.003 * table[i])) << "sensor " << i;
+    EXPECT_TRUE(within_sigma(v.value[i], v.standard_error[i], table[i], 0.003 * table[i])) << "sensor " << i;
   }
 }
 
@@ -159,7 +159,7 @@ TEST(Trace, OneElementOpenEvaluateEqualsColumnOfE) {
     const SensorValues v = evaluate_openings(scene, {e.corners});
     for (int i = 0; i < 3; ++i) {
       const double predicted = c.closed.value[i] + c.E(i, k);
-      EXPECT_TRUE(within_sigma(predicted, c.E_stderr(i, k), v.value[i], v.stderr[i])) << "element " << k << ", sensor " << i;
+      EXPECT_TRUE(within_sigma(predicted, c.E_stderr(i, k), v.value[i], v.standard_error[i])) << "element " << k << ", sensor " << i;
     }
     std::vector<uint8_t> only(scene.domain.element_count(), 0);
     only[k] = 1;
@@ -196,7 +196,7 @@ TEST(Trace, ExactRecordsEqualEvaluateForASetOfOpenElements) {
   const SensorValues exact = c.evaluate(mask);
   const SensorValues truth = evaluate_openings(scene, openings);
   for (int i = 0; i < 4; ++i) {
-    EXPECT_TRUE(within_sigma(exact.value[i], exact.stderr[i], truth.value[i], truth.stderr[i])) << "sensor " << i;
+    EXPECT_TRUE(within_sigma(exact.value[i], exact.standard_error[i], truth.value[i], truth.standard_error[i])) << "sensor " << i;
     EXPECT_GT(exact.value[i], 0.0);
   }
   // All open: the same from records and from the summary.
@@ -254,9 +254,9 @@ TEST(Trace, ThinGlassPaneAbsorbsWhatFresnelAndItsBodySay) {
   ASSERT_GT(absorbed, 0.2);  // the pane absorbs a fair share: the test can tell
   const double expected = kRadiance * (M_PI - absorbed);
   const SensorValues v = evaluate_openings(scene, {});
-  EXPECT_TRUE(within_sigma(v.value[0], v.stderr[0], expected, 0.0));
+  EXPECT_TRUE(within_sigma(v.value[0], v.standard_error[0], expected, 0.0));
   const Contributions c = compute_contributions(scene);
-  EXPECT_TRUE(within_sigma(c.closed.value[0], c.closed.stderr[0], expected, 0.0));
+  EXPECT_TRUE(within_sigma(c.closed.value[0], c.closed.standard_error[0], expected, 0.0));
 }
 
 TEST(Trace, ThickWallCutHasReveals) {
@@ -280,7 +280,7 @@ TEST(Trace, ThickWallCutHasReveals) {
   const double f_inner = test::polygon_view_factor({1.5f, 1.5f, 0.5f}, {0, 0, 1}, inner);
   const double f_outer = test::polygon_view_factor({1.5f, 1.5f, 0.5f}, {0, 0, 1}, outer);
   EXPECT_LT(v.value[0], M_PI * kRadiance * f_inner);
-  EXPECT_TRUE(within_sigma(v.value[0], v.stderr[0], M_PI * kRadiance * f_outer, 0.0));
+  EXPECT_TRUE(within_sigma(v.value[0], v.standard_error[0], M_PI * kRadiance * f_outer, 0.0));
 }
 
 }  // namespace

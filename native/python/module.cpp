@@ -32,7 +32,7 @@ py::array view(const Eigen::VectorXd& v, py::handle owner) {
 
 py::tuple values_tuple(SensorValues v) {
   return py::make_tuple(py::array_t<double>(v.value.size(), v.value.data()),
-                        py::array_t<double>(v.stderr.size(), v.stderr.data()));
+                        py::array_t<double>(v.standard_error.size(), v.standard_error.data()));
 }
 
 std::vector<Rectangle> rectangles_from(py::array_t<double, py::array::c_style | py::array::forcecast> a) {
@@ -144,11 +144,11 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("T", [](py::object self) { return view(self.cast<Contributions&>().T, self); })
       .def_property_readonly("closed", [](py::object self) { return view(self.cast<Contributions&>().closed.value, self); })
       .def_property_readonly("closed_stderr",
-                             [](py::object self) { return view(self.cast<Contributions&>().closed.stderr, self); })
+                             [](py::object self) { return view(self.cast<Contributions&>().closed.standard_error, self); })
       .def_property_readonly("all_open",
                              [](py::object self) { return view(self.cast<Contributions&>().all_open.value, self); })
       .def_property_readonly("all_open_stderr",
-                             [](py::object self) { return view(self.cast<Contributions&>().all_open.stderr, self); })
+                             [](py::object self) { return view(self.cast<Contributions&>().all_open.standard_error, self); })
       .def_readonly("paths_per_sensor", &Contributions::paths_per_sensor)
       .def_readonly("seconds", &Contributions::seconds)
       .def_readonly("events", &Contributions::events)

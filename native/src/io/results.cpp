@@ -53,9 +53,9 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
   npz.add("A", row_major(c.A), {ns, no});
   npz.add("T", row_major(c.T), {no, no});
   npz.add("closed", to_vector(c.closed.value), {ns});
-  npz.add("closed_stderr", to_vector(c.closed.stderr), {ns});
+  npz.add("closed_stderr", to_vector(c.closed.standard_error), {ns});
   npz.add("all_open", to_vector(c.all_open.value), {ns});
-  npz.add("all_open_stderr", to_vector(c.all_open.stderr), {ns});
+  npz.add("all_open_stderr", to_vector(c.all_open.standard_error), {ns});
   std::vector<int32_t> panel, row, col;
   std::vector<double> corners;
   for (const auto& e : scene.domain.elements()) {
@@ -137,7 +137,7 @@ std::vector<Rectangle> read_openings(const std::string& path) {
 json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor) {
   json sensors = json::array();
   for (Eigen::Index i = 0; i < values.value.size(); ++i)
-    sensors.push_back({{"value", values.value[i]}, {"stderr", values.stderr[i]}});
+    sensors.push_back({{"value", values.value[i]}, {"stderr", values.standard_error[i]}});
   return {{"units", "luminance-weighted irradiance: lux for a sky in cd/m^2"},
           {"openings", openings},
           {"paths_per_sensor", paths_per_sensor},

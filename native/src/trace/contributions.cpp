@@ -80,8 +80,8 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
     replicate_estimate(&e_sum[k * kReplicates], n_paths, &out->E(sensor, k), &out->E_stderr(sensor, k));
     out->A(sensor, k) = a_sum[k] / static_cast<double>(n_paths);
   }
-  closed.estimate(n_paths, &out->closed.value[sensor], &out->closed.stderr[sensor]);
-  open.estimate(n_paths, &out->all_open.value[sensor], &out->all_open.stderr[sensor]);
+  closed.estimate(n_paths, &out->closed.value[sensor], &out->closed.standard_error[sensor]);
+  open.estimate(n_paths, &out->all_open.value[sensor], &out->all_open.standard_error[sensor]);
 }
 
 // Light leaving through element n on paths that reflected off element m before, summed.
@@ -108,11 +108,11 @@ SensorValues Contributions::evaluate(const std::vector<uint8_t>& open) const {
                                 std::to_string(element_count()));
   SensorValues out;
   out.value.resize(records.size());
-  out.stderr.resize(records.size());
+  out.standard_error.resize(records.size());
   tbb::parallel_for(size_t(0), records.size(), [&](size_t i) {
     ReplicateSums sums;
     for (size_t p = 0; p < records[i].path_count(); ++p) sums.add(p, path_value(records[i], p, open));
-    sums.estimate(records[i].path_count(), &out.value[i], &out.stderr[i]);
+    sums.estimate(records[i].path_count(), &out.value[i], &out.standard_error[i]);
   });
   return out;
 }
@@ -151,8 +151,8 @@ Contributions compute_contributions(const Scene& scene, Progress* progress) {
   c.E.setZero(sensors, elements);
   c.E_stderr.setZero(sensors, elements);
   c.A.setZero(sensors, elements);
-  c.closed.value.setZero(sensors), c.closed.stderr.setZero(sensors);
-  c.all_open.value.setZero(sensors), c.all_open.stderr.setZero(sensors);
+  c.closed.value.setZero(sensors), c.closed.standard_error.setZero(sensors);
+  c.all_open.value.setZero(sensors), c.all_open.standard_error.setZero(sensors);
   if (progress) progress->start("assembling the contribution matrix", sensors);
   parallel_tasks(sensors, scene.render.threads, progress, [&](size_t i) {
     SensorRecord& rec = c.records[i];

@@ -11,7 +11,7 @@ namespace fenestra {
 
 struct SensorValues {
   Eigen::VectorXd value;   // luminance-weighted irradiance per sensor (lux for a sky in cd/m^2)
-  Eigen::VectorXd stderr;  // standard error of each value (same units)
+  Eigen::VectorXd standard_error;  // standard error of each value (same units)
 };
 
 struct Contributions {

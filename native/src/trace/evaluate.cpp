@@ -77,14 +77,14 @@ SensorValues evaluate_openings(const Scene& scene, const std::vector<Rectangle>&
   });
   SensorValues out;
   out.value.resize(sensors);
-  out.stderr.resize(sensors);
+  out.standard_error.resize(sensors);
   for (size_t i = 0; i < sensors; ++i) {
     double s = 0.0, s2 = 0.0;
     for (size_t t = 0; t < tasks_per_sensor; ++t) s += sum[i * tasks_per_sensor + t], s2 += sum_sq[i * tasks_per_sensor + t];
     const double n = paths;
     const double mean = s / n;
     out.value[i] = mean;
-    out.stderr[i] = n > 1 ? std::sqrt(std::max(0.0, s2 / n - mean * mean) / (n - 1)) : 0.0;
+    out.standard_error[i] = n > 1 ? std::sqrt(std::max(0.0, s2 / n - mean * mean) / (n - 1)) : 0.0;
   }
   return out;
 }

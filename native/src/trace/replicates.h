@@ -20,7 +20,7 @@ inline size_t replicate_size(size_t g, size_t n_paths) {
 }
 
 // Mean over all paths and its standard error from the per-group sums.
-inline void replicate_estimate(const double* group_sums, size_t n_paths, double* mean, double* stderr) {
+inline void replicate_estimate(const double* group_sums, size_t n_paths, double* mean, double* standard_error) {
   double total = 0.0;
   for (size_t g = 0; g < kReplicates; ++g) total += group_sums[g];
   const double m = n_paths ? total / static_cast<double>(n_paths) : 0.0;
@@ -35,14 +35,14 @@ inline void replicate_estimate(const double* group_sums, size_t n_paths, double*
     ++groups;
   }
   *mean = m;
-  *stderr = groups > 1 ? std::sqrt(var * static_cast<double>(groups) / static_cast<double>(groups - 1)) : 0.0;
+  *standard_error = groups > 1 ? std::sqrt(var * static_cast<double>(groups) / static_cast<double>(groups - 1)) : 0.0;
 }
 
 struct ReplicateSums {
   std::array<double, kReplicates> sum{};
   void add(size_t path, double x) { sum[replicate_of(path)] += x; }
-  void estimate(size_t n_paths, double* mean, double* stderr) const {
-    replicate_estimate(sum.data(), n_paths, mean, stderr);
+  void estimate(size_t n_paths, double* mean, double* standard_error) const {
+    replicate_estimate(sum.data(), n_paths, mean, standard_error);
   }
 };
 
