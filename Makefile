@@ -3,7 +3,7 @@ PYTHON := /usr/bin/python3
 BUILD  := build
 JOBS   ?= $(shell nproc)
 
-.PHONY: deps build test cpp-test py-test demo bench clean
+.PHONY: deps build test cpp-test py-test demo bench install clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -25,6 +25,14 @@ demo: build
 
 bench: build
 	$(BUILD)/bench/fenestra_bench
+
+# Puts `fenestra` on PATH and makes `import fenestra` work in /usr/bin/python3 (this checkout's addon/).
+SITE := $(shell $(PYTHON) -c "import site; print(site.getsitepackages()[0])")
+install: build
+	ln -sf $(CURDIR)/$(BUILD)/fenestra /usr/local/bin/fenestra
+	mkdir -p $(SITE)
+	echo "$(CURDIR)/addon" > $(SITE)/fenestra.pth
+	@echo "installed: /usr/local/bin/fenestra and $(SITE)/fenestra.pth -> $(CURDIR)/addon"
 
 clean:
 	rm -rf $(BUILD)
