@@ -67,6 +67,16 @@ struct PathTracer::Shadow {
   bool first_is_element = false;  // the ray met an element before anything else (portals reach it)
 };
 
+// A surface interaction: position, normals, shading frame, outgoing direction, material.
+struct PathTracer::Vertex {
+  Vec3 p;
+  Vec3 ng;     // geometric normal as modelled
+  Vec3 n;      // shading normal, on the side of wo
+  Frame frame;  // around n
+  Vec3 wo;     // toward where the path came from, in `frame`
+  const Material* material = nullptr;
+};
+
 // Where a path's light goes: summed (closed mode) or recorded as events (recording mode).
 class PathTracer::Sink {
  public:
@@ -231,110 +241,117 @@ void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutte
   }
 }
 
+float PathTracer::strategy_weight(const PathState& st, float sky_pdf) {
+  if (st.prev_specular) return 1.0f;
+  if (st.portal_exclusive && st.portal_pdf > 0.0f) return st.by_portal ? 1.0f : 0.0f;
+  return st.by_portal ? power_heuristic(st.portal_pdf, st.prev_pdf, sky_pdf)
+                      : power_heuristic(st.prev_pdf, sky_pdf, st.portal_pdf);
+}
+
+void PathTracer::record_escape(int k, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
+                               Sink& sink) const {
+  Sink outside(nullptr);
+  // From the sensor, portal samples alone carry the light arriving through elements.
+  if (!(st.portals && st.from_sensor)) {
+    PathState outside_state = st;
+    if (st.portals) {
+      const float distance = (org + t * dir - st.vertex).norm();
+      outside_state.portal_pdf = portal_pdf(&k, &distance, 1, dir);
+    }
+    // What would arrive through k if it were open: the same ray, continued with k cut.
+    const CutterSet through{scene_.domain.element_cutter(k)};
+    trace(org, dir, outside_state, &through, rng, outside);
+  }
+  sink.escape(k, outside.sum());
+}
+
+void PathTracer::sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, Rng& rng,
+                            Sink& sink) const {
+  const Sky& sky = *scene_.sky;
+  float light_pdf = 0.0f;
+  const Vec3 wl = sky.sample(Vec2(rng.uniform(), rng.uniform()), &light_pdf);
+  if (!(light_pdf > 0.0f) || wl.dot(v.n) <= 0.0f) return;
+  const Vec3 wl_local = v.frame.to_local(wl);
+  const Rgb f = bsdf_eval(*v.material, v.wo, wl_local);
+  if (!(f > 0.0f).any()) return;
+  Shadow sh;
+  shadow(offset_origin(v.p, v.ng, wl), wl, cutters, sink.recording(), &sh);
+  if (!sh.visible) return;
+  const float portal = sink.recording() && sh.first_is_element
+                           ? portal_pdf(sh.crossed.data(), sh.crossed_distance.data(), 1, wl)
+                           : 0.0f;
+  const float w = power_heuristic(light_pdf, bsdf_pdf(*v.material, v.wo, wl_local), portal);
+  sink.light(st.beta * f * sky.radiance(wl) * sh.attenuation * (w / light_pdf), sh.crossed.data(), sh.crossed_count);
+}
+
+void PathTracer::sample_interior_portal(const Vertex& v, const PathState& st, Rng& rng, Sink& sink) const {
+  const int k = std::min(static_cast<int>(rng.uniform() * portals_.size()), static_cast<int>(portals_.size()) - 1);
+  PathState from_here = st;
+  ++from_here.depth;
+  const Vec2 uv(rng.uniform(), rng.uniform());
+  sample_portal(k, uv, 1.0f / static_cast<float>(portals_.size()), offset_origin(v.p, v.ng, v.n), v.n, from_here, rng,
+                [&](const Vec3& d, float* pdf) {
+                  const Vec3 local = v.frame.to_local(d);
+                  *pdf = bsdf_pdf(*v.material, v.wo, local);
+                  return bsdf_eval(*v.material, v.wo, local);
+                },
+                sink);
+}
+
 void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutters, Rng& rng, Sink& sink) const {
   const Sky& sky = *scene_.sky;
-  const int max_bounces = scene_.render.max_bounces;
-  const float beta_ref = 1.0f;
   for (;;) {
     const Hit h = rays_->intersect(org, dir, 0.0f, kInfinity, cutters);
     if (!h.valid()) {
-      const float sky_pdf = sky.pdf(dir);
-      float w = st.prev_specular ? 1.0f
-                : st.by_portal   ? power_heuristic(st.portal_pdf, st.prev_pdf, sky_pdf)
-                                 : power_heuristic(st.prev_pdf, sky_pdf, st.portal_pdf);
-      if (st.portal_exclusive && st.portal_pdf > 0.0f) w = st.by_portal ? 1.0f : 0.0f;
-      sink.light(st.beta * sky.radiance(dir) * w, nullptr, 0);
+      sink.light(st.beta * sky.radiance(dir) * strategy_weight(st, sky.pdf(dir)), nullptr, 0);
       return;
     }
-    const Vec3 p = org + h.t * dir;
     const Surface s = surface(h);
     if (st.portal_pdf > 0.0f) {
       // First outdoor surface beyond an element: reached by BSDF and portal sampling alike.
-      if (st.portal_exclusive)
-        st.beta *= st.by_portal ? 1.0f : 0.0f;
-      else
-        st.beta *= st.by_portal ? power_heuristic(st.portal_pdf, st.prev_pdf) : power_heuristic(st.prev_pdf, st.portal_pdf);
+      st.beta *= strategy_weight(st, 0.0f);
       st.portal_pdf = 0.0f;
       st.by_portal = false;
     }
-
+    Vertex v;
+    v.p = org + h.t * dir;
     if (sink.recording() && s.panel >= 0) {
-      const int k = scene_.domain.element_at(s.panel, p);
-      if (k >= 0) {
-        // What would arrive through k if it were open: the same ray, continued with k cut.
-        const CutterSet through{scene_.domain.element_cutter(k)};
-        PathState outside_state = st;
-        if (st.portals) {
-          const float distance = (p - st.vertex).norm();
-          outside_state.portal_pdf = portal_pdf(&k, &distance, 1, dir);
-        }
-        Sink outside(nullptr);
-        if (!(st.portals && st.from_sensor)) trace(org, dir, outside_state, &through, rng, outside);
-        sink.escape(k, outside.sum());  // from the sensor, portal samples carry this light
-      }
+      const int k = scene_.domain.element_at(s.panel, v.p);
+      if (k >= 0) record_escape(k, org, dir, h.t, st, rng, sink);
     }
-    if (st.depth >= max_bounces) return;
+    if (st.depth >= scene_.render.max_bounces) return;
 
-    const Material& m = scene_.materials[s.material];
+    v.material = &scene_.materials[s.material];
+    v.ng = s.normal;
     const bool front = dir.dot(s.normal) < 0.0f;
-    const Vec3 n = front ? s.normal : Vec3(-s.normal);
-    const Frame frame(n);
-    const Vec3 wo = frame.to_local(-dir);
-
-    if (!m.is_glass()) {
-      float light_pdf = 0.0f;
-      const Vec3 wl = sky.sample(Vec2(rng.uniform(), rng.uniform()), &light_pdf);
-      if (light_pdf > 0.0f && wl.dot(n) > 0.0f) {
-        const Vec3 wl_local = frame.to_local(wl);
-        const Rgb f = bsdf_eval(m, wo, wl_local);
-        if ((f > 0.0f).any()) {
-          Shadow sh;
-          shadow(offset_origin(p, s.normal, wl), wl, cutters, sink.recording(), &sh);
-          if (sh.visible) {
-            const float portal = sink.recording() && sh.first_is_element
-                                     ? portal_pdf(sh.crossed.data(), sh.crossed_distance.data(), 1, wl)
-                                     : 0.0f;
-            const float w = power_heuristic(light_pdf, bsdf_pdf(m, wo, wl_local), portal);
-            sink.light(st.beta * f * sky.radiance(wl) * sh.attenuation * (w / light_pdf), sh.crossed.data(),
-                       sh.crossed_count);
-          }
-        }
-      }
-      if (sink.recording() && !portals_.empty()) {
-        const int k = std::min(static_cast<int>(rng.uniform() * portals_.size()), static_cast<int>(portals_.size()) - 1);
-        PathState from_here = st;
-        ++from_here.depth;
-        const Vec2 uv(rng.uniform(), rng.uniform());
-        sample_portal(k, uv, 1.0f / static_cast<float>(portals_.size()), offset_origin(p, s.normal, n), n, from_here, rng,
-                      [&](const Vec3& d, float* pdf) {
-                        const Vec3 local = frame.to_local(d);
-                        *pdf = bsdf_pdf(m, wo, local);
-                        return bsdf_eval(m, wo, local);
-                      },
-                      sink);
-      }
+    v.n = front ? s.normal : Vec3(-s.normal);
+    v.frame = Frame(v.n);
+    v.wo = v.frame.to_local(-dir);
+    if (!v.material->is_glass()) {
+      sample_sky(v, st, cutters, rng, sink);
+      if (sink.recording() && !portals_.empty()) sample_interior_portal(v, st, rng, sink);
     }
 
     BsdfSample bs;
     const Vec2 u(rng.uniform(), rng.uniform());
     const float u_lobe = rng.uniform();
-    if (!bsdf_sample(m, wo, u, u_lobe, front, &bs)) return;
-    const Vec3 wi = frame.to_world(bs.wi);
+    if (!bsdf_sample(*v.material, v.wo, u, u_lobe, front, &bs)) return;
+    const Vec3 wi = v.frame.to_world(bs.wi);
     st.beta *= bs.weight;
-    if (!bs.straight) {
+    if (!bs.straight) {  // thin-glass transmission keeps the direction, and with it the MIS state
       st.prev_pdf = bs.pdf;
       st.prev_specular = bs.specular;
-      st.portals = sink.recording() && !m.is_glass();
+      st.portals = sink.recording() && !v.material->is_glass();
       st.from_sensor = false;
-      st.vertex = p;
+      st.vertex = v.p;
       st.portal_pdf = 0.0f;
     }
     ++st.depth;
-    org = offset_origin(p, s.normal, wi);
+    org = offset_origin(v.p, s.normal, wi);
     dir = wi;
 
     if (st.depth >= kRouletteDepth) {
-      const float q = std::min(0.95f, st.beta.maxCoeff() / beta_ref);
+      const float q = std::min(0.95f, st.beta.maxCoeff());  // relative to the sensor's unit weight
       if (!(rng.uniform() < q)) return;
       st.beta /= q;
     }

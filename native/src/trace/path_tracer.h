@@ -37,6 +37,7 @@ class PathTracer {
   struct PathState;
   struct Surface;
   struct Shadow;
+  struct Vertex;
   class Sink;
 
   struct Portal {
@@ -64,6 +65,15 @@ class PathTracer {
   };
   void sensor_portals(size_t sensor, size_t path, SensorPortal* out) const;
   void trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutters, Rng& rng, Sink& sink) const;
+  // MIS weight of light found along the current direction (sky_pdf 0 for an outdoor surface).
+  static float strategy_weight(const PathState& st, float sky_pdf);
+  // Records what arrives through element k, met at distance t along (org, dir).
+  void record_escape(int k, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
+                     Sink& sink) const;
+  // Next-event estimation toward the sky from a vertex.
+  void sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, Rng& rng, Sink& sink) const;
+  // One portal sample from a vertex inside: a random element, a random point on it.
+  void sample_interior_portal(const Vertex& v, const PathState& st, Rng& rng, Sink& sink) const;
   Surface surface(const Hit& hit) const;
   void shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutters, bool collect, Shadow* out) const;
 
