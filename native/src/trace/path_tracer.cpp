@@ -25,6 +25,12 @@ float power_heuristic(float pdf, float other, float third = 0.0f) {
   return sum > 0.0f ? a / sum : 0.0f;
 }
 
+// Two uniforms in a fixed order (the order of function arguments is unspecified).
+Vec2 next2(Rng& rng) {
+  const float a = rng.uniform();
+  return Vec2(a, rng.uniform());
+}
+
 Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
   return p + (dir.dot(ng) > 0.0f ? kRayEpsilon : -kRayEpsilon) * ng;
 }
@@ -269,7 +275,7 @@ void PathTracer::sample_sky(const Vertex& v, const PathState& st, const CutterSe
                             Sink& sink) const {
   const Sky& sky = *scene_.sky;
   float light_pdf = 0.0f;
-  const Vec3 wl = sky.sample(Vec2(rng.uniform(), rng.uniform()), &light_pdf);
+  const Vec3 wl = sky.sample(next2(rng), &light_pdf);
   if (!(light_pdf > 0.0f) || wl.dot(v.n) <= 0.0f) return;
   const Vec3 wl_local = v.frame.to_local(wl);
   const Rgb f = bsdf_eval(*v.material, v.wo, wl_local);
@@ -288,7 +294,7 @@ void PathTracer::sample_interior_portal(const Vertex& v, const PathState& st, Rn
   const int k = std::min(static_cast<int>(rng.uniform() * portals_.size()), static_cast<int>(portals_.size()) - 1);
   PathState from_here = st;
   ++from_here.depth;
-  const Vec2 uv(rng.uniform(), rng.uniform());
+  const Vec2 uv = next2(rng);
   sample_portal(k, uv, 1.0f / static_cast<float>(portals_.size()), offset_origin(v.p, v.ng, v.n), v.n, from_here, rng,
                 [&](const Vec3& d, float* pdf) {
                   const Vec3 local = v.frame.to_local(d);
@@ -333,7 +339,7 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
     }
 
     BsdfSample bs;
-    const Vec2 u(rng.uniform(), rng.uniform());
+    const Vec2 u = next2(rng);
     const float u_lobe = rng.uniform();
     if (!bsdf_sample(*v.material, v.wo, u, u_lobe, front, &bs)) return;
     const Vec3 wi = v.frame.to_world(bs.wi);
@@ -366,7 +372,7 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
 
   // The sensor is a cosine receiver: its "BSDF times cosine" is cos(theta).
   float light_pdf = 0.0f;
-  const Vec3 wl = sky.sample(Vec2(rng.uniform(), rng.uniform()), &light_pdf);
+  const Vec3 wl = sky.sample(next2(rng), &light_pdf);
   const float cos_l = wl.dot(n);
   const bool portals = sink.recording() && !portals_.empty();
   if (light_pdf > 0.0f && cos_l > 0.0f) {
@@ -398,7 +404,7 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
                     sink);
     }
   }
-  const Vec3 local = square_to_cosine_hemisphere(Vec2(rng.uniform(), rng.uniform()));
+  const Vec3 local = square_to_cosine_hemisphere(next2(rng));
   st.prev_pdf = square_to_cosine_hemisphere_pdf(local);
   if (st.prev_pdf <= 0.0f) return;
   trace(p, frame.to_world(local), st, cutters, rng, sink);
