@@ -794,3 +794,40 @@ INSTANTIATE_TEST_SUITE_P(EnvironmentMap, EnvironmentMapChi2, ::testing::Range(0,
 
 }  // namespace
 }  // namespace fenestra
+
+namespace fenestra {
+namespace {
+
+// Light sampling of a uniform sky toward a surface: cosine-weighted about its normal.
+TEST(SamplingUniformSky, TowardANormalIsCosineWeighted) {
+  const UniformSky sky(Rgb::Constant(2.0f));
+  const Vec3 normal = Vec3(0.3f, -0.5f, 0.8f).normalized();
+  Rng rng(11, 3);
+  const int n = 200000;
+  double sum_cos = 0.0, sum_cos2 = 0.0;
+  for (int i = 0; i < n; ++i) {
+    float pdf = 0.0f;
+    const Vec3 d = sky.sample_toward(next2(rng), normal, &pdf);
+    const float c = d.dot(normal);
+    ASSERT_GE(c, -1e-6f);
+    ASSERT_NEAR(pdf, sky.pdf_toward(d, normal), 1e-5f);
+    ASSERT_NEAR(d.norm(), 1.0f, 1e-5f);
+    sum_cos += c, sum_cos2 += c * c;
+  }
+  // E[cos] = 2/3 under the density cos / pi; variance from the samples.
+  const double mean = sum_cos / n, se = std::sqrt((sum_cos2 / n - mean * mean) / (n - 1));
+  EXPECT_NEAR(mean, 2.0 / 3.0, 4.0 * se);
+  // The density integrates to one over the sphere (midpoint rule in theta, phi).
+  double integral = 0.0;
+  const int m = 400;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < 2 * m; ++j) {
+      const double theta = (i + 0.5) * M_PI / m, phi = (j + 0.5) * M_PI / m;
+      const Vec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      integral += sky.pdf_toward(d, normal) * std::sin(theta) * (M_PI / m) * (M_PI / m);
+    }
+  EXPECT_NEAR(integral, 1.0, 1e-3);
+}
+
+}  // namespace
+}  // namespace fenestra

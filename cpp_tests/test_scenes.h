@@ -68,6 +68,10 @@ class ObjBuilder {
 // estimates are precise enough to see it, so closed forms are evaluated there too.
 constexpr float kSensorLift = 1e-4f;
 
+// Relative precision of single-precision path values summed in double: a floor for estimates
+// whose Monte Carlo variance vanishes.
+constexpr double kFloatRounding = 1e-6;
+
 // View factor from a differential area at p with unit normal n to a planar polygon wholly in
 // front of it (Lambert's closed form: sum over edges of the angle they subtend times n . edge normal).
 inline double polygon_view_factor(const Vec3& p, const Vec3& n, const std::vector<Vec3>& polygon) {

@@ -18,6 +18,10 @@ class Sky {
   // Importance-samples a direction; pdf in solid angle.
   virtual Vec3 sample(const Vec2& u, float* pdf) const = 0;
   virtual float pdf(const Vec3& dir) const = 0;
+  // The same for light arriving at a surface with unit normal `normal`: skies that can, put the
+  // samples where the cosine is (only directions with dir . normal > 0 matter there).
+  virtual Vec3 sample_toward(const Vec2& u, const Vec3& /*normal*/, float* pdf) const { return sample(u, pdf); }
+  virtual float pdf_toward(const Vec3& dir, const Vec3& /*normal*/) const { return pdf(dir); }
   virtual std::string to_string() const = 0;
 };
 
@@ -27,6 +31,9 @@ class UniformSky final : public Sky {
   Rgb radiance(const Vec3&) const override { return radiance_; }
   Vec3 sample(const Vec2& u, float* pdf) const override;
   float pdf(const Vec3&) const override;
+  // Constant radiance: cosine-weighted about the normal is the ideal light sampling.
+  Vec3 sample_toward(const Vec2& u, const Vec3& normal, float* pdf) const override;
+  float pdf_toward(const Vec3& dir, const Vec3& normal) const override;
   std::string to_string() const override;
 
  private:

@@ -50,6 +50,7 @@ struct PathTracer::PathState {
   bool portals = false;        // the vertex that chose this direction also sampled portals
   bool from_sensor = false;    // ... and that vertex was the sensor
   Vec3 vertex;                 // that vertex
+  Vec3 vertex_normal = Vec3(0, 0, 1);  // its shading normal (sky densities depend on it)
   float portal_pdf = 0.0f;     // portal density of this direction, once known (at an escape)
   bool by_portal = false;      // this direction was chosen by portal sampling (else by the BSDF)
   // At the sensor, portal samples alone carry the light that comes through elements: they are
@@ -197,6 +198,8 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   through_state.portals = false;
   through_state.portal_pdf = pdf;
   through_state.by_portal = true;
+  through_state.vertex = x;
+  through_state.vertex_normal = n;
   const CutterSet through{scene_.domain.element_cutter(k)};
   Sink outside(nullptr);
   trace(x, dir, through_state, &through, rng, outside);
@@ -275,7 +278,7 @@ void PathTracer::sample_sky(const Vertex& v, const PathState& st, const CutterSe
                             Sink& sink) const {
   const Sky& sky = *scene_.sky;
   float light_pdf = 0.0f;
-  const Vec3 wl = sky.sample(next2(rng), &light_pdf);
+  const Vec3 wl = sky.sample_toward(next2(rng), v.n, &light_pdf);
   if (!(light_pdf > 0.0f) || wl.dot(v.n) <= 0.0f) return;
   const Vec3 wl_local = v.frame.to_local(wl);
   const Rgb f = bsdf_eval(*v.material, v.wo, wl_local);
@@ -309,7 +312,7 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
   for (;;) {
     const Hit h = rays_->intersect(org, dir, 0.0f, kInfinity, cutters);
     if (!h.valid()) {
-      sink.light(st.beta * sky.radiance(dir) * strategy_weight(st, sky.pdf(dir)), nullptr, 0);
+      sink.light(st.beta * sky.radiance(dir) * strategy_weight(st, sky.pdf_toward(dir, st.vertex_normal)), nullptr, 0);
       return;
     }
     const Surface s = surface(h);
@@ -350,6 +353,7 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
       st.portals = sink.recording() && !v.material->is_glass();
       st.from_sensor = false;
       st.vertex = v.p;
+      st.vertex_normal = v.n;
       st.portal_pdf = 0.0f;
     }
     ++st.depth;
@@ -372,7 +376,7 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
 
   // The sensor is a cosine receiver: its "BSDF times cosine" is cos(theta).
   float light_pdf = 0.0f;
-  const Vec3 wl = sky.sample(next2(rng), &light_pdf);
+  const Vec3 wl = sky.sample_toward(next2(rng), n, &light_pdf);
   const float cos_l = wl.dot(n);
   const bool portals = sink.recording() && !portals_.empty();
   if (light_pdf > 0.0f && cos_l > 0.0f) {
@@ -388,6 +392,7 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
   st.portals = portals;
   st.from_sensor = true;
   st.vertex = p;
+  st.vertex_normal = n;
   if (portals) {
     PathState from_sensor = st;
     from_sensor.beta = Rgb::Ones();
