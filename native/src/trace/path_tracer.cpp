@@ -18,6 +18,7 @@ constexpr float kRayEpsilon = 1e-4f;  // meters: offset of new rays from the sur
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr int kRouletteDepth = 3;
 constexpr int kMaxCrossed = 16;
+constexpr int kOutdoorSkySamples = 4;
 
 // Power heuristic for the strategy with density `pdf` against two others.
 float power_heuristic(float pdf, float other, float third = 0.0f) {
@@ -52,6 +53,8 @@ struct PathTracer::PathState {
   Vec3 vertex;                 // that vertex
   Vec3 vertex_normal = Vec3(0, 0, 1);  // its shading normal (sky densities depend on it)
   float portal_pdf = 0.0f;     // portal density of this direction, once known (at an escape)
+  int sky_samples = 1;         // sky samples the vertex that chose this direction took
+  bool beyond_element = false;  // followed through an element: the next vertex is the first outside
   bool by_portal = false;      // this direction was chosen by portal sampling (else by the BSDF)
   // At the sensor, portal samples alone carry the light that comes through elements: they are
   // stratified over each element, far better than MIS weights computed from densities assume.
@@ -200,6 +203,7 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   through_state.by_portal = true;
   through_state.vertex = x;
   through_state.vertex_normal = n;
+  through_state.beyond_element = true;
   const CutterSet through{scene_.domain.element_cutter(k)};
   Sink outside(nullptr);
   trace(x, dir, through_state, &through, rng, outside);
@@ -263,6 +267,7 @@ void PathTracer::record_escape(int k, const Vec3& org, const Vec3& dir, float t,
   // From the sensor, portal samples alone carry the light arriving through elements.
   if (!(st.portals && st.from_sensor)) {
     PathState outside_state = st;
+    outside_state.beyond_element = true;
     if (st.portals) {
       const float distance = (org + t * dir - st.vertex).norm();
       outside_state.portal_pdf = portal_pdf(&k, &distance, 1, dir);
@@ -274,8 +279,13 @@ void PathTracer::record_escape(int k, const Vec3& org, const Vec3& dir, float t,
   sink.escape(k, outside.sum());
 }
 
-void PathTracer::sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, Rng& rng,
+void PathTracer::sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
                             Sink& sink) const {
+  for (int i = 0; i < count; ++i) sample_sky_once(v, st, cutters, count, rng, sink);
+}
+
+void PathTracer::sample_sky_once(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
+                                 Sink& sink) const {
   const Sky& sky = *scene_.sky;
   float light_pdf = 0.0f;
   const Vec3 wl = sky.sample_toward(next2(rng), v.n, &light_pdf);
@@ -289,8 +299,9 @@ void PathTracer::sample_sky(const Vertex& v, const PathState& st, const CutterSe
   const float portal = sink.recording() && sh.first_is_element
                            ? portal_pdf(sh.crossed.data(), sh.crossed_distance.data(), 1, wl)
                            : 0.0f;
-  const float w = power_heuristic(light_pdf, bsdf_pdf(*v.material, v.wo, wl_local), portal);
-  sink.light(st.beta * f * sky.radiance(wl) * sh.attenuation * (w / light_pdf), sh.crossed.data(), sh.crossed_count);
+  const float w = power_heuristic(count * light_pdf, bsdf_pdf(*v.material, v.wo, wl_local), portal);
+  sink.light(st.beta * f * sky.radiance(wl) * sh.attenuation * (w / (count * light_pdf)), sh.crossed.data(),
+             sh.crossed_count);
 }
 
 void PathTracer::sample_interior_portal(const Vertex& v, const PathState& st, Rng& rng, Sink& sink) const {
@@ -312,7 +323,7 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
   for (;;) {
     const Hit h = rays_->intersect(org, dir, 0.0f, kInfinity, cutters);
     if (!h.valid()) {
-      sink.light(st.beta * sky.radiance(dir) * strategy_weight(st, sky.pdf_toward(dir, st.vertex_normal)), nullptr, 0);
+      sink.light(st.beta * sky.radiance(dir) * strategy_weight(st, st.sky_samples * sky.pdf_toward(dir, st.vertex_normal)), nullptr, 0);
       return;
     }
     const Surface s = surface(h);
@@ -336,8 +347,12 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
     v.n = front ? s.normal : Vec3(-s.normal);
     v.frame = Frame(v.n);
     v.wo = v.frame.to_local(-dir);
+    // The first vertex outside an element carries the light of the outdoors into the room for
+    // many paths: it takes several sky samples.
+    const int sky_samples = st.beyond_element ? kOutdoorSkySamples : 1;
+    st.beyond_element = false;
     if (!v.material->is_glass()) {
-      sample_sky(v, st, cutters, rng, sink);
+      sample_sky(v, st, cutters, sky_samples, rng, sink);
       if (sink.recording() && !portals_.empty()) sample_interior_portal(v, st, rng, sink);
     }
 
@@ -355,6 +370,7 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
       st.vertex = v.p;
       st.vertex_normal = v.n;
       st.portal_pdf = 0.0f;
+      st.sky_samples = v.material->is_glass() ? 1 : sky_samples;
     }
     ++st.depth;
     org = offset_origin(v.p, s.normal, wi);

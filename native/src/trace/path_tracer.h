@@ -70,8 +70,11 @@ class PathTracer {
   // Records what arrives through element k, met at distance t along (org, dir).
   void record_escape(int k, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
                      Sink& sink) const;
-  // Next-event estimation toward the sky from a vertex.
-  void sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, Rng& rng, Sink& sink) const;
+  // Next-event estimation toward the sky from a vertex, with `count` samples.
+  void sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
+                  Sink& sink) const;
+  void sample_sky_once(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
+                       Sink& sink) const;
   // One portal sample from a vertex inside: a random element, a random point on it.
   void sample_interior_portal(const Vertex& v, const PathState& st, Rng& rng, Sink& sink) const;
   Surface surface(const Hit& hit) const;
