@@ -206,6 +206,32 @@ TEST(Trace, ExactRecordsEqualEvaluateForASetOfOpenElements) {
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(all.value[i], c.all_open.value[i], 1e-9 * all.value[i]);
 }
 
+TEST(Trace, ExactRecordsEqualEvaluateWithGroundAndNeighbourOutside) {
+  // Light reaches the room through the window from the sky, the ground and a facing building.
+  TempDir dir;
+  ObjBuilder obj;
+  obj.box({0, 0, 0}, {3, 3, 2.5f}, [](const std::string& f) { return f == "south" ? "facade" : "grey"; });
+  obj.quad("ground", "ground", {-30, -30, -0.01f}, {30, -30, -0.01f}, {30, 30, -0.01f}, {-30, 30, -0.01f});
+  obj.quad("neighbour", "neighbour", {-5, -4, 0}, {-5, -4, 6}, {8, -4, 6}, {8, -4, 0});
+  dir.write("scene.obj", obj.str());
+  dir.write("scene.json",
+            scene_json(R"({"grey": {"reflectance": 0.6}, "facade": {"reflectance": 0.5}, "ground": {"reflectance": 0.3},
+                           "neighbour": {"reflectance": 0.5}})",
+                       R"({"materials": ["facade"], "element_size": 0.5})",
+                       R"({"points": [[1.5, 1, 0.8], [0.5, 2.5, 0.8], [2.5, 2.5, 1.5]], "normals": [0, 0, 1]})",
+                       1 << 14));
+  const Scene scene = load_scene(dir.file("scene.json"));
+  const Contributions c = compute_contributions(scene);
+  const Rectangle window = {Vec3(0.5f, 0, 0.5f), Vec3(2.5f, 0, 0.5f), Vec3(2.5f, 0, 2), Vec3(0.5f, 0, 2)};
+  const auto mask = mask_of_elements_inside(scene, window);
+  ASSERT_EQ(std::count(mask.begin(), mask.end(), 1), 12);
+  const SensorValues exact = c.evaluate(mask);
+  const SensorValues truth = evaluate_openings(scene, {window});
+  for (int i = 0; i < 3; ++i)
+    EXPECT_TRUE(within_sigma(exact.value[i], exact.standard_error[i], truth.value[i], truth.standard_error[i]))
+        << "sensor " << i;
+}
+
 TEST(Trace, SameSeedSameNumbersWhateverTheThreadCount) {
   TempDir dir;
   ObjBuilder obj;
