@@ -27,6 +27,7 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
   ReplicateSums closed, open;
   std::vector<Touched> touched;
   std::vector<double> base_suffix, all_suffix;
+  const std::vector<uint8_t> all_open_mask(elements, 1);
   for (size_t p = 0; p < n_paths; ++p) {
     const uint32_t b = rec.path_begin[p], e = rec.path_begin[p + 1];
     const size_t m = e - b;
@@ -34,13 +35,11 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
     all_suffix.assign(m + 1, 0.0);
     for (size_t j = m; j-- > 0;) {
       const PathEvent& ev = rec.events[b + j];
-      base_suffix[j] = base_suffix[j + 1] + (!ev.is_escape() && ev.crossed_count == 0 ? ev.value : 0.0);
+      base_suffix[j] = base_suffix[j + 1] + (ev.is_light() && ev.open_count == 0 && ev.closed_count == 0 ? ev.value : 0.0);
       all_suffix[j] = all_suffix[j + 1] + ev.value;
     }
     closed.add(p, base_suffix[0]);
 
-    double open_value = 0.0;
-    bool escaped = false;
     touched.clear();
     auto entry = [&](int k) -> Touched& {
       for (auto& t : touched)
@@ -50,9 +49,8 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
     };
     for (size_t j = 0; j < m; ++j) {
       const PathEvent& ev = rec.events[b + j];
-      if (!escaped) open_value += ev.value;
+      if (ev.is_escape_part()) continue;  // taken with its escape
       if (ev.is_escape()) {
-        escaped = true;
         Touched& t = entry(ev.element);
         if (t.escape_event < 0) {
           t.escape_event = static_cast<int>(j);
@@ -60,19 +58,31 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
         }
         continue;
       }
-      if (ev.crossed_count == 0) continue;
-      const int k = rec.crossed[ev.crossed_begin];
+      if (ev.open_count == 0) continue;
+      // Light that needs only element k open (k alone open closes all others: closed conditions hold).
+      const int32_t* c = &rec.conditions[ev.conditions_begin];
+      const int k = c[0];
       bool single = true;
-      for (uint32_t c = 1; c < ev.crossed_count; ++c) single = single && rec.crossed[ev.crossed_begin + c] == k;
+      for (uint16_t i = 1; i < ev.open_count; ++i) single = single && c[i] == k;
+      for (uint16_t i = 0; i < ev.closed_count; ++i) single = single && c[ev.open_count + i] != k;
       if (single) {
         Touched& t = entry(k);
         if (t.escape_event < 0) t.light_alone += ev.value;
       }
     }
-    open.add(p, open_value);
+    open.add(p, path_value(rec, p, all_open_mask));
     for (const Touched& t : touched) {
       double c = t.light_alone;
-      if (t.escape_event >= 0) c += rec.events[b + t.escape_event].value - base_suffix[t.escape_event + 1];
+      if (t.escape_event >= 0) {
+        // Alone open, k's escape gathers the parts that need other elements closed, not open.
+        size_t j = t.escape_event;
+        double through = rec.events[b + j].value;
+        while (j + 1 < m && rec.events[b + j + 1].is_escape_part()) {
+          const PathEvent& part = rec.events[b + ++j];
+          if (part.open_count == 0) through += part.value;
+        }
+        c += through - base_suffix[j + 1];
+      }
       e_sum[t.element * kReplicates + replicate_of(p)] += c;
     }
   }
@@ -90,10 +100,10 @@ void accumulate_transport(const SensorRecord& rec, Eigen::MatrixXd* transport) {
     const uint32_t b = rec.path_begin[p], e = rec.path_begin[p + 1];
     for (uint32_t j = b; j < e; ++j) {
       const PathEvent& first = rec.events[j];
-      if (!first.is_escape()) continue;
+      if (!first.is_escape()) continue;  // escapes, not their parts, start a transport
       for (uint32_t l = j + 1; l < e; ++l) {
         const PathEvent& later = rec.events[l];
-        if (later.is_escape() && later.element != first.element)
+        if (!later.is_light() && later.element != first.element)
           (*transport)(first.element, later.element) += later.value;
       }
     }

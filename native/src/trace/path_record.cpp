@@ -4,26 +4,37 @@ namespace fenestra {
 
 void SensorRecord::append(const SensorRecord& other) {
   const uint32_t event_base = static_cast<uint32_t>(events.size());
-  const uint32_t crossed_base = static_cast<uint32_t>(crossed.size());
+  const uint32_t condition_base = static_cast<uint32_t>(conditions.size());
   for (size_t p = 1; p < other.path_begin.size(); ++p) path_begin.push_back(other.path_begin[p] + event_base);
   for (PathEvent e : other.events) {
-    e.crossed_begin += crossed_base;
+    e.conditions_begin += condition_base;
     events.push_back(e);
   }
-  crossed.insert(crossed.end(), other.crossed.begin(), other.crossed.end());
+  conditions.insert(conditions.end(), other.conditions.begin(), other.conditions.end());
+}
+
+bool SensorRecord::holds(const PathEvent& e, const std::vector<uint8_t>& open) const {
+  const int32_t* c = conditions.data() + e.conditions_begin;
+  for (uint16_t i = 0; i < e.open_count; ++i)
+    if (!open[c[i]]) return false;
+  for (uint16_t i = 0; i < e.closed_count; ++i)
+    if (open[c[e.open_count + i]]) return false;
+  return true;
 }
 
 double path_value(const SensorRecord& record, size_t p, const std::vector<uint8_t>& open) {
   double sum = 0.0;
-  for (uint32_t i = record.path_begin[p]; i < record.path_begin[p + 1]; ++i) {
+  const uint32_t end = record.path_begin[p + 1];
+  for (uint32_t i = record.path_begin[p]; i < end; ++i) {
     const PathEvent& e = record.events[i];
-    if (e.is_escape()) {
-      if (open[e.element]) return sum + e.value;
-      continue;
+    if (e.is_light()) {
+      if (record.holds(e, open)) sum += e.value;
+    } else if (e.is_escape() && open[e.element]) {
+      sum += e.value;
+      for (uint32_t j = i + 1; j < end && record.events[j].is_escape_part(); ++j)
+        if (record.holds(record.events[j], open)) sum += record.events[j].value;
+      return sum;
     }
-    bool counts = true;
-    for (uint32_t c = 0; c < e.crossed_count && counts; ++c) counts = open[record.crossed[e.crossed_begin + c]] != 0;
-    if (counts) sum += e.value;
   }
   return sum;
 }

@@ -87,30 +87,106 @@ struct PathTracer::Vertex {
   const Material* material = nullptr;
 };
 
-// Where a path's light goes: summed (closed mode) or recorded as events (recording mode).
+// Where a path's light goes: summed (ground truth), recorded as events (a sensor's path), or,
+// for a sub-path beyond an element, summed by condition: light found after the sub-path went
+// through other elements holds only if they are open, after reflecting off them only if closed.
 class PathTracer::Sink {
  public:
-  explicit Sink(SensorRecord* record) : record_(record) {}
+  static constexpr int kMaxConditions = 8;
+  static constexpr int kMaxPassed = 1;  // elements a sub-path may go on through, beyond its own
+
+  static Sink sum() { return Sink(nullptr, false); }
+  static Sink record(SensorRecord* record) { return Sink(record, false); }
+  static Sink outside() { return Sink(nullptr, true); }
+
   bool recording() const { return record_ != nullptr; }
+  bool outside_element() const { return outside_; }
+
   void light(const Rgb& c, const int32_t* crossed, int count) { light(luminance(c), crossed, count); }
   void light(float v, const int32_t* crossed, int count) {
     if (!(v > 0.0f) || !std::isfinite(v)) return;
-    if (!record_) {
-      sum_ += v;
-      return;
+    if (record_)
+      push(v, -1, 0, crossed, count, nullptr, 0);
+    else
+      parts_[current_].value += v;
+  }
+  // Outside: a sub-path that went on through element j (its light needs j open), if the
+  // conditions leave room; the caller traces into it and absorb()s it.
+  bool can_pass() const { return parts_[current_].open_count < kMaxPassed && condition_count() < kMaxConditions; }
+  Sink passing(int j) const {
+    Sink child = Sink::outside();
+    Part& part = child.parts_[0];
+    part = parts_[current_];
+    part.value = 0.0;
+    auto closed = part.conditions.begin() + part.open_count;  // open conditions stay first
+    std::copy_backward(closed, closed + part.closed_count, closed + part.closed_count + 1);
+    part.conditions[part.open_count++] = j;
+    return child;
+  }
+  void absorb(const Sink& child) {
+    for (const Part& part : child.parts_)
+      if (part.value != 0.0) parts_.push_back(part);
+  }
+  // Outside: from now on, the light found needs element j closed. Returns false when the
+  // conditions are full (the caller stops: what follows is not recorded).
+  bool reflect_off(int j) {
+    if (condition_count() >= kMaxConditions) return false;
+    Part next = parts_[current_];
+    next.value = 0.0;
+    next.conditions[next.open_count + next.closed_count++] = j;
+    parts_.push_back(next);
+    current_ = parts_.size() - 1;
+    return true;
+  }
+  // Recording: what `outside` found beyond element k, reached by the path (an escape) ...
+  void escape(int k, const Sink& outside) {
+    push(finite(outside.parts_[0].value), k, 0, nullptr, 0, nullptr, 0);
+    for (size_t n = 1; n < outside.parts_.size(); ++n) {
+      const Part& part = outside.parts_[n];
+      if (part.value == 0.0) continue;
+      push(finite(part.value), k, PathEvent::kEscapePart, part.conditions.data(), part.open_count,
+           part.conditions.data() + part.open_count, part.closed_count);
     }
-    record_->events.push_back({v, -1, static_cast<uint32_t>(record_->crossed.size()), static_cast<uint32_t>(count)});
-    record_->crossed.insert(record_->crossed.end(), crossed, crossed + count);
   }
-  void escape(int element, float value) {
-    if (!std::isfinite(value)) value = 0.0f;
-    record_->events.push_back({value, element, 0, 0});
+  // ... or reached by a portal sample (light that needs k open).
+  void light_through(int k, const Sink& outside) {
+    for (const Part& part : outside.parts_) {
+      if (!(part.value > 0.0) || !std::isfinite(part.value)) continue;
+      std::array<int32_t, kMaxConditions + 1> open;
+      open[0] = k;
+      std::copy(part.conditions.begin(), part.conditions.begin() + part.open_count, open.begin() + 1);
+      push(static_cast<float>(part.value), -1, 0, open.data(), part.open_count + 1,
+           part.conditions.data() + part.open_count, part.closed_count);
+    }
   }
-  float sum() const { return sum_; }
+  double total() const {
+    double t = 0.0;
+    for (const Part& part : parts_) t += part.value;
+    return t;
+  }
 
  private:
+  struct Part {
+    double value = 0.0;
+    uint8_t open_count = 0, closed_count = 0;
+    std::array<int32_t, kMaxConditions> conditions{};  // open ones first
+  };
+
+  Sink(SensorRecord* record, bool outside) : record_(record), outside_(outside), parts_(1) {}
+  int condition_count() const { return parts_[current_].open_count + parts_[current_].closed_count; }
+  static float finite(double v) { return std::isfinite(v) ? static_cast<float>(v) : 0.0f; }
+  void push(float v, int element, uint8_t flags, const int32_t* open, size_t open_count, const int32_t* closed,
+            size_t closed_count) {
+    record_->events.push_back({v, element, static_cast<uint32_t>(record_->conditions.size()),
+                               static_cast<uint16_t>(open_count), static_cast<uint8_t>(closed_count), flags});
+    record_->conditions.insert(record_->conditions.end(), open, open + open_count);
+    record_->conditions.insert(record_->conditions.end(), closed, closed + closed_count);
+  }
+
   SensorRecord* record_;
-  float sum_ = 0.0f;
+  bool outside_;
+  std::vector<Part> parts_;  // parts_[current_] takes the light now
+  size_t current_ = 0;
 };
 
 PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals)
@@ -205,9 +281,9 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   through_state.vertex_normal = n;
   through_state.beyond_element = true;
   const CutterSet through{scene_.domain.element_cutter(k)};
-  Sink outside(nullptr);
+  Sink outside = Sink::outside();
   trace(x, dir, through_state, &through, rng, outside);
-  sink.light(outside.sum(), &k, 1);
+  sink.light_through(k, outside);
 }
 
 PathTracer::Surface PathTracer::surface(const Hit& hit) const {
@@ -263,7 +339,7 @@ float PathTracer::strategy_weight(const PathState& st, float sky_pdf) {
 
 void PathTracer::record_escape(int k, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
                                Sink& sink) const {
-  Sink outside(nullptr);
+  Sink outside = Sink::outside();
   // From the sensor, portal samples alone carry the light arriving through elements.
   if (!(st.portals && st.from_sensor)) {
     PathState outside_state = st;
@@ -276,7 +352,7 @@ void PathTracer::record_escape(int k, const Vec3& org, const Vec3& dir, float t,
     const CutterSet through{scene_.domain.element_cutter(k)};
     trace(org, dir, outside_state, &through, rng, outside);
   }
-  sink.escape(k, outside.sum());
+  sink.escape(k, outside);
 }
 
 void PathTracer::sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
@@ -318,6 +394,20 @@ void PathTracer::sample_interior_portal(const Vertex& v, const PathState& st, Rn
                 sink);
 }
 
+bool PathTracer::meet_element_outside(int j, const Vec3& org, const Vec3& dir, const PathState& st,
+                                      const CutterSet* cutters, Rng& rng, Sink& sink) const {
+  // Were j open, the sub-path would go on through it: follow that too (once per sub-path).
+  if (sink.can_pass()) {
+    Sink passing = sink.passing(j);
+    CutterSet through = cutters ? *cutters : CutterSet{};
+    through.push_back(scene_.domain.element_cutter(j));
+    trace(org, dir, st, &through, rng, passing);
+    sink.absorb(passing);
+  }
+  // Closed, it is wall: what follows needs it closed.
+  return sink.reflect_off(j);
+}
+
 void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutters, Rng& rng, Sink& sink) const {
   const Sky& sky = *scene_.sky;
   for (;;) {
@@ -327,17 +417,18 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
       return;
     }
     const Surface s = surface(h);
+    Vertex v;
+    v.p = org + h.t * dir;
+    if (s.panel >= 0 && (sink.recording() || sink.outside_element())) {
+      const int k = scene_.domain.element_at(s.panel, v.p);
+      if (k >= 0 && sink.recording()) record_escape(k, org, dir, h.t, st, rng, sink);
+      if (k >= 0 && sink.outside_element() && !meet_element_outside(k, org, dir, st, cutters, rng, sink)) return;
+    }
     if (st.portal_pdf > 0.0f) {
-      // First outdoor surface beyond an element: reached by BSDF and portal sampling alike.
+      // First surface beyond an element: reached by BSDF and portal sampling alike.
       st.beta *= strategy_weight(st, 0.0f);
       st.portal_pdf = 0.0f;
       st.by_portal = false;
-    }
-    Vertex v;
-    v.p = org + h.t * dir;
-    if (sink.recording() && s.panel >= 0) {
-      const int k = scene_.domain.element_at(s.panel, v.p);
-      if (k >= 0) record_escape(k, org, dir, h.t, st, rng, sink);
     }
     if (st.depth >= scene_.render.max_bounces) return;
 
@@ -432,13 +523,13 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
 }
 
 float PathTracer::sensor_sample(size_t sensor, Rng& rng) const {
-  Sink sink(nullptr);
+  Sink sink = Sink::sum();
   trace_sensor(sensor, 0, rng, &openings_, sink);
-  return sink.sum();
+  return static_cast<float>(sink.total());
 }
 
 void PathTracer::record_sensor_path(size_t sensor, size_t path, Rng& rng, SensorRecord* record) const {
-  Sink sink(record);
+  Sink sink = Sink::record(record);
   trace_sensor(sensor, path, rng, nullptr, sink);
   record->end_path();
 }

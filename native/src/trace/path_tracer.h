@@ -67,6 +67,10 @@ class PathTracer {
   void trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutters, Rng& rng, Sink& sink) const;
   // MIS weight of light found along the current direction (sky_pdf 0 for an outdoor surface).
   static float strategy_weight(const PathState& st, float sky_pdf);
+  // A sub-path beyond an element meets element j: branches for j open; returns false when the
+  // sub-path must stop (too many conditions).
+  bool meet_element_outside(int j, const Vec3& org, const Vec3& dir, const PathState& st, const CutterSet* cutters,
+                            Rng& rng, Sink& sink) const;
   // Records what arrives through element k, met at distance t along (org, dir).
   void record_escape(int k, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
                      Sink& sink) const;
