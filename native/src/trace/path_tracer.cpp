@@ -93,7 +93,7 @@ struct PathTracer::Vertex {
 class PathTracer::Sink {
  public:
   static constexpr int kMaxConditions = 8;
-  static constexpr int kMaxPassed = 1;  // elements a sub-path may go on through, beyond its own
+  static constexpr int kMaxPassed = 3;  // elements a sub-path may go on through, beyond its own
 
   static Sink sum() { return Sink(nullptr, false); }
   static Sink record(SensorRecord* record) { return Sink(record, false); }
@@ -105,10 +105,20 @@ class PathTracer::Sink {
   void light(const Rgb& c, const int32_t* crossed, int count) { light(luminance(c), crossed, count); }
   void light(float v, const int32_t* crossed, int count) {
     if (!(v > 0.0f) || !std::isfinite(v)) return;
-    if (record_)
+    if (record_) {
       push(v, -1, 0, crossed, count, nullptr, 0);
-    else
+    } else if (count == 0) {
       parts_[current_].value += v;
+    } else if (condition_count() + count <= kMaxConditions) {
+      // Outside, a shadow ray through other elements: light that needs them open as well.
+      Part part = parts_[current_];
+      part.value = v;
+      auto closed = part.conditions.begin() + part.open_count;
+      std::copy_backward(closed, closed + part.closed_count, closed + part.closed_count + count);
+      std::copy(crossed, crossed + count, closed);
+      part.open_count += static_cast<uint8_t>(count);
+      parts_.push_back(part);
+    }
   }
   // Outside: a sub-path that went on through element j (its light needs j open), if the
   // conditions leave room; the caller traces into it and absorb()s it.
@@ -304,11 +314,11 @@ void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutte
   out->attenuation = Rgb::Ones();
   out->crossed_count = 0;
   out->first_is_element = false;
-  CutterSet crossed_cutters;  // elements crossed so far are cut, through the wall thickness
+  // Elements crossed so far are cut too, through the wall thickness.
+  CutterSet active = cutters ? *cutters : CutterSet{};
   float tnear = 0.0f;
   for (int i = 0; i < 64; ++i) {
-    const CutterSet* active = collect ? &crossed_cutters : cutters;
-    const Hit h = rays_->intersect(org, dir, tnear, kInfinity, active);
+    const Hit h = rays_->intersect(org, dir, tnear, kInfinity, &active);
     if (!h.valid()) {
       out->visible = true;
       return;
@@ -321,7 +331,7 @@ void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutte
       if (i == 0) out->first_is_element = true;
       out->crossed_distance[out->crossed_count] = h.t;
       out->crossed[out->crossed_count++] = k;
-      crossed_cutters.push_back(scene_.domain.element_cutter(k));
+      active.push_back(scene_.domain.element_cutter(k));
       continue;
     }
     const Material& m = scene_.materials[s.material];
@@ -370,7 +380,7 @@ void PathTracer::sample_sky_once(const Vertex& v, const PathState& st, const Cut
   const Rgb f = bsdf_eval(*v.material, v.wo, wl_local);
   if (!(f > 0.0f).any()) return;
   Shadow sh;
-  shadow(offset_origin(v.p, v.ng, wl), wl, cutters, sink.recording(), &sh);
+  shadow(offset_origin(v.p, v.ng, wl), wl, cutters, sink.recording() || sink.outside_element(), &sh);
   if (!sh.visible) return;
   const float portal = sink.recording() && sh.first_is_element
                            ? portal_pdf(sh.crossed.data(), sh.crossed_distance.data(), 1, wl)
