@@ -230,6 +230,13 @@ TEST(Trace, ExactRecordsEqualEvaluateWithGroundAndNeighbourOutside) {
   for (int i = 0; i < 3; ++i)
     EXPECT_TRUE(within_sigma(exact.value[i], exact.standard_error[i], truth.value[i], truth.standard_error[i]))
         << "sensor " << i;
+  // The whole wall open: light leaving through one element and coming back through others.
+  const Rectangle wall = {Vec3(0, 0, 0), Vec3(3, 0, 0), Vec3(3, 0, 2.5f), Vec3(0, 0, 2.5f)};
+  const SensorValues wall_truth = evaluate_openings(scene, {wall});
+  for (int i = 0; i < 3; ++i)
+    EXPECT_TRUE(within_sigma(c.all_open.value[i], c.all_open.standard_error[i], wall_truth.value[i],
+                             wall_truth.standard_error[i]))
+        << "sensor " << i << ", whole wall open";
 }
 
 TEST(Trace, SameSeedSameNumbersWhateverTheThreadCount) {
