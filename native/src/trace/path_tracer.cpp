@@ -314,11 +314,13 @@ void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutte
   out->attenuation = Rgb::Ones();
   out->crossed_count = 0;
   out->first_is_element = false;
-  // Elements crossed so far are cut too, through the wall thickness.
-  CutterSet active = cutters ? *cutters : CutterSet{};
+  // Elements crossed so far are cut too, through the wall thickness (the set is built on the
+  // first crossing: most shadow rays cross none).
+  CutterSet with_crossed;
+  const CutterSet* active = cutters;
   float tnear = 0.0f;
   for (int i = 0; i < 64; ++i) {
-    const Hit h = rays_->intersect(org, dir, tnear, kInfinity, &active);
+    const Hit h = rays_->intersect(org, dir, tnear, kInfinity, active);
     if (!h.valid()) {
       out->visible = true;
       return;
@@ -331,7 +333,11 @@ void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutte
       if (i == 0) out->first_is_element = true;
       out->crossed_distance[out->crossed_count] = h.t;
       out->crossed[out->crossed_count++] = k;
-      active.push_back(scene_.domain.element_cutter(k));
+      if (active != &with_crossed) {
+        if (cutters) with_crossed = *cutters;
+        active = &with_crossed;
+      }
+      with_crossed.push_back(scene_.domain.element_cutter(k));
       continue;
     }
     const Material& m = scene_.materials[s.material];
