@@ -55,6 +55,7 @@ struct PathTracer::PathState {
   float portal_pdf = 0.0f;     // portal density of this direction, once known (at an escape)
   int sky_samples = 1;         // sky samples the vertex that chose this direction took
   bool beyond_element = false;  // followed through an element: the next vertex is the first outside
+  float must_reach = 0.0f;      // the first segment counts only if nothing is met before this distance
   bool by_portal = false;      // this direction was chosen by portal sampling (else by the BSDF)
   // At the sensor, portal samples alone carry the light that comes through elements: they are
   // stratified over each element, far better than MIS weights computed from densities assume.
@@ -271,14 +272,9 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   float bsdf_pdf = 0.0f;
   const Rgb f = f_and_pdf(dir, &bsdf_pdf);
   if (!(f > 0.0f).any()) return;
-  // Portals only reach what lies beyond the element the ray meets first.
-  const Hit h = rays_->intersect(x, dir, 0.0f, kInfinity, nullptr);
-  if (!h.valid()) return;
-  const Surface s = surface(h);
-  if (s.panel < 0 || scene_.domain.element_at(s.panel, x + h.t * dir) != k) return;
   const float cos_y = std::abs(dir.dot(portal.normal));
   if (!(cos_y > 1e-6f)) return;
-  const float pdf = selection * h.t * h.t / (element_area_ * cos_y);
+  const float pdf = selection * dist * dist / (element_area_ * cos_y);
   // Everything that arrives through k along dir: sky, and light from outdoor surfaces.
   PathState through_state = st;
   through_state.beta = st.beta * f / pdf;
@@ -290,6 +286,7 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   through_state.vertex = x;
   through_state.vertex_normal = n;
   through_state.beyond_element = true;
+  through_state.must_reach = dist;  // portals only reach what lies beyond the element met first
   const CutterSet through{scene_.domain.element_cutter(k)};
   Sink outside = Sink::outside();
   trace(x, dir, through_state, &through, rng, outside);
@@ -428,6 +425,10 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
   const Sky& sky = *scene_.sky;
   for (;;) {
     const Hit h = rays_->intersect(org, dir, 0.0f, kInfinity, cutters);
+    if (st.must_reach > 0.0f) {
+      if (h.valid() && h.t < st.must_reach - kRayEpsilon) return;
+      st.must_reach = 0.0f;
+    }
     if (!h.valid()) {
       sink.light(st.beta * sky.radiance(dir) * strategy_weight(st, st.sky_samples * sky.pdf_toward(dir, st.vertex_normal)), nullptr, 0);
       return;
