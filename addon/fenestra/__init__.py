@@ -1,7 +1,8 @@
 """Fenestra: design windows and skylights from daylight goals.
 
-This package is both the Python API (importable in any Python 3.11 with NumPy, no Blender
-needed) and the Blender add-on. Only the Blender modules import bpy.
+This package is the Python API (importable in any Python 3.11 with NumPy, no Blender needed)
+and is laid out to become the Blender add-on (bl_info); its Blender modules, which alone will
+import bpy, are not written yet.
 
     import fenestra
     scene = fenestra.load_scene("examples/reference_room/scene.json")
