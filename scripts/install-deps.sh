@@ -6,7 +6,8 @@ packages=(
   cmake g++ make pkg-config
   libembree-dev pybind11-dev libeigen3-dev libopenimageio-dev libtbb-dev
   nlohmann-json3-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
-  python3-dev python3-numpy python3-scipy python3-pytest
+  libhowardhinnant-date-dev
+  python3-dev python3-numpy python3-scipy python3-pytest python3-astropy
   blender xvfb
 )
 

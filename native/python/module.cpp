@@ -14,6 +14,8 @@
 namespace py = pybind11;
 using namespace fenestra;
 
+void bind_daylight(py::module_& m);  // bind_daylight.cpp
+
 namespace {
 
 // A read-only NumPy view of an Eigen matrix owned by `owner` (no copy).
@@ -54,6 +56,7 @@ std::vector<Rectangle> rectangles_from(py::array_t<double, py::array::c_style | 
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Fenestra native core: opening-contribution path tracing on Embree.";
+  bind_daylight(m);
   static py::exception<Cancelled> cancelled(m, "Cancelled");
   py::register_exception_translator([](std::exception_ptr p) {
     try {

@@ -1,0 +1,1 @@
+#include "daylight/local_time.h"

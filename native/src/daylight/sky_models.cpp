@@ -1,0 +1,1 @@
+#include "daylight/sky_models.h"

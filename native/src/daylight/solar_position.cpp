@@ -1,0 +1,1 @@
+#include "daylight/solar_position.h"
