@@ -24,6 +24,7 @@ demo: build
 	@./scripts/demo.sh $(BUILD)
 
 bench: build
+	$(BUILD)/bench/fenestra_sky_bench
 	$(BUILD)/bench/fenestra_bench
 
 # Puts `fenestra` on PATH and makes `import fenestra` work in /usr/bin/python3 (this checkout's addon/).

@@ -33,7 +33,9 @@ from .api import (  # noqa: E402
     openings_array,
     read_openings,
     scene_from_dict,
+    sky,
     write_image,
+    write_sky,
 )
 
 __all__ = [
@@ -47,5 +49,7 @@ __all__ = [
     "openings_array",
     "read_openings",
     "scene_from_dict",
+    "sky",
     "write_image",
+    "write_sky",
 ]

@@ -77,3 +77,24 @@ def evaluate(scene, openings, progress=None, callback=None):
     """Path-traces the scene with the openings really cut. Returns (value, stderr) arrays."""
     rects = openings_array(openings)
     return _run(lambda p: _core.evaluate(scene, rects, p), progress, callback)
+
+
+def sky(scene):
+    """The scene's sky as the tracer sees it: a dict with
+    - "map": (height, width, 3) float32 equirectangular map, linear sRGB in cd/m^2, top row the
+      zenith, Blender's world convention (a daylight sky's interval mean, sky above the horizon and
+      ground below, without the sun);
+    - "horizontal_illuminance": {"sky", "sun", "total"} in lux (interval means);
+    - "suns": one dict per time step with the sun up: "utc", "direction" (toward the sun, +Z up,
+      +Y north), "zenith_deg", "azimuth_deg" (clockwise from north), "weight" (share of the
+      interval) and "normal_illuminance" (lux at that instant);
+    - for daylight skies also "steps", "steps_with_sun", "map" size and "build_seconds"."""
+    summary = json.loads(_core.sky_summary(scene))
+    summary["map_size"] = summary.pop("map", None)
+    summary["map"] = _core.sky_map(scene)
+    return summary
+
+
+def write_sky(scene, path):
+    """Writes the scene's sky map to path (.exr or .hdr, cd/m^2)."""
+    _core.write_sky(scene, os.fspath(path))

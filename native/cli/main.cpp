@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/results.h"
+#include "io/sky_output.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
@@ -23,11 +24,15 @@ const char* kUsage = R"(usage:
       Writes OUT.npz (NumPy arrays) and OUT.json (summary listing every element).
   fenestra evaluate SCENE.json --openings OPENINGS.json -o OUT.json [options]
       Path-traces the scene with the given openings really cut; per-sensor value and standard error.
+  fenestra sky SCENE.json -o SKY.exr [--json SUMMARY.json]
+      Writes the scene's sky as an equirectangular map (.exr or .hdr, cd/m^2, Blender's convention)
+      and prints the horizontal illuminances and the sun list (also as JSON with --json).
 
 options:
   --paths N     paths per sensor (overrides render.paths_per_sensor)
   --seed N      random seed (overrides render.seed)
   --threads N   worker threads, 0 = all (overrides render.threads)
+  --json PATH   (sky) also write the summary as JSON
   --quiet       no progress on stderr
   -h, --help    this text
 
@@ -35,7 +40,7 @@ Values are luminance-weighted irradiance: lux when the sky is given in cd/m^2.
 )";
 
 struct Args {
-  std::string command, scene, output, openings;
+  std::string command, scene, output, openings, summary;
   std::map<std::string, long long> overrides;
   bool quiet = false;
 };
@@ -72,6 +77,8 @@ Args parse_args(int argc, char** argv) {
       a.output = value();
     } else if (arg == "--openings") {
       a.openings = value();
+    } else if (arg == "--json") {
+      a.summary = value();
     } else if (arg == "--paths" || arg == "--seed" || arg == "--threads") {
       a.overrides[arg] = parse_integer(arg, value());
     } else if (arg == "--quiet") {
@@ -84,11 +91,12 @@ Args parse_args(int argc, char** argv) {
   }
   if (positional.empty()) usage_error("no command given");
   a.command = positional[0];
-  if (a.command != "contributions" && a.command != "evaluate") usage_error("unknown command '" + a.command + "'");
+  if (a.command != "contributions" && a.command != "evaluate" && a.command != "sky") usage_error("unknown command '" + a.command + "'");
   if (positional.size() != 2) usage_error(a.command + " takes exactly one scene file");
   a.scene = positional[1];
   if (a.output.empty()) usage_error(a.command + " needs -o OUT");
   if (a.command == "evaluate" && a.openings.empty()) usage_error("evaluate needs --openings OPENINGS.json");
+  if (a.command != "sky" && !a.summary.empty()) usage_error("--json belongs to the sky command");
   return a;
 }
 
@@ -127,6 +135,14 @@ int run(const Args& a) {
   if (a.overrides.count("--threads")) scene.render.threads = static_cast<int>(a.overrides.at("--threads"));
   if (!a.quiet) std::fprintf(stderr, "%s\n", scene.to_string().c_str());
 
+  if (a.command == "sky") {
+    const nlohmann::json summary = sky_summary(scene);
+    write_sky_image(a.output, sky_image(scene));
+    if (!a.summary.empty()) write_json(a.summary, summary);
+    std::printf("%swrote %s\n", sky_report(summary).c_str(), a.output.c_str());
+    if (!a.summary.empty()) std::printf("wrote %s\n", a.summary.c_str());
+    return 0;
+  }
   Progress progress;
   if (a.command == "contributions") {
     const Contributions c = with_progress(progress, a.quiet, [&] { return compute_contributions(scene, &progress); });
@@ -140,7 +156,8 @@ int run(const Args& a) {
   const auto start = std::chrono::steady_clock::now();
   const SensorValues v = with_progress(progress, a.quiet, [&] { return evaluate_openings(scene, openings, &progress); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_json(a.output, evaluation_json(v, openings.size(), scene.render.paths_per_sensor));
+  write_json(a.output, evaluation_json(v, openings.size(), scene.render.paths_per_sensor,
+                                       unobstructed_horizontal_illuminance(scene)));
   std::printf("evaluate: %zu sensors, %zu openings, %.2f s\nwrote %s\n", scene.sensors.size(), openings.size(), seconds,
               a.output.c_str());
   return 0;

@@ -6,6 +6,7 @@
 
 #include "io/image_writer.h"
 #include "io/results.h"
+#include "io/sky_output.h"
 #include "trace/ray_scene.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
@@ -208,6 +209,25 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("path"), py::arg("image"),
       "Writes a linear float image (height, width, channels), top row first, e.g. an environment map (.exr/.hdr).");
+  m.def(
+      "sky_map",
+      [](const Scene& scene) {
+        const SkyImage image = sky_image(scene);
+        py::array_t<float> a({static_cast<py::ssize_t>(image.height), static_cast<py::ssize_t>(image.width),
+                              py::ssize_t(3)});
+        float* out = a.mutable_data();
+        for (size_t i = 0; i < image.pixels.size(); ++i)
+          for (int c = 0; c < 3; ++c) out[3 * i + c] = image.pixels[i][c];
+        return a;
+      },
+      py::arg("scene"),
+      "The scene's sky as an equirectangular map (height, width, 3), linear sRGB cd/m^2, top row = zenith.");
+  m.def(
+      "sky_summary", [](const Scene& scene) { return sky_summary(scene).dump(); }, py::arg("scene"),
+      "JSON text: horizontal illuminances (lux) and the sun list of the scene's sky.");
+  m.def(
+      "write_sky", [](const Scene& scene, const std::string& path) { write_sky_image(path, sky_image(scene)); },
+      py::arg("scene"), py::arg("path"), "Writes the scene's sky map (.exr or .hdr).");
   m.def("rays_traced", &rays_traced, "Rays traced by parallel computations since the module was loaded.");
   m.def("read_openings", [](const std::string& path) {
     const auto rects = read_openings(path);

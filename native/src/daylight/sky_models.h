@@ -10,7 +10,10 @@ namespace fenestra {
 // F(theta, gamma) = (1 + A exp(B / cos theta)) (1 + C exp(D gamma) + E cos^2 gamma).
 struct PerezCoefficients {
   double A = 0, B = 0, C = 0, D = 0, E = 0;
-  double theta_factor(double cos_theta) const;                // 1 + A exp(B / cos theta)
+  // 1 + A exp(B / cos theta), with cos theta held at kMinCosTheta or above: B < 0 for every
+  // Preetham turbidity, so the factor tends to 1 at the horizon and the floor only avoids 0 / 0.
+  static constexpr double kMinCosTheta = 0.01;
+  double theta_factor(double cos_theta) const;
   double gamma_factor(double gamma, double cos_gamma) const;  // 1 + C exp(D gamma) + E cos^2 gamma
   double operator()(double cos_theta, double gamma, double cos_gamma) const {
     return theta_factor(cos_theta) * gamma_factor(gamma, cos_gamma);
@@ -22,7 +25,7 @@ struct PerezCoefficients {
 class PreethamSky {
  public:
   // Valid turbidity range of the model; the constructor throws std::invalid_argument outside it
-  // and when the sun is not above the horizon (sun.z() <= 0).
+  // and when the sun is not above the horizon (sun.z() <= 0). `sun` need not be unit length.
   static constexpr double kMinTurbidity = 1.7, kMaxTurbidity = 10.0;
   PreethamSky(double turbidity, const Vec3& sun);
 
@@ -44,6 +47,7 @@ class PreethamSky {
   double zenith_Y_, zenith_x_, zenith_y_;
   PerezCoefficients perez_[3];  // Y, x, y
   double norm_[3];              // 1 / F(0, theta_s) per channel
+  double scale_[3];             // zenith value x norm_ per channel: value = scale_ F(theta, gamma)
 };
 
 // The solar disk seen through the atmosphere.
@@ -54,13 +58,19 @@ struct SunDisk {
   Rgb normal_illuminance() const { return radiance * static_cast<float>(solid_angle); }  // lux
 };
 // Sun radiance from Preetham's spectral attenuation (Rayleigh, Angstrom aerosol from turbidity,
-// ozone, mixed gases, water vapour, relative air mass) applied to the extraterrestrial spectrum.
-// Zero disk when the sun is at or below the horizon.
+// ozone, mixed gases, water vapour, relative air mass) applied to the extraterrestrial spectrum
+// (daylight/sun_spectrum.h). At or below the horizon the disk keeps its solid angle and has zero
+// radiance. Throws std::invalid_argument for a turbidity outside PreethamSky's range or a zenith
+// angle that is negative or not finite.
 SunDisk preetham_sun(double turbidity, double sun_zenith_rad);
+// The same disk outside the atmosphere (no attenuation): the solar illuminance constant.
+SunDisk extraterrestrial_sun();
 
 // CIE standard overcast sky: L / L_z = (1 + 2 cos theta) / 3; horizontal illuminance 7 pi / 9 L_z.
+// Zero below the horizon (cos theta < 0).
 double cie_overcast_relative(double cos_theta);
-// CIE standard clear sky (CIE S 011 type 12): L / L_z for direction dir and sun direction sun.
+// CIE standard clear sky (CIE S 011 type 12): L / L_z for direction dir and sun direction sun
+// (both unit). Zero below the horizon (dir.z() < 0).
 double cie_clear_relative(const Vec3& dir, const Vec3& sun);
 
 }  // namespace fenestra

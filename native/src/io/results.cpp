@@ -134,13 +134,19 @@ std::vector<Rectangle> read_openings(const std::string& path) {
   return parse_openings(j, path);
 }
 
-json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor) {
+json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor,
+                     double horizontal_illuminance) {
   json sensors = json::array();
-  for (Eigen::Index i = 0; i < values.value.size(); ++i)
-    sensors.push_back({{"value", values.value[i]}, {"stderr", values.standard_error[i]}});
+  for (Eigen::Index i = 0; i < values.value.size(); ++i) {
+    json s = {{"value", values.value[i]}, {"stderr", values.standard_error[i]}};
+    // Daylight factor: percent of what an unobstructed horizontal surface receives from the same sky.
+    if (horizontal_illuminance > 0.0) s["daylight_factor"] = 100.0 * values.value[i] / horizontal_illuminance;
+    sensors.push_back(std::move(s));
+  }
   return {{"units", "luminance-weighted irradiance: lux for a sky in cd/m^2"},
           {"openings", openings},
           {"paths_per_sensor", paths_per_sensor},
+          {"horizontal_illuminance", horizontal_illuminance},
           {"sensors", sensors}};
 }
 

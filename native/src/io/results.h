@@ -22,7 +22,10 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
 std::vector<Rectangle> read_openings(const std::string& path);
 std::vector<Rectangle> parse_openings(const nlohmann::json& j, const std::string& source);
 
-nlohmann::json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor);
+// `horizontal_illuminance`: the sky's (and sun's) on an unobstructed horizontal surface, for
+// daylight factors (sensors get "daylight_factor" in percent when it is positive).
+nlohmann::json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor,
+                               double horizontal_illuminance = 0.0);
 void write_json(const std::string& path, const nlohmann::json& j);
 
 }  // namespace fenestra

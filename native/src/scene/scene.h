@@ -8,14 +8,17 @@
 #include "scene/mesh.h"
 #include "scene/opening_domain.h"
 #include "scene/sky.h"
+#include "scene/sun_lights.h"
 
 namespace fenestra {
+
+struct Daylight;  // daylight/daylight.h
 
 struct Sensors {
   std::vector<Vec3> points;   // meters
   std::vector<Vec3> normals;  // unit
   std::vector<double> goals;  // empty when the scene gives none
-  std::string goal_units = "normalized";  // "normalized" or "lux"
+  std::string goal_units = "normalized";  // "normalized", "lux" or "daylight_factor" (percent)
   size_t size() const { return points.size(); }
 };
 
@@ -34,6 +37,8 @@ struct Scene {
   OpeningDomain domain;
   Sensors sensors;
   std::shared_ptr<const Sky> sky;
+  SunLights suns;  // a daylight sky's sun, one disk per time step (empty for other skies)
+  std::shared_ptr<const Daylight> daylight;  // how a daylight sky was built (null for others)
   RenderSettings render;
 
   std::vector<std::string> material_names() const;

@@ -1,11 +1,13 @@
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
+#include "daylight/daylight.h"
 #include "scene/bsdf.h"
 #include "scene/scene.h"
 
@@ -110,13 +112,92 @@ Material parse_material(const ScenePath& sp, const std::string& name, const json
   return m;
 }
 
-std::shared_ptr<const Sky> parse_sky(const ScenePath& sp, const json& j, const fs::path& base) {
+std::string text(const ScenePath& sp, const json& obj, const std::string& name, const std::string& key) {
+  if (!obj.contains(name)) sp.fail(key + "." + name, "missing");
+  if (!obj.at(name).is_string()) sp.fail(key + "." + name, "expected a string, got " + obj.at(name).dump());
+  return obj.at(name).get<std::string>();
+}
+
+void check_known_keys(const ScenePath& sp, const json& obj, const std::string& key,
+                      const std::vector<std::string>& known) {
+  for (const auto& item : obj.items()) {
+    if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
+    std::string list;
+    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+    sp.fail(key + "." + item.key(), "unknown key (known: " + list + ")");
+  }
+}
+
+// Settings of the daylight skies (preetham, cie_clear, cie_overcast); see docs/sky.md.
+DaylightSettings parse_daylight(const ScenePath& sp, const json& j, const std::string& type) {
+  static const std::vector<std::string> kKnown = {
+      "type", "latitude", "longitude", "elevation", "utc_offset", "timezone", "date", "date_end", "start", "end",
+      "time", "step_minutes", "turbidity", "ground_reflectance", "north_offset_deg", "zenith_luminance",
+      "horizontal_illuminance", "resolution"};
+  check_known_keys(sp, j, "sky", kKnown);
+  DaylightSettings d;
+  d.model = type == "preetham"       ? DaylightSettings::Model::Preetham
+            : type == "cie_clear"    ? DaylightSettings::Model::CieClear
+                                     : DaylightSettings::Model::CieOvercast;
+  try {
+    if (d.model != DaylightSettings::Model::CieOvercast) {
+      for (const char* key : {"latitude", "longitude", "date"})
+        if (!j.contains(key)) sp.fail(std::string("sky.") + key, "a " + type + " sky needs it");
+      d.place.latitude_deg = number(sp, j.at("latitude"), "sky.latitude");
+      d.place.longitude_deg = number(sp, j.at("longitude"), "sky.longitude");
+      d.place.elevation_m = number_or(sp, j, "elevation", "sky", 0.0);
+      if (j.contains("timezone") && j.contains("utc_offset"))
+        sp.fail("sky.timezone", "give either timezone or utc_offset, not both");
+      if (j.contains("timezone")) {
+        d.time_zone = TimeZone::named(text(sp, j, "timezone", "sky"));
+      } else if (j.contains("utc_offset")) {
+        d.time_zone = TimeZone::fixed(number(sp, j.at("utc_offset"), "sky.utc_offset"));
+      } else {
+        sp.fail("sky.utc_offset", "a " + type + " sky needs utc_offset (hours) or timezone (an IANA name)");
+      }
+      d.date = parse_date(text(sp, j, "date", "sky"));
+      d.date_end = j.contains("date_end") ? parse_date(text(sp, j, "date_end", "sky")) : d.date;
+      if (j.contains("time")) {
+        if (j.contains("start") || j.contains("end")) sp.fail("sky.time", "give either time or start and end");
+        d.start_minutes = d.end_minutes = parse_clock_minutes(text(sp, j, "time", "sky"));
+      } else {
+        if (j.contains("start")) d.start_minutes = parse_clock_minutes(text(sp, j, "start", "sky"));
+        if (j.contains("end")) d.end_minutes = parse_clock_minutes(text(sp, j, "end", "sky"));
+      }
+      d.step_minutes = number_or(sp, j, "step_minutes", "sky", d.step_minutes);
+      d.turbidity = number_or(sp, j, "turbidity", "sky", d.turbidity);
+      d.north_offset_deg = number_or(sp, j, "north_offset_deg", "sky", 0.0);
+    }
+    d.ground_reflectance = number_or(sp, j, "ground_reflectance", "sky", d.ground_reflectance);
+    d.zenith_luminance = number_or(sp, j, "zenith_luminance", "sky", 0.0);
+    d.horizontal_illuminance = number_or(sp, j, "horizontal_illuminance", "sky", 0.0);
+    if (d.zenith_luminance > 0.0 && d.horizontal_illuminance > 0.0)
+      sp.fail("sky.zenith_luminance", "give either zenith_luminance or horizontal_illuminance, not both");
+    if (d.model != DaylightSettings::Model::CieOvercast && d.horizontal_illuminance > 0.0)
+      sp.fail("sky.horizontal_illuminance", "only a cie_overcast sky is scaled by its horizontal illuminance");
+    if (j.contains("resolution")) {
+      const json& r = j.at("resolution");
+      if (!r.is_array() || r.size() != 2 || !r[0].is_number_integer() || !r[1].is_number_integer())
+        sp.fail("sky.resolution", "expected [width, height] in pixels, got " + r.dump());
+      d.width = r[0].get<int>();
+      d.height = r[1].get<int>();
+    }
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    if (what.rfind("scene '", 0) == 0) throw;
+    sp.fail("sky", what);
+  }
+  return d;
+}
+
+void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* scene) {
   if (!j.is_object()) sp.fail("sky", "expected an object");
   const std::string type = j.value("type", std::string("uniform"));
   if (type == "uniform") {
     const Rgb l = j.contains("radiance") ? colour(sp, j.at("radiance"), "sky.radiance") : Rgb::Constant(1000.0f / kPi);
     if ((l < 0.0f).any()) sp.fail("sky.radiance", "must not be negative");
-    return std::make_shared<UniformSky>(l);
+    scene->sky = std::make_shared<UniformSky>(l);
+    return;
   }
   if (type == "envmap") {
     if (!j.contains("file") || !j.at("file").is_string()) sp.fail("sky.file", "an envmap sky needs a \"file\"");
@@ -125,12 +206,27 @@ std::shared_ptr<const Sky> parse_sky(const ScenePath& sp, const json& j, const f
     const float rotation = static_cast<float>(number_or(sp, j, "rotation_deg", "sky", 0.0));
     if (scale < 0.0f) sp.fail("sky.scale", "must not be negative");
     try {
-      return EnvironmentMap::load(file.string(), scale, rotation);
+      scene->sky = EnvironmentMap::load(file.string(), scale, rotation);
     } catch (const std::invalid_argument& e) {
       sp.fail("sky.file", e.what());
     }
+    return;
   }
-  sp.fail("sky.type", "unknown sky type '" + type + "' (uniform or envmap)");
+  if (type == "preetham" || type == "cie_clear" || type == "cie_overcast") {
+    const DaylightSettings settings = parse_daylight(sp, j, type);
+    std::shared_ptr<Daylight> daylight;
+    try {
+      daylight = std::make_shared<Daylight>(make_daylight(settings));
+    } catch (const std::invalid_argument& e) {
+      sp.fail("sky", e.what());
+    }
+    scene->sky = std::make_shared<EnvironmentMap>(daylight->width, daylight->height, daylight->pixels, 1.0f, 0.0f,
+                                                  settings.describe());
+    scene->suns = SunLights(daylight->suns);
+    scene->daylight = daylight;
+    return;
+  }
+  sp.fail("sky.type", "unknown sky type '" + type + "' (uniform, envmap, preetham, cie_clear or cie_overcast)");
 }
 
 Sensors parse_sensors(const ScenePath& sp, const json& j) {
@@ -158,8 +254,8 @@ Sensors parse_sensors(const ScenePath& sp, const json& j) {
       s.goals.push_back(g[i].is_null() ? std::nan("") : number(sp, g[i], "sensors.goals[" + std::to_string(i) + "]"));
   }
   s.goal_units = j.value("goal_units", std::string("normalized"));
-  if (s.goal_units != "normalized" && s.goal_units != "lux")
-    sp.fail("sensors.goal_units", "must be \"normalized\" or \"lux\"");
+  if (s.goal_units != "normalized" && s.goal_units != "lux" && s.goal_units != "daylight_factor")
+    sp.fail("sensors.goal_units", "must be \"normalized\", \"lux\" or \"daylight_factor\"");
   return s;
 }
 
@@ -249,7 +345,7 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     if (!j.contains("sensors")) sp.fail("sensors", "the scene has no sensors");
     scene.sensors = parse_sensors(sp, j.at("sensors"));
     scene.domain.orient(scene.sensors.points);
-    scene.sky = parse_sky(sp, j.value("sky", json::object()), base);
+    parse_sky(sp, j.value("sky", json::object()), base, &scene);
     scene.render = parse_render(sp, j.value("render", json()));
   } catch (const json::exception& e) {
     sp.fail("(structure)", e.what());

@@ -393,6 +393,23 @@ void PathTracer::sample_sky_once(const Vertex& v, const PathState& st, const Cut
              sh.crossed_count);
 }
 
+void PathTracer::sample_sun(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
+                            Sink& sink) const {
+  for (int i = 0; i < count; ++i) {
+    const float u_pick = rng.uniform();
+    const SunLights::Sample sun = scene_.suns.sample(u_pick, next2(rng));
+    if (sun.direction.dot(v.n) <= 0.0f) continue;
+    const Rgb f = bsdf_eval(*v.material, v.wo, v.frame.to_local(sun.direction));
+    if (!(f > 0.0f).any()) continue;
+    Shadow sh;
+    shadow(offset_origin(v.p, v.ng, sun.direction), sun.direction, cutters,
+           sink.recording() || sink.outside_element(), &sh);
+    if (!sh.visible) continue;
+    sink.light(st.beta * f * sun.illuminance * sh.attenuation / static_cast<float>(count), sh.crossed.data(),
+               sh.crossed_count);
+  }
+}
+
 void PathTracer::sample_interior_portal(const Vertex& v, const PathState& st, Rng& rng, Sink& sink) const {
   const int k = std::min(static_cast<int>(rng.uniform() * portals_.size()), static_cast<int>(portals_.size()) - 1);
   PathState from_here = st;
@@ -461,6 +478,7 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
     st.beyond_element = false;
     if (!v.material->is_glass()) {
       sample_sky(v, st, cutters, sky_samples, rng, sink);
+      if (!scene_.suns.empty()) sample_sun(v, st, cutters, sky_samples, rng, sink);
       if (sink.recording() && !portals_.empty()) sample_interior_portal(v, st, rng, sink);
     }
 
@@ -510,6 +528,16 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
       const float w = power_heuristic(light_pdf, cos_l * kInvPi);
       sink.light(sky.radiance(wl) * sh.attenuation * (cos_l * w / light_pdf), sh.crossed.data(), sh.crossed_count);
     }
+  }
+  if (!scene_.suns.empty()) {
+    // The sun is found by this sample alone, through elements too (portal samples aim at the sky).
+    const float u_pick = rng.uniform();
+    const SunLights::Sample sun = scene_.suns.sample(u_pick, next2(rng));
+    const float cos_s = sun.direction.dot(n);
+    Shadow sh;
+    if (cos_s > 0.0f) shadow(p, sun.direction, cutters, sink.recording(), &sh);
+    if (cos_s > 0.0f && sh.visible)
+      sink.light(sun.illuminance * sh.attenuation * cos_s, sh.crossed.data(), sh.crossed_count);
   }
   PathState st;
   st.beta = Rgb::Constant(kPi);

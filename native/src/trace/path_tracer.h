@@ -1,7 +1,7 @@
 #pragma once
 // Unidirectional path tracer from sensor points: cosine-weighted sampling at the sensor, next-event
 // estimation toward the sky with multiple importance sampling (sky sampling + BSDF sampling) and
-// Russian roulette.
+// toward the sun disks of a daylight sky (next-event estimation only), and Russian roulette.
 //
 // Two modes share one loop:
 //  - recording (one pass for all elements): the opening domain is closed, and every time a path
@@ -79,6 +79,9 @@ class PathTracer {
                   Sink& sink) const;
   void sample_sky_once(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
                        Sink& sink) const;
+  // Next-event estimation toward the sun disks (nothing else finds them), `count` samples.
+  void sample_sun(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
+                  Sink& sink) const;
   // One portal sample from a vertex inside: a random element, a random point on it.
   void sample_interior_portal(const Vertex& v, const PathState& st, Rng& rng, Sink& sink) const;
   Surface surface(const Hit& hit) const;

@@ -1,0 +1,235 @@
+#include "daylight/daylight.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+
+#include "daylight/sky_models.h"
+#include "scene/sky.h"
+
+namespace fenestra {
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+constexpr size_t kMaxSteps = 200000;  // about 5 years at 15-minute steps
+
+void check(bool ok, const std::string& key, const std::string& message) {
+  if (!ok) throw std::invalid_argument("sky." + key + ": " + message);
+}
+
+// Gauss-Legendre nodes and weights on [0, 1] (Newton on the Legendre polynomial).
+void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double>* weights) {
+  nodes->resize(n);
+  weights->resize(n);
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(3.14159265358979323846 * (i + 0.75) / (n + 0.5)), dp = 1.0;
+    for (int iteration = 0; iteration < 100; ++iteration) {
+      double p0 = 1.0, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (x * p1 - p0) / (x * x - 1.0);
+      const double dx = p1 / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-15) break;
+    }
+    (*nodes)[i] = 0.5 * (1.0 - x);
+    (*weights)[i] = 1.0 / ((1.0 - x * x) * dp * dp);  // 2 / ((1 - x^2) P'^2), halved for [0, 1]
+  }
+}
+
+using RadianceOf = std::function<Rgb(const Vec3&)>;
+
+// Horizontal illuminance of an analytic sky: Gauss-Legendre in cos(theta), trapezoid in azimuth
+// (periodic, so spectrally accurate).
+Rgb analytic_horizontal_illuminance(const RadianceOf& radiance) {
+  static const auto rule = [] {
+    std::pair<std::vector<double>, std::vector<double>> r;
+    gauss_legendre(96, &r.first, &r.second);
+    return r;
+  }();
+  constexpr int kAzimuths = 192;
+  Eigen::Array3d sum = Eigen::Array3d::Zero();
+  for (size_t i = 0; i < rule.first.size(); ++i) {
+    const double mu = rule.first[i], s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+    Eigen::Array3d ring = Eigen::Array3d::Zero();
+    for (int j = 0; j < kAzimuths; ++j) {
+      const double phi = 2.0 * 3.14159265358979323846 * (j + 0.5) / kAzimuths;
+      ring += radiance(Vec3(float(s * std::cos(phi)), float(s * std::sin(phi)), float(mu))).cast<double>();
+    }
+    sum += rule.second[i] * mu * ring * (2.0 * 3.14159265358979323846 / kAzimuths);
+  }
+  return sum.cast<float>();
+}
+
+// One step's sky, rasterised into the map's upper half (pixel centres).
+void rasterise_sky(int width, int height, const RadianceOf& radiance, std::vector<Rgb>* upper) {
+  const int rows = height / 2;
+  upper->resize(static_cast<size_t>(width) * rows);
+  tbb::parallel_for(0, rows, [&](int y) {
+    for (int x = 0; x < width; ++x) {
+      const Vec3 d = equirect_direction(Vec2((x + 0.5f) / width, (y + 0.5f) / height));
+      (*upper)[static_cast<size_t>(y) * width + x] = radiance(d);
+    }
+  });
+}
+
+Rgb upper_horizontal_illuminance(int width, int height, const std::vector<Rgb>& upper) {
+  std::vector<Rgb> full(upper);
+  full.resize(static_cast<size_t>(width) * height, Rgb::Zero());
+  return map_horizontal_illuminance(width, height, full);
+}
+
+std::string clock(double minutes) {
+  const int m = static_cast<int>(std::lround(minutes));
+  std::ostringstream s;
+  s << (m / 60) << ":" << (m % 60 < 10 ? "0" : "") << (m % 60);
+  return s.str();
+}
+
+}  // namespace
+
+std::string DaylightSettings::describe() const {
+  std::ostringstream s;
+  const char* names[] = {"Preetham", "CIE overcast", "CIE clear"};
+  s << names[static_cast<int>(model)] << " sky";
+  if (model != Model::CieOvercast) {
+    s << " at " << place.latitude_deg << ", " << place.longitude_deg << " (" << time_zone.name() << "), "
+      << date.year << "-" << date.month << "-" << date.day;
+    if (days_between(date, date_end) > 0) s << " to " << date_end.year << "-" << date_end.month << "-" << date_end.day;
+    s << ", " << clock(start_minutes) << "-" << clock(end_minutes) << " every " << step_minutes << " min, turbidity "
+      << turbidity;
+  }
+  return s.str();
+}
+
+std::vector<TimeStep> time_steps(const DaylightSettings& settings) {
+  check(std::isfinite(settings.step_minutes) && settings.step_minutes > 0.0, "step_minutes", "must be positive");
+  const int days = days_between(settings.date, settings.date_end) + 1;
+  check(days >= 1, "date_end", "must not be before sky.date");
+  double end = settings.end_minutes;
+  if (end < settings.start_minutes) end += 24.0 * 60.0;  // the interval crosses midnight
+  const double length = end - settings.start_minutes;
+  const size_t per_day = length > 0.0 ? static_cast<size_t>(std::ceil(length / settings.step_minutes - 1e-9)) : 1;
+  check(per_day * days <= kMaxSteps, "step_minutes",
+        "the interval needs " + std::to_string(per_day * days) + " steps (at most " + std::to_string(kMaxSteps) + ")");
+  std::vector<TimeStep> steps;
+  for (int day = 0; day < days; ++day) {
+    const LocalDate date = add_days(settings.date, day);
+    for (size_t k = 0; k < per_day; ++k) {
+      const double a = settings.start_minutes + k * settings.step_minutes;
+      const double b = std::min(a + settings.step_minutes, end);
+      const double duration = length > 0.0 ? b - a : 1.0;  // a zero-length interval is one instant
+      steps.push_back({settings.time_zone.utc_seconds(date, length > 0.0 ? 0.5 * (a + b) : a), duration});
+    }
+  }
+  double total = 0.0;
+  for (const TimeStep& s : steps) total += s.weight;
+  for (TimeStep& s : steps) s.weight /= total;
+  return steps;
+}
+
+Rgb map_horizontal_illuminance(int width, int height, const std::vector<Rgb>& pixels) {
+  // A pixel row between polar angles t0 and t1 subtends, per unit azimuth, the integral of
+  // cos(theta) sin(theta) dtheta = (sin^2 t1 - sin^2 t0) / 2.
+  Eigen::Array3d e = Eigen::Array3d::Zero();
+  const double pi = 3.14159265358979323846, d_phi = 2.0 * pi / width;
+  for (int y = 0; y < height; ++y) {
+    const double t0 = pi * y / height, t1 = std::min(pi * (y + 1) / height, 0.5 * pi);
+    if (t0 >= 0.5 * pi) break;
+    const double weight = 0.5 * (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) * d_phi;
+    Eigen::Array3d row = Eigen::Array3d::Zero();
+    for (int x = 0; x < width; ++x) row += pixels[static_cast<size_t>(y) * width + x].cast<double>();
+    e += weight * row;
+  }
+  return e.cast<float>();
+}
+
+Daylight make_daylight(const DaylightSettings& s) {
+  const auto start = std::chrono::steady_clock::now();
+  check(s.width >= 4 && s.height >= 2 && s.height % 2 == 0 && s.width <= 16384 && s.height <= 8192, "resolution",
+        "needs width 4..16384 and an even height 2..8192");
+  check(std::isfinite(s.ground_reflectance) && s.ground_reflectance >= 0.0 && s.ground_reflectance <= 1.0,
+        "ground_reflectance", "must be in [0, 1]");
+  check(std::isfinite(s.place.latitude_deg) && std::abs(s.place.latitude_deg) <= 90.0, "latitude",
+        "must be in [-90, 90] degrees");
+  check(std::isfinite(s.place.longitude_deg) && std::abs(s.place.longitude_deg) <= 180.0, "longitude",
+        "must be in [-180, 180] degrees");
+  check(std::isfinite(s.north_offset_deg), "north_offset_deg", "must be a number");
+  check(std::isfinite(s.zenith_luminance) && s.zenith_luminance >= 0.0, "zenith_luminance", "must not be negative");
+  check(std::isfinite(s.horizontal_illuminance) && s.horizontal_illuminance >= 0.0, "horizontal_illuminance",
+        "must not be negative");
+  if (s.model != DaylightSettings::Model::CieOvercast)
+    check(std::isfinite(s.turbidity) && s.turbidity >= PreethamSky::kMinTurbidity &&
+              s.turbidity <= PreethamSky::kMaxTurbidity,
+          "turbidity", "must be in [1.7, 10], the range the Preetham model was fitted for");
+
+  Daylight out;
+  out.width = s.width;
+  out.height = s.height;
+  const size_t upper_size = static_cast<size_t>(s.width) * (s.height / 2);
+  std::vector<Eigen::Array3d> sum(upper_size, Eigen::Array3d::Zero());
+  std::vector<Rgb> step_pixels;
+  Eigen::Array3d analytic = Eigen::Array3d::Zero(), map_total = Eigen::Array3d::Zero();
+
+  // Adds one step's sky: rasterised, then scaled so that its map has the analytic horizontal
+  // illuminance (the map is piecewise constant; the correction is a fraction of a percent).
+  auto add_sky = [&](const RadianceOf& radiance, double weight) {
+    const Rgb exact = analytic_horizontal_illuminance(radiance);
+    rasterise_sky(s.width, s.height, radiance, &step_pixels);
+    const Rgb mapped = upper_horizontal_illuminance(s.width, s.height, step_pixels);
+    const double scale = luminance(mapped) > 0.0f ? luminance(exact) / luminance(mapped) : 1.0;
+    tbb::parallel_for(size_t(0), upper_size, [&](size_t i) { sum[i] += (weight * scale) * step_pixels[i].cast<double>(); });
+    analytic += weight * exact.cast<double>();
+    map_total += (weight * scale) * mapped.cast<double>();
+  };
+
+  if (s.model == DaylightSettings::Model::CieOvercast) {
+    const double lz = s.zenith_luminance > 0.0 ? s.zenith_luminance
+                      : s.horizontal_illuminance > 0.0 ? s.horizontal_illuminance * 9.0 / (7.0 * kPi)
+                                                       : 10000.0 * 9.0 / (7.0 * kPi);
+    add_sky([lz](const Vec3& d) { return Rgb::Constant(static_cast<float>(lz * cie_overcast_relative(d.z()))); }, 1.0);
+    out.steps = 1;
+  } else {
+    for (const TimeStep& step : time_steps(s)) {
+      ++out.steps;
+      SunPosition position = solar_position(step.utc_seconds, s.place, true);
+      position.azimuth_deg = std::fmod(position.azimuth_deg + s.north_offset_deg + 720.0, 360.0);
+      const Vec3 sun = sun_direction(position);
+      if (!(position.zenith_deg < 90.0) || !(sun.z() > 0.0f)) continue;  // night: no sky, no sun in these models
+      ++out.steps_with_sun;
+      if (s.model == DaylightSettings::Model::Preetham) {
+        const PreethamSky sky(s.turbidity, sun);
+        add_sky([&sky](const Vec3& d) { return sky.radiance(d); }, step.weight);
+      } else {
+        const double lz = s.zenith_luminance > 0.0 ? s.zenith_luminance
+                                                   : PreethamSky(s.turbidity, sun).zenith_luminance();
+        add_sky([lz, sun](const Vec3& d) { return Rgb::Constant(static_cast<float>(lz * cie_clear_relative(d, sun))); },
+                step.weight);
+      }
+      const SunDisk disk = preetham_sun(s.turbidity, position.zenith_deg * kDegree);
+      const Rgb e = disk.normal_illuminance() * static_cast<float>(step.weight);
+      if (luminance(e) > 0.0f) out.suns.push_back({sun, e, step.weight, step.utc_seconds, position.zenith_deg, position.azimuth_deg});
+    }
+  }
+
+  out.analytic_sky_horizontal = analytic.cast<float>();
+  out.sky_horizontal = map_total.cast<float>();
+  out.sun_horizontal = SunLights(out.suns).horizontal_illuminance();
+  // Below the horizon, a diffuse ground lit by the sky and the sun of each step.
+  const Rgb ground =
+      (out.sky_horizontal + out.sun_horizontal) * static_cast<float>(s.ground_reflectance / kPi);
+  out.pixels.assign(static_cast<size_t>(s.width) * s.height, ground);
+  for (size_t i = 0; i < upper_size; ++i) out.pixels[i] = sum[i].cast<float>();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace fenestra
