@@ -23,6 +23,8 @@ void check(bool ok, const std::string& key, const std::string& message) {
 }
 
 // Gauss-Legendre nodes and weights on [0, 1] (Newton on the Legendre polynomial).
+using RadianceOf = std::function<Rgb(const Vec3&)>;
+
 void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double>* weights) {
   nodes->resize(n);
   weights->resize(n);
@@ -45,46 +47,53 @@ void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double>* weig
   }
 }
 
-using RadianceOf = std::function<Rgb(const Vec3&)>;
-
 // Horizontal illuminance of an analytic sky: Gauss-Legendre in cos(theta), trapezoid in azimuth
-// (periodic, so spectrally accurate).
-Rgb analytic_horizontal_illuminance(const RadianceOf& radiance) {
+// (periodic, so spectrally accurate); fill_row evaluates one ring of directions.
+Rgb analytic_horizontal_illuminance(const std::function<void(const Vec3*, int, Rgb*)>& fill_row) {
+  constexpr int kRings = 96, kAzimuths = 192;
   static const auto rule = [] {
     std::pair<std::vector<double>, std::vector<double>> r;
-    gauss_legendre(96, &r.first, &r.second);
+    gauss_legendre(kRings, &r.first, &r.second);
     return r;
   }();
-  constexpr int kAzimuths = 192;
-  Eigen::Array3d sum = Eigen::Array3d::Zero();
-  for (size_t i = 0; i < rule.first.size(); ++i) {
+  std::vector<Eigen::Array3d> rings(kRings);
+  tbb::parallel_for(0, kRings, [&](int i) {
     const double mu = rule.first[i], s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
-    Eigen::Array3d ring = Eigen::Array3d::Zero();
+    Vec3 directions[kAzimuths];
+    Rgb values[kAzimuths];
     for (int j = 0; j < kAzimuths; ++j) {
       const double phi = 2.0 * 3.14159265358979323846 * (j + 0.5) / kAzimuths;
-      ring += radiance(Vec3(float(s * std::cos(phi)), float(s * std::sin(phi)), float(mu))).cast<double>();
+      directions[j] = Vec3(float(s * std::cos(phi)), float(s * std::sin(phi)), float(mu));
     }
-    sum += rule.second[i] * mu * ring * (2.0 * 3.14159265358979323846 / kAzimuths);
-  }
+    fill_row(directions, kAzimuths, values);
+    Eigen::Array3d ring = Eigen::Array3d::Zero();
+    for (const Rgb& v : values) ring += v.cast<double>();
+    rings[i] = rule.second[i] * mu * ring * (2.0 * 3.14159265358979323846 / kAzimuths);
+  });
+  Eigen::Array3d sum = Eigen::Array3d::Zero();
+  for (const auto& r : rings) sum += r;
   return sum.cast<float>();
 }
 
-// One step's sky, rasterised into the map's upper half (pixel centres).
-void rasterise_sky(int width, int height, const RadianceOf& radiance, std::vector<Rgb>* upper) {
-  const int rows = height / 2;
-  upper->resize(static_cast<size_t>(width) * rows);
-  tbb::parallel_for(0, rows, [&](int y) {
-    for (int x = 0; x < width; ++x) {
-      const Vec3 d = equirect_direction(Vec2((x + 0.5f) / width, (y + 0.5f) / height));
-      (*upper)[static_cast<size_t>(y) * width + x] = radiance(d);
-    }
-  });
+// Directions of the pixel centres of a map's upper half, row by row (shared by every step).
+std::vector<Vec3> upper_directions(int width, int height) {
+  std::vector<Vec3> d(static_cast<size_t>(width) * (height / 2));
+  for (int y = 0; y < height / 2; ++y)
+    for (int x = 0; x < width; ++x)
+      d[static_cast<size_t>(y) * width + x] = equirect_direction(Vec2((x + 0.5f) / width, (y + 0.5f) / height));
+  return d;
 }
 
-Rgb upper_horizontal_illuminance(int width, int height, const std::vector<Rgb>& upper) {
-  std::vector<Rgb> full(upper);
-  full.resize(static_cast<size_t>(width) * height, Rgb::Zero());
-  return map_horizontal_illuminance(width, height, full);
+// One step's sky, rasterised into the map's upper half (pixel centres): fill_row(directions,
+// count, out) evaluates directions that share a polar angle.
+using RowFiller = std::function<void(const Vec3* directions, int count, Rgb* out)>;
+void rasterise_sky(int width, int height, const std::vector<Vec3>& directions, const RowFiller& fill_row,
+                   std::vector<Rgb>* upper) {
+  upper->resize(directions.size());
+  tbb::parallel_for(0, height / 2, [&](int y) {
+    const size_t first = static_cast<size_t>(y) * width;
+    fill_row(directions.data() + first, width, upper->data() + first);
+  });
 }
 
 std::string clock(double minutes) {
@@ -171,6 +180,11 @@ Daylight make_daylight(const DaylightSettings& s) {
               s.turbidity <= PreethamSky::kMaxTurbidity,
           "turbidity", "must be in [1.7, 10], the range the Preetham model was fitted for");
 
+  const auto per_pixel = [](const RadianceOf& radiance) -> RowFiller {
+    return [radiance](const Vec3* d, int count, Rgb* out) {
+      for (int x = 0; x < count; ++x) out[x] = radiance(d[x]);
+    };
+  };
   Daylight out;
   out.width = s.width;
   out.height = s.height;
@@ -179,12 +193,13 @@ Daylight make_daylight(const DaylightSettings& s) {
   std::vector<Rgb> step_pixels;
   Eigen::Array3d analytic = Eigen::Array3d::Zero(), map_total = Eigen::Array3d::Zero();
 
+  const std::vector<Vec3> directions = upper_directions(s.width, s.height);
   // Adds one step's sky: rasterised, then scaled so that its map has the analytic horizontal
   // illuminance (the map is piecewise constant; the correction is a fraction of a percent).
-  auto add_sky = [&](const RadianceOf& radiance, double weight) {
-    const Rgb exact = analytic_horizontal_illuminance(radiance);
-    rasterise_sky(s.width, s.height, radiance, &step_pixels);
-    const Rgb mapped = upper_horizontal_illuminance(s.width, s.height, step_pixels);
+  auto add_sky = [&](const RowFiller& fill_row, double weight) {
+    const Rgb exact = analytic_horizontal_illuminance(fill_row);
+    rasterise_sky(s.width, s.height, directions, fill_row, &step_pixels);
+    const Rgb mapped = map_horizontal_illuminance(s.width, s.height, step_pixels);  // reads the upper half only
     const double scale = luminance(mapped) > 0.0f ? luminance(exact) / luminance(mapped) : 1.0;
     tbb::parallel_for(size_t(0), upper_size, [&](size_t i) { sum[i] += (weight * scale) * step_pixels[i].cast<double>(); });
     analytic += weight * exact.cast<double>();
@@ -195,7 +210,10 @@ Daylight make_daylight(const DaylightSettings& s) {
     const double lz = s.zenith_luminance > 0.0 ? s.zenith_luminance
                       : s.horizontal_illuminance > 0.0 ? s.horizontal_illuminance * 9.0 / (7.0 * kPi)
                                                        : 10000.0 * 9.0 / (7.0 * kPi);
-    add_sky([lz](const Vec3& d) { return Rgb::Constant(static_cast<float>(lz * cie_overcast_relative(d.z()))); }, 1.0);
+    const RadianceOf overcast = [lz](const Vec3& d) {
+      return Rgb::Constant(static_cast<float>(lz * cie_overcast_relative(d.z())));
+    };
+    add_sky(per_pixel(overcast), 1.0);
     out.steps = 1;
   } else {
     for (const TimeStep& step : time_steps(s)) {
@@ -207,12 +225,18 @@ Daylight make_daylight(const DaylightSettings& s) {
       ++out.steps_with_sun;
       if (s.model == DaylightSettings::Model::Preetham) {
         const PreethamSky sky(s.turbidity, sun);
-        add_sky([&sky](const Vec3& d) { return sky.radiance(d); }, step.weight);
+        const RowFiller rows = [&sky](const Vec3* d, int count, Rgb* out) {
+          const PreethamSky::Row row = sky.row(d[0].z());
+          for (int x = 0; x < count; ++x) out[x] = sky.radiance(row, d[x]);
+        };
+        add_sky(rows, step.weight);
       } else {
         const double lz = s.zenith_luminance > 0.0 ? s.zenith_luminance
                                                    : PreethamSky(s.turbidity, sun).zenith_luminance();
-        add_sky([lz, sun](const Vec3& d) { return Rgb::Constant(static_cast<float>(lz * cie_clear_relative(d, sun))); },
-                step.weight);
+        const RadianceOf clear = [lz, sun](const Vec3& d) {
+          return Rgb::Constant(static_cast<float>(lz * cie_clear_relative(d, sun)));
+        };
+        add_sky(per_pixel(clear), step.weight);
       }
       const SunDisk disk = preetham_sun(s.turbidity, position.zenith_deg * kDegree);
       const Rgb e = disk.normal_illuminance() * static_cast<float>(step.weight);

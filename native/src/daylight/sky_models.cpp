@@ -126,6 +126,12 @@ PreethamSky::PreethamSky(double turbidity, const Vec3& sun) : turbidity_(turbidi
   scale_[0] = zenith_Y_ * norm_[0];
   scale_[1] = zenith_x_ * norm_[1];
   scale_[2] = zenith_y_ * norm_[2];
+  sun_f_ = sun_.cast<float>();
+  for (int c = 0; c < 3; ++c) {
+    perez_f_[c][0] = static_cast<float>(perez_[c].C);
+    perez_f_[c][1] = static_cast<float>(perez_[c].D);
+    perez_f_[c][2] = static_cast<float>(perez_[c].E);
+  }
 }
 
 double PreethamSky::luminance(const Vec3& dir) const {
@@ -134,16 +140,27 @@ double PreethamSky::luminance(const Vec3& dir) const {
   return scale_[0] * perez_[0](dir.z(), std::acos(cos_gamma), cos_gamma);
 }
 
-Rgb PreethamSky::radiance(const Vec3& dir) const {
-  if (dir.z() < 0.0f) return Rgb::Zero();
-  const double cos_theta = dir.z();
-  const double cos_gamma = std::clamp(static_cast<double>(dir.dot(sun_)), -1.0, 1.0);
-  const double gamma = std::acos(cos_gamma);
-  const double Y = scale_[0] * perez_[0](cos_theta, gamma, cos_gamma);
-  const double x = scale_[1] * perez_[1](cos_theta, gamma, cos_gamma);
-  const double y = scale_[2] * perez_[2](cos_theta, gamma, cos_gamma);
+PreethamSky::Row PreethamSky::row(double cos_theta) const {
+  Row r;
+  r.cos_theta = cos_theta;
+  for (int c = 0; c < 3; ++c) r.scaled_theta_factor[c] = scale_[c] * perez_[c].theta_factor(cos_theta);
+  return r;
+}
+
+Rgb PreethamSky::radiance(const Row& row, const Vec3& dir) const {
+  if (row.cos_theta < 0.0) return Rgb::Zero();
+  // Single precision here: maps evaluate this tens of millions of times, and float keeps ~1e-6.
+  const float cos_gamma = std::clamp(dir.dot(sun_f_), -1.0f, 1.0f);
+  const float gamma = std::acos(cos_gamma), cos2 = cos_gamma * cos_gamma;
+  float v[3];
+  for (int c = 0; c < 3; ++c)
+    v[c] = static_cast<float>(row.scaled_theta_factor[c]) *
+           (1.0f + perez_f_[c][0] * std::exp(perez_f_[c][1] * gamma) + perez_f_[c][2] * cos2);
+  const double Y = v[0], x = v[1], y = v[2];
   return linear_srgb_from_xyz(x / y * Y, Y, (1.0 - x - y) / y * Y);
 }
+
+Rgb PreethamSky::radiance(const Vec3& dir) const { return radiance(row(dir.z()), dir); }
 
 SunDisk preetham_sun(double turbidity, double sun_zenith_rad) {
   check_turbidity("Preetham sun", turbidity);

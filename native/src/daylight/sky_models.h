@@ -30,6 +30,14 @@ class PreethamSky {
   PreethamSky(double turbidity, const Vec3& sun);
 
   Rgb radiance(const Vec3& dir) const;  // cd/m^2; dir.z() < 0 (below horizon) gives 0
+  // The same, for many directions sharing a polar angle (a map row): the factors that depend on
+  // theta alone are computed once per row. `dir.z()` must equal the row's cos(theta).
+  struct Row {
+    double cos_theta = 0.0;
+    double scaled_theta_factor[3] = {0.0, 0.0, 0.0};  // zenith value / F(0, theta_s) x (1 + A e^(B / cos))
+  };
+  Row row(double cos_theta) const;
+  Rgb radiance(const Row& row, const Vec3& dir) const;
   double luminance(const Vec3& dir) const;  // Y, cd/m^2
   double zenith_luminance() const { return zenith_Y_; }  // Y_z, cd/m^2
   double zenith_x() const { return zenith_x_; }
@@ -47,6 +55,8 @@ class PreethamSky {
   double zenith_Y_, zenith_x_, zenith_y_;
   PerezCoefficients perez_[3];  // Y, x, y
   double norm_[3];              // 1 / F(0, theta_s) per channel
+  Vec3 sun_f_;                  // single-precision copies for the per-pixel path
+  float perez_f_[3][3];         // C, D, E per channel
   double scale_[3];             // zenith value x norm_ per channel: value = scale_ F(theta, gamma)
 };
 
