@@ -22,6 +22,14 @@ bl_info = {
     "category": "Lighting",
 }
 
+from ._core import (  # noqa: E402
+    preetham_radiance,
+    preetham_sun,
+    solar_position,
+    sun_direction,
+    sunrise_sunset,
+    utc_seconds,
+)
 from .api import (  # noqa: E402
     Cancelled,
     Contributions,
@@ -47,6 +55,12 @@ __all__ = [
     "evaluate",
     "load_scene",
     "openings_array",
+    "preetham_radiance",
+    "preetham_sun",
+    "solar_position",
+    "sun_direction",
+    "sunrise_sunset",
+    "utc_seconds",
     "read_openings",
     "scene_from_dict",
     "sky",
