@@ -72,6 +72,7 @@ def read_openings(path: str) -> npt.NDArray[np.float64]: ...
 def sky_map(scene: Scene) -> npt.NDArray[np.float32]: ...  # (height, width, 3), cd/m^2, top row = zenith
 def sky_summary(scene: Scene) -> str: ...  # JSON: horizontal illuminances (lux), sun list
 def write_sky(scene: Scene, path: str) -> None: ...
+def rays_traced() -> int: ...  # rays traced by parallel computations since import
 
 # Daylight models (docs/sky.md). Directions: +Z up, +Y north, +X east; azimuth clockwise from north.
 def solar_position(utc_seconds: float, latitude_deg: float, longitude_deg: float, elevation_m: float = 0.0,
