@@ -16,6 +16,7 @@ namespace py = pybind11;
 using namespace fenestra;
 
 void bind_daylight(py::module_& m);  // bind_daylight.cpp
+void bind_solver(py::module_& m);    // bind_solver.cpp
 
 namespace {
 
@@ -58,6 +59,7 @@ std::vector<Rectangle> rectangles_from(py::array_t<double, py::array::c_style | 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Fenestra native core: opening-contribution path tracing on Embree.";
   bind_daylight(m);
+  bind_solver(m);
   static py::exception<Cancelled> cancelled(m, "Cancelled");
   py::register_exception_translator([](std::exception_ptr p) {
     try {

@@ -1,0 +1,1 @@
+#include "solve/linear_start.h"
