@@ -42,6 +42,7 @@ from .api import (  # noqa: E402
     read_openings,
     scene_from_dict,
     sky,
+    solve,
     write_image,
     write_sky,
 )
@@ -64,6 +65,7 @@ __all__ = [
     "read_openings",
     "scene_from_dict",
     "sky",
+    "solve",
     "write_image",
     "write_sky",
 ]

@@ -85,3 +85,5 @@ def sunrise_sunset(date: str, latitude_deg: float, longitude_deg: float, utc_off
 def preetham_radiance(turbidity: float, sun_direction: npt.ArrayLike, directions: npt.ArrayLike
                       ) -> npt.NDArray[np.float64]: ...  # (n, 3) linear sRGB, cd/m^2
 def preetham_sun(turbidity: float, sun_zenith_deg: float) -> dict: ...  # radiance, solid_angle, normal_illuminance
+def solve(scene: Scene, contributions: Optional[Contributions] = None, progress: Optional[Progress] = None) -> str: ...  # JSON
+def nnls(A: npt.ArrayLike, b: npt.ArrayLike, max_iterations: int = 0, tolerance: float = 0.0) -> Tuple[npt.NDArray[np.float64], float]: ...  # Lawson-Hanson: (x >= 0, ||A x - b||)

@@ -98,3 +98,12 @@ def sky(scene):
 def write_sky(scene, path):
     """Writes the scene's sky map to path (.exr or .hdr, cd/m^2)."""
     _core.write_sky(scene, os.fspath(path))
+
+
+def solve(scene, contributions=None, progress=None, callback=None):
+    """Solves for the openings that meet the scene's goals (docs/solver.md). Computes the
+    contributions first unless given. Returns the result as a dict, the same as `fenestra solve`
+    writes: "openings" (rectangles, corners in meters, accepted by evaluate()), "open_elements",
+    "sensors" (per sensor "goal" and "predicted" in lux, input order), "error" ("relative_rms", ...),
+    "timings_s" and "genetic" (with the convergence history)."""
+    return json.loads(_run(lambda p: _core.solve(scene, contributions, p), progress, callback))

@@ -1,4 +1,5 @@
 // fenestra: command-line front end over the core library.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -11,6 +12,8 @@
 
 #include "io/results.h"
 #include "io/sky_output.h"
+#include "io/solve_result.h"
+#include "solve/solver.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
@@ -24,6 +27,10 @@ const char* kUsage = R"(usage:
       Writes OUT.npz (NumPy arrays) and OUT.json (summary listing every element).
   fenestra evaluate SCENE.json --openings OPENINGS.json -o OUT.json [options]
       Path-traces the scene with the given openings really cut; per-sensor value and standard error.
+  fenestra solve SCENE.json -o RESULT.json [options]
+      Contributions, then the opening solver (NNLS start, genetic algorithm, exact re-ranking):
+      writes the openings (rectangles, readable by evaluate --openings), predicted values, errors,
+      timings and the genetic history. Settings from the scene's "goals" and "solver" sections.
   fenestra sky SCENE.json -o SKY.exr [--json SUMMARY.json]
       Writes the scene's sky as an equirectangular map (.exr or .hdr, cd/m^2, Blender's convention)
       and prints the horizontal illuminances and the sun list (also as JSON with --json).
@@ -91,7 +98,8 @@ Args parse_args(int argc, char** argv) {
   }
   if (positional.empty()) usage_error("no command given");
   a.command = positional[0];
-  if (a.command != "contributions" && a.command != "evaluate" && a.command != "sky") usage_error("unknown command '" + a.command + "'");
+  if (a.command != "contributions" && a.command != "evaluate" && a.command != "sky" &&
+      a.command != "solve") usage_error("unknown command '" + a.command + "'");
   if (positional.size() != 2) usage_error(a.command + " takes exactly one scene file");
   a.scene = positional[1];
   if (a.output.empty()) usage_error(a.command + " needs -o OUT");
@@ -144,6 +152,20 @@ int run(const Args& a) {
     return 0;
   }
   Progress progress;
+  if (a.command == "solve") {
+    if (a.overrides.count("--paths")) scene.solver.paths_per_sensor = scene.render.paths_per_sensor;
+    if (a.overrides.count("--seed")) scene.solver.seed = scene.render.seed;
+    const SolveResult r = with_progress(progress, a.quiet, [&] { return solve_openings(scene, &progress); });
+    write_json(a.output, solve_result_json(scene, r));
+    double total = 0.0;
+    for (const auto& t : r.timings) total = t.stage == "total" ? t.seconds : total;
+    std::printf("solve: %zu openings, %zu open elements; relative RMS error %.2f%% (linear model %.2f%%, "
+                "compensated %.2f%%), worst sensor %.1f%%; %.2f s\nwrote %s\n",
+                r.openings.size(), static_cast<size_t>(std::count(r.open.begin(), r.open.end(), 1)),
+                100 * r.error.relative_rms, 100 * r.linear_error.relative_rms, 100 * r.compensated_error.relative_rms,
+                100 * r.error.max_relative, total, a.output.c_str());
+    return 0;
+  }
   if (a.command == "contributions") {
     const Contributions c = with_progress(progress, a.quiet, [&] { return compute_contributions(scene, &progress); });
     const auto paths = write_contributions(scene, c, a.output);

@@ -7,6 +7,8 @@
 #include "io/image_writer.h"
 #include "io/results.h"
 #include "io/sky_output.h"
+#include "io/solve_result.h"
+#include "solve/solver.h"
 #include "trace/ray_scene.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
@@ -211,6 +213,20 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("path"), py::arg("image"),
       "Writes a linear float image (height, width, channels), top row first, e.g. an environment map (.exr/.hdr).");
+  m.def(
+      "solve",
+      [](const Scene& scene, std::shared_ptr<Contributions> contributions, std::shared_ptr<Progress> progress) {
+        std::string text;
+        {
+          py::gil_scoped_release release;
+          const SolveResult r = contributions ? solve_openings(scene, *contributions, progress.get())
+                                              : solve_openings(scene, progress.get());
+          text = solve_result_json(scene, r).dump();
+        }
+        return text;
+      },
+      py::arg("scene"), py::arg("contributions") = nullptr, py::arg("progress") = nullptr,
+      "The opening solver; returns the result as JSON text (docs/solver.md).");
   m.def(
       "sky_map",
       [](const Scene& scene) {

@@ -8,6 +8,7 @@
 #include "scene/mesh.h"
 #include "scene/opening_domain.h"
 #include "scene/sky.h"
+#include "scene/solver_settings.h"
 #include "scene/sun_lights.h"
 
 namespace fenestra {
@@ -17,7 +18,9 @@ struct Daylight;  // daylight/daylight.h
 struct Sensors {
   std::vector<Vec3> points;   // meters
   std::vector<Vec3> normals;  // unit
-  std::vector<double> goals;  // empty when the scene gives none
+  std::vector<double> goals;  // empty when the scene gives none; NaN: this sensor has no goal
+  std::vector<double> weights;  // empty: all 1
+  std::vector<UniformGoal> uniform_goals;  // levels over sets of sensors, in goal_units
   std::string goal_units = "normalized";  // "normalized", "lux" or "daylight_factor" (percent)
   size_t size() const { return points.size(); }
 };
@@ -40,6 +43,7 @@ struct Scene {
   SunLights suns;  // a daylight sky's sun, one disk per time step (empty for other skies)
   std::shared_ptr<const Daylight> daylight;  // how a daylight sky was built (null for others)
   RenderSettings render;
+  SolverSettings solver;
 
   std::vector<std::string> material_names() const;
   std::string to_string() const;

@@ -256,6 +256,140 @@ Sensors parse_sensors(const ScenePath& sp, const json& j) {
   s.goal_units = j.value("goal_units", std::string("normalized"));
   if (s.goal_units != "normalized" && s.goal_units != "lux" && s.goal_units != "daylight_factor")
     sp.fail("sensors.goal_units", "must be \"normalized\", \"lux\" or \"daylight_factor\"");
+  if (j.contains("weights")) {
+    const json& w = j.at("weights");
+    if (!w.is_array() || w.size() != s.points.size())
+      sp.fail("sensors.weights", "expected one weight per sensor (" + std::to_string(s.points.size()) + ")");
+    for (size_t i = 0; i < w.size(); ++i) {
+      s.weights.push_back(number(sp, w[i], "sensors.weights[" + std::to_string(i) + "]"));
+      if (s.weights.back() < 0.0) sp.fail("sensors.weights[" + std::to_string(i) + "]", "must not be negative");
+    }
+  }
+  return s;
+}
+
+std::vector<double> numbers(const ScenePath& sp, const json& j, const std::string& key, size_t count) {
+  if (!j.is_array() || j.size() != count)
+    sp.fail(key, "expected a list of " + std::to_string(count) + " numbers");
+  std::vector<double> out;
+  for (size_t i = 0; i < j.size(); ++i) out.push_back(number(sp, j[i], key + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+// The "goals" section: per-sensor goals (an alternative to sensors.goals), weights, and uniform
+// levels over sets of sensors.
+void parse_goals(const ScenePath& sp, const json& j, Sensors* s) {
+  if (j.is_null()) return;
+  if (!j.is_object()) sp.fail("goals", "expected an object");
+  check_known_keys(sp, j, "goals", {"per_sensor", "units", "weights", "uniform"});
+  const size_t n = s->points.size();
+  if (j.contains("per_sensor")) {
+    if (!s->goals.empty()) sp.fail("goals.per_sensor", "the goals are already given in sensors.goals");
+    const json& g = j.at("per_sensor");
+    if (!g.is_array() || g.size() != n) sp.fail("goals.per_sensor", "expected one goal per sensor (" + std::to_string(n) + ")");
+    for (size_t i = 0; i < n; ++i)
+      s->goals.push_back(g[i].is_null() ? std::nan("") : number(sp, g[i], "goals.per_sensor[" + std::to_string(i) + "]"));
+  }
+  if (j.contains("units")) {
+    s->goal_units = text(sp, j, "units", "goals");
+    if (s->goal_units != "normalized" && s->goal_units != "lux" && s->goal_units != "daylight_factor")
+      sp.fail("goals.units", "must be \"normalized\", \"lux\" or \"daylight_factor\"");
+  }
+  if (j.contains("weights")) {
+    if (!s->weights.empty()) sp.fail("goals.weights", "the weights are already given in sensors.weights");
+    s->weights = numbers(sp, j.at("weights"), "goals.weights", n);
+    for (size_t i = 0; i < n; ++i)
+      if (s->weights[i] < 0.0) sp.fail("goals.weights[" + std::to_string(i) + "]", "must not be negative");
+  }
+  if (j.contains("uniform")) {
+    const json& list = j.at("uniform");
+    if (!list.is_array()) sp.fail("goals.uniform", "expected a list of {\"sensors\", \"level\", \"min\", \"max\"}");
+    for (size_t u = 0; u < list.size(); ++u) {
+      const std::string key = "goals.uniform[" + std::to_string(u) + "]";
+      const json& g = list[u];
+      if (!g.is_object()) sp.fail(key, "expected an object");
+      check_known_keys(sp, g, key, {"sensors", "level", "min", "max"});
+      UniformGoal goal;
+      const json& which = g.value("sensors", json("all"));
+      if (which.is_string() && which.get<std::string>() == "all") {
+        for (size_t i = 0; i < n; ++i) goal.sensors.push_back(static_cast<int>(i));
+      } else if (which.is_array() && !which.empty()) {
+        for (const json& i : which) {
+          if (!i.is_number_integer() || i.get<long long>() < 0 || i.get<long long>() >= static_cast<long long>(n))
+            sp.fail(key + ".sensors", "expected sensor indices 0.." + std::to_string(n - 1) + ", got " + i.dump());
+          goal.sensors.push_back(i.get<int>());
+        }
+      } else {
+        sp.fail(key + ".sensors", "expected \"all\" or a non-empty list of sensor indices");
+      }
+      if (!g.contains("level")) sp.fail(key + ".level", "missing");
+      goal.level = number(sp, g.at("level"), key + ".level");
+      goal.min = number_or(sp, g, "min", key, goal.min);
+      goal.max = number_or(sp, g, "max", key, goal.max);
+      if (!(goal.min <= goal.level && goal.level <= goal.max))
+        sp.fail(key, "needs min <= level <= max");
+      s->uniform_goals.push_back(goal);
+    }
+  }
+}
+
+// Goals must be reachable quantities: not negative, and at most 1 (all open) when normalized.
+void check_goals(const ScenePath& sp, const Sensors& s) {
+  const double top = s.goal_units == "normalized" ? 1.0 : s.goal_units == "daylight_factor" ? 100.0
+                                                                                          : HUGE_VAL;
+  auto check = [&](double g, const std::string& key) {
+    if (std::isnan(g)) return;
+    if (g < 0.0) sp.fail(key, "a goal must not be negative, got " + std::to_string(g));
+    if (g > top)
+      sp.fail(key, "a goal in " + s.goal_units + " units must not exceed " + std::to_string(top) + ", got " +
+                       std::to_string(g));
+  };
+  for (size_t i = 0; i < s.goals.size(); ++i) check(s.goals[i], "goals[" + std::to_string(i) + "]");
+  for (size_t u = 0; u < s.uniform_goals.size(); ++u) {
+    const std::string key = "goals.uniform[" + std::to_string(u) + "]";
+    check(s.uniform_goals[u].level, key + ".level");
+    if (std::isfinite(s.uniform_goals[u].min)) check(s.uniform_goals[u].min, key + ".min");
+  }
+}
+
+SolverSettings parse_solver(const ScenePath& sp, const json& j) {
+  SolverSettings s;
+  if (j.is_null()) return s;
+  if (!j.is_object()) sp.fail("solver", "expected an object");
+  check_known_keys(sp, j, "solver",
+                   {"element_size", "paths", "population", "generations", "seed", "time_budget_s", "shape_weights",
+                    "bound_weight", "coarse_to_fine", "elite"});
+  auto integer = [&](const char* name, int lo, int hi, int fallback) {
+    if (!j.contains(name)) return fallback;
+    const double v = number(sp, j.at(name), std::string("solver.") + name);
+    if (v != std::floor(v) || v < lo || v > hi)
+      sp.fail(std::string("solver.") + name,
+              "expected a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return static_cast<int>(v);
+  };
+  s.paths_per_sensor = integer("paths", 1, 1 << 24, 0);
+  s.population = integer("population", 4, 100000, s.population);
+  s.generations = integer("generations", 0, 10000000, s.generations);
+  s.elite = integer("elite", 1, 1000, s.elite);
+  if (j.contains("seed")) s.seed = static_cast<uint64_t>(integer("seed", 0, 2147483647, 1));
+  s.time_budget_s = number_or(sp, j, "time_budget_s", "solver", 0.0);
+  if (s.time_budget_s < 0.0) sp.fail("solver.time_budget_s", "must not be negative");
+  s.bound_weight = number_or(sp, j, "bound_weight", "solver", s.bound_weight);
+  if (s.bound_weight < 0.0) sp.fail("solver.bound_weight", "must not be negative");
+  if (j.contains("coarse_to_fine")) {
+    if (!j.at("coarse_to_fine").is_boolean()) sp.fail("solver.coarse_to_fine", "expected true or false");
+    s.coarse_to_fine = j.at("coarse_to_fine").get<bool>();
+  }
+  if (j.contains("shape_weights")) {
+    const json& w = j.at("shape_weights");
+    if (!w.is_object()) sp.fail("solver.shape_weights", "expected {\"isolated\", \"boundary\", \"regions\"}");
+    check_known_keys(sp, w, "solver.shape_weights", {"isolated", "boundary", "regions"});
+    s.isolated_weight = number_or(sp, w, "isolated", "solver.shape_weights", s.isolated_weight);
+    s.boundary_weight = number_or(sp, w, "boundary", "solver.shape_weights", s.boundary_weight);
+    s.regions_weight = number_or(sp, w, "regions", "solver.shape_weights", s.regions_weight);
+    if (s.isolated_weight < 0 || s.boundary_weight < 0 || s.regions_weight < 0)
+      sp.fail("solver.shape_weights", "weights must not be negative");
+  }
   return s;
 }
 
@@ -335,6 +469,9 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     sel.materials = names(sp, od, "materials", "opening_domain");
     sel.groups = names(sp, od, "groups", "opening_domain");
     sel.element_size = static_cast<float>(number_or(sp, od, "element_size", "opening_domain", 0.25));
+    // The solver's element size, when given, is the one the domain is diced with.
+    if (j.contains("solver") && j.at("solver").is_object() && j.at("solver").contains("element_size"))
+      sel.element_size = static_cast<float>(number(sp, j.at("solver").at("element_size"), "solver.element_size"));
     sel.thickness = static_cast<float>(number_or(sp, od, "thickness", "opening_domain", 0.0));
     try {
       scene.domain = OpeningDomain::build(scene.mesh, scene.material_names(), sel);
@@ -345,8 +482,11 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     if (!j.contains("sensors")) sp.fail("sensors", "the scene has no sensors");
     scene.sensors = parse_sensors(sp, j.at("sensors"));
     scene.domain.orient(scene.sensors.points);
+    parse_goals(sp, j.value("goals", json()), &scene.sensors);
+    check_goals(sp, scene.sensors);
     parse_sky(sp, j.value("sky", json::object()), base, &scene);
     scene.render = parse_render(sp, j.value("render", json()));
+    scene.solver = parse_solver(sp, j.value("solver", json()));
   } catch (const json::exception& e) {
     sp.fail("(structure)", e.what());
   }

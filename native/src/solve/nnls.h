@@ -12,8 +12,17 @@ struct NnlsResult {
   double residual_norm = 0.0;
 };
 
-// `max_iterations` 0: 3 x columns. `tolerance` 0: a default scaled to ||A|| and ||b||.
-// Throws std::invalid_argument on mismatched sizes or non-finite input.
+// `max_iterations` 0: 3 x columns; each attempt to free a variable counts as one iteration.
+// `tolerance` bounds the gradient w = A^T (b - A x) at the solution: w_j <= tolerance where x_j = 0
+// (free variables have w_j ~ 0 up to rounding). 0 selects nnls_default_tolerance(A, b), safely
+// above the rounding noise in w. On consistent but ill-conditioned systems (smooth contribution
+// columns) a gradient that small still allows a residual of ~1e-7 ||b||; a smaller tolerance
+// goes further, but below the noise the iteration limit ends the search (converged = false).
+// Throws std::invalid_argument on mismatched sizes, non-finite input or negative settings.
 NnlsResult nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int max_iterations = 0, double tolerance = 0.0);
+
+// 10 eps max(m, n) ||A||_1 ||b||_2: |w_j| <= ||A||_1 ||r|| <= ||A||_1 ||b|| bounds the gradient's
+// scale, and rounding in a length-max(m, n) product perturbs it by a few eps times that.
+double nnls_default_tolerance(const Eigen::MatrixXd& A, const Eigen::VectorXd& b);
 
 }  // namespace fenestra

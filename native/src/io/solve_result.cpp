@@ -1,0 +1,90 @@
+#include "io/solve_result.h"
+
+#include <cmath>
+
+namespace fenestra {
+namespace {
+
+using nlohmann::json;
+
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+
+json error_json(const GoalError& e) {
+  return {{"relative_rms", e.relative_rms}, {"max_relative", e.max_relative}, {"worst_sensor", e.worst_sensor}};
+}
+
+json openings_json(const SolveResult& r) {
+  json list = json::array();
+  for (const OpeningRectangle& o : r.openings) {
+    json corners = json::array();
+    for (const Vec3& c : o.corners) corners.push_back(point(c));
+    list.push_back({{"corners", corners},
+                    {"panel", o.panel},
+                    {"rows", {o.row0, o.row1}},
+                    {"columns", {o.col0, o.col1}},
+                    {"elements", o.elements}});
+  }
+  return list;
+}
+
+json sensors_json(const SolveResult& r) {
+  json list = json::array();
+  for (Eigen::Index i = 0; i < r.predicted.size(); ++i) {
+    const bool has_goal = r.goals.weight[i] > 0.0;
+    list.push_back({{"goal", has_goal ? number_or_null(r.goals.target[i]) : json(nullptr)},
+                    {"goal_as_given", number_or_null(r.goals.given[i])},
+                    {"min", has_goal ? number_or_null(r.goals.lower[i]) : json(nullptr)},
+                    {"max", has_goal ? number_or_null(r.goals.upper[i]) : json(nullptr)},
+                    {"weight", r.goals.weight[i]},
+                    {"predicted", r.predicted[i]},
+                    {"predicted_stderr", r.predicted_stderr[i]},
+                    {"linear", r.linear[i]},
+                    {"compensated", r.compensated[i]}});
+  }
+  return list;
+}
+
+}  // namespace
+
+json solve_result_json(const Scene& scene, const SolveResult& r) {
+  json open = json::array();
+  for (size_t k = 0; k < r.open.size(); ++k)
+    if (r.open[k]) open.push_back(k);
+  json history = json::array();
+  for (const GenerationRecord& g : r.history)
+    history.push_back({{"generation", g.generation}, {"best", g.best}, {"mean", g.mean}, {"seconds", g.seconds}});
+  json timings = json::object();
+  for (const auto& t : r.timings) timings[t.stage] = t.seconds;
+  const SolverSettings& s = scene.solver;
+  return {
+      {"units", "sensor values: luminance-weighted irradiance, lux for a sky in cd/m^2; corners in meters"},
+      {"goal_units", scene.sensors.goal_units},
+      {"openings", openings_json(r)},
+      {"open_elements", open},
+      {"element_count", r.open.size()},
+      {"element_size", scene.domain.element_size()},
+      {"sensors", sensors_json(r)},
+      {"error", {{"relative_rms", r.error.relative_rms},
+                 {"max_relative", r.error.max_relative},
+                 {"worst_sensor", r.error.worst_sensor},
+                 {"linear", error_json(r.linear_error)},
+                 {"compensated", error_json(r.compensated_error)},
+                 {"start", error_json(r.start_error)},
+                 {"nnls_relative_rms", r.nnls_relative_rms}}},
+      {"fitness", r.fitness},
+      {"timings_s", timings},
+      {"genetic", {{"generations", r.generations}, {"coarse_factors", r.coarse_factors}, {"history", history}}},
+      {"settings", {{"paths_per_sensor", s.paths_per_sensor > 0 ? s.paths_per_sensor : scene.render.paths_per_sensor},
+                    {"population", s.population},
+                    {"generations", s.generations},
+                    {"seed", s.seed},
+                    {"time_budget_s", s.time_budget_s},
+                    {"coarse_to_fine", s.coarse_to_fine},
+                    {"shape_weights", {{"isolated", s.isolated_weight}, {"boundary", s.boundary_weight},
+                                       {"regions", s.regions_weight}}},
+                    {"bound_weight", s.bound_weight}}}};
+}
+
+}  // namespace fenestra

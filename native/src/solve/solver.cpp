@@ -1,0 +1,197 @@
+#include "solve/solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "solve/coarse_grid.h"
+#include "solve/compensation.h"
+#include "solve/linear_start.h"
+#include "solve/nnls.h"
+
+namespace fenestra {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// The linear model net of the all-closed values, weighted so that its error is a relative
+// mean-squared error (sum w (p - g)^2 / sum w g^2).
+LinearObjective linear_objective(const Contributions& c, const SolverGoals& goals, double bound_weight) {
+  LinearObjective o;
+  o.E = c.E;
+  const Eigen::Index n = c.E.rows();
+  double norm = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (goals.weight[i] > 0.0) norm += goals.weight[i] * goals.target[i] * goals.target[i];
+  if (!(norm > 0.0)) norm = goals.weight.sum() * std::max(1e-30, c.all_open.value.squaredNorm() / n);  // all goals 0
+  o.target = Eigen::VectorXd::Zero(n);
+  o.weight = Eigen::VectorXd::Zero(n);
+  o.lower = Eigen::VectorXd::Constant(n, -std::numeric_limits<double>::infinity());
+  o.upper = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!(goals.weight[i] > 0.0)) continue;
+    o.target[i] = goals.target[i] - c.closed.value[i];
+    o.weight[i] = goals.weight[i] / norm;
+    o.lower[i] = goals.lower[i] - c.closed.value[i];
+    o.upper[i] = goals.upper[i] - c.closed.value[i];
+  }
+  o.bound_weight = bound_weight;
+  return o;
+}
+
+struct LinearStart {
+  std::vector<uint8_t> open;
+  double relative_rms = 0.0;  // of the continuous solution
+  int iterations = 0;
+};
+
+// Stage 1: NNLS on the weighted system, excess over 1 to the neighbours, rounded.
+LinearStart linear_start(const LinearObjective& o, const ElementGrid& grid) {
+  const Eigen::VectorXd sqrt_w = o.weight.cwiseSqrt();
+  const Eigen::MatrixXd A = sqrt_w.asDiagonal() * o.E;
+  const Eigen::VectorXd b = sqrt_w.cwiseProduct(o.target);
+  const NnlsResult r = nnls(A, b);
+  Eigen::VectorXd x = r.x;
+  redistribute_excess(grid, &x);
+  LinearStart s;
+  s.open = round_to_binary(x);
+  s.relative_rms = r.residual_norm;  // weights make it relative
+  s.iterations = r.iterations;
+  return s;
+}
+
+ShapeWeights shape_of(const SolverSettings& s) {
+  ShapeWeights w;
+  w.isolated = s.isolated_weight;
+  w.boundary = s.boundary_weight;
+  w.regions = s.regions_weight;
+  return w;
+}
+
+// Fitness with the error part taken from exact predictions (the shape part as the GA counts it).
+double exact_fitness(const LinearObjective& o, const ElementGrid& grid, const ShapeWeights& shape,
+                     const std::vector<uint8_t>& open, const Eigen::VectorXd& predicted_net) {
+  LinearObjective empty;
+  empty.E = Eigen::MatrixXd::Zero(1, static_cast<Eigen::Index>(open.size()));
+  empty.target = empty.weight = Eigen::VectorXd::Zero(1);
+  empty.lower = Eigen::VectorXd::Constant(1, -std::numeric_limits<double>::infinity());
+  empty.upper = Eigen::VectorXd::Constant(1, std::numeric_limits<double>::infinity());
+  double f = fitness(empty, grid, shape, open);
+  for (Eigen::Index i = 0; i < predicted_net.size(); ++i) {
+    if (!(o.weight[i] > 0.0)) continue;
+    const double p = predicted_net[i], d = p - o.target[i];
+    const double below = std::max(0.0, o.lower[i] - p), above = std::max(0.0, p - o.upper[i]);
+    f += o.weight[i] * (d * d + o.bound_weight * (below * below + above * above));
+  }
+  return f;
+}
+
+}  // namespace
+
+SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress* progress) {
+  const auto start = Clock::now();
+  SolveResult out;
+  out.goals = resolve_goals(scene, c);
+  const SolverSettings& settings = scene.solver;
+  const LinearObjective objective = linear_objective(c, out.goals, settings.bound_weight);
+  const ElementGrid grid = ElementGrid::from_domain(scene.domain);
+  const ShapeWeights shape = shape_of(settings);
+  GeneticSettings ga;
+  ga.population = settings.population;
+  ga.generations = settings.generations;
+  ga.seed = settings.seed;
+  ga.time_budget_s = settings.time_budget_s;
+  ga.elite = settings.elite;
+  ga.shape = shape;
+
+  // Stage 1 on the fine grid, and coarse-to-fine starts (4a, then 2a) when the grid is large enough.
+  if (progress) progress->start("solving: linear start", 1);
+  auto t = Clock::now();
+  const LinearStart fine_start = linear_start(objective, grid);
+  out.nnls_relative_rms = fine_start.relative_rms;
+  out.nnls_iterations = fine_start.iterations;
+  std::vector<std::vector<uint8_t>> seeds = {fine_start.open};
+  double coarse_seconds = 0.0;
+  if (settings.coarse_to_fine) {
+    std::vector<uint8_t> carried;  // the previous (coarser) level's answer, on the fine grid
+    for (int factor : {4, 2}) {
+      const CoarseGrid coarse = coarsen(grid, factor);
+      if (coarse.grid.size() < 4 || coarse.grid.size() * 2 > grid.size()) continue;
+      const auto level_start = Clock::now();
+      LinearObjective level = objective;
+      level.E = coarse.columns(objective.E);
+      std::vector<std::vector<uint8_t>> level_seeds = {linear_start(level, coarse.grid).open};
+      if (!carried.empty()) {  // the coarser answer, as well as it fits this grid
+        std::vector<uint8_t> mapped(coarse.grid.size(), 0);
+        for (size_t k = 0; k < carried.size(); ++k) mapped[coarse.coarse_of[k]] |= carried[k];
+        level_seeds.push_back(mapped);
+      }
+      GeneticSettings level_ga = ga;
+      level_ga.generations = std::max(1, ga.generations / 2);
+      level_ga.time_budget_s = 0.0;
+      const GeneticResult r = run_genetic(level, coarse.grid, level_seeds, level_ga);
+      carried = coarse.expand(r.best);
+      seeds.push_back(carried);
+      out.coarse_factors.push_back(factor);
+      coarse_seconds += since(level_start);
+      if (progress) progress->throw_if_cancelled();
+    }
+  }
+  out.timings.push_back({"linear start", since(t) - coarse_seconds});
+  if (coarse_seconds > 0.0) out.timings.push_back({"coarse grids", coarse_seconds});
+
+  // Stage 2 on the fine grid.
+  if (progress) progress->start("solving: genetic algorithm", 1);
+  t = Clock::now();
+  const GeneticResult result = run_genetic(objective, grid, seeds, ga);
+  out.history = result.history;
+  out.generations = result.generations;
+  out.timings.push_back({"genetic", since(t)});
+  if (progress) progress->throw_if_cancelled();
+
+  // The final choice among the best states uses the exact evaluation from the path records.
+  if (progress) progress->start("solving: exact evaluation", 1);
+  t = Clock::now();
+  std::vector<std::vector<uint8_t>> candidates = result.elite;
+  if (candidates.empty()) candidates.push_back(result.best);
+  double best = std::numeric_limits<double>::infinity();
+  SensorValues chosen;
+  for (const auto& open : candidates) {
+    const SensorValues exact = c.evaluate(open);
+    const double f = exact_fitness(objective, grid, shape, open, exact.value - c.closed.value);
+    if (f < best) {
+      best = f;
+      out.open = open;
+      chosen = exact;
+    }
+  }
+  out.fitness = best;
+  out.predicted = chosen.value;
+  out.predicted_stderr = chosen.standard_error;
+  out.linear = linear_prediction(c, out.open);
+  out.compensated = compensated_prediction(c, out.open);
+  out.error = goal_error(out.goals, out.predicted);
+  out.linear_error = goal_error(out.goals, out.linear);
+  out.compensated_error = goal_error(out.goals, out.compensated);
+  out.start_error = goal_error(out.goals, c.evaluate(fine_start.open).value);
+  out.openings = merge_into_rectangles(scene.domain, out.open);
+  out.timings.push_back({"exact evaluation", since(t)});
+  out.timings.push_back({"total", since(start)});
+  if (progress) progress->advance();
+  return out;
+}
+
+SolveResult solve_openings(const Scene& scene, Progress* progress) {
+  Scene traced = scene;
+  if (scene.solver.paths_per_sensor > 0) traced.render.paths_per_sensor = scene.solver.paths_per_sensor;
+  const auto t = Clock::now();
+  const Contributions c = compute_contributions(traced, progress);
+  const double seconds = since(t);
+  SolveResult out = solve_openings(traced, c, progress);
+  out.timings.insert(out.timings.begin(), {"contributions", seconds});
+  out.timings.back().seconds += seconds;
+  return out;
+}
+
+}  // namespace fenestra

@@ -1,0 +1,46 @@
+#pragma once
+// The opening solver (the paper's section 2): from the contributions and the goals, which
+// elements to open. Stage 1: NNLS on the linear model, excess redistributed, rounded (optionally
+// on coarser grids first); stage 2: a genetic algorithm for error and shape coherence; last, the
+// best states re-ranked with the exact evaluation from the path records.
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solve/genetic.h"
+#include "solve/goals.h"
+#include "solve/rectangles.h"
+#include "trace/contributions.h"
+#include "util/progress.h"
+
+namespace fenestra {
+
+struct SolveResult {
+  std::vector<uint8_t> open;                 // per element
+  std::vector<OpeningRectangle> openings;    // open elements merged into rectangles
+  SolverGoals goals;
+  // Per sensor, for the chosen state: the exact value from the path records (what the user sees),
+  // its standard error, the linear model and the paper's compensated estimate (Eq. 3).
+  Eigen::VectorXd predicted, predicted_stderr, linear, compensated;
+  GoalError error, linear_error, compensated_error;
+  GoalError start_error;                     // the rounded stage-1 state (exact evaluation)
+  double nnls_relative_rms = 0.0;            // the continuous NNLS solution in the linear model
+  int nnls_iterations = 0;
+  std::vector<GenerationRecord> history;     // the fine-grid genetic stage
+  int generations = 0;
+  double fitness = 0.0;                      // the chosen state's fitness with exact predictions
+  std::vector<int> coarse_factors;           // coarse grids solved first (e.g. 4, 2)
+  struct Timing {
+    std::string stage;
+    double seconds = 0.0;
+  };
+  std::vector<Timing> timings;
+};
+
+// Contributions already computed for this scene.
+SolveResult solve_openings(const Scene& scene, const Contributions& contributions, Progress* progress = nullptr);
+// Computes the contributions first (solver.paths or render.paths_per_sensor paths per sensor).
+SolveResult solve_openings(const Scene& scene, Progress* progress = nullptr);
+
+}  // namespace fenestra

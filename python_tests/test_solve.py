@@ -1,0 +1,76 @@
+"""The opening solver through the documented interfaces: `fenestra solve`, fenestra.solve()."""
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import fenestra
+from conftest import CLI
+
+
+def run(*args):
+    return subprocess.run([CLI, *map(str, args)], capture_output=True, text=True)
+
+
+def with_goals(small_room, goals, units="lux", solver=None, **extra):
+    scene = json.loads(small_room.read_text())
+    scene["sensors"]["goals"] = goals
+    scene["sensors"]["goal_units"] = units
+    scene["solver"] = solver or {"generations": 100, "population": 32, "seed": 2}
+    scene.update(extra)
+    small_room.write_text(json.dumps(scene))
+    return small_room
+
+
+def test_cli_solve_writes_openings_that_evaluate_reads(small_room, tmp_path):
+    scene = with_goals(small_room, [0.5, 0.3, None], units="normalized")
+    out = tmp_path / "result.json"
+    r = run("solve", scene, "-o", out, "--paths", 512, "--quiet")
+    assert r.returncode == 0, r.stderr
+    result = json.loads(out.read_text())
+    assert {"openings", "sensors", "error", "open_elements", "timings_s", "genetic"} <= set(result)
+    assert len(result["sensors"]) == 3
+    assert result["sensors"][2]["goal"] is None
+    assert all(s["predicted"] >= 0 for s in result["sensors"])
+    assert 0 <= result["error"]["relative_rms"] < 1
+    history = [g["best"] for g in result["genetic"]["history"]]
+    assert history == sorted(history, reverse=True)
+    for o in result["openings"]:
+        assert np.array(o["corners"]).shape == (4, 3)
+    # The result file is an openings file.
+    evaluated = tmp_path / "eval.json"
+    r = run("evaluate", scene, "--openings", out, "-o", evaluated, "--paths", 256, "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert len(json.loads(evaluated.read_text())["sensors"]) == 3
+
+
+def test_python_solve_reuses_contributions_and_is_reproducible(small_room):
+    scene = fenestra.load_scene(with_goals(small_room, [400.0, 150.0, 250.0]))
+    scene.render.paths_per_sensor = 512
+    c = fenestra.contributions(scene)
+    a = fenestra.solve(scene, contributions=c)
+    b = fenestra.solve(scene, contributions=c)
+    assert a["open_elements"] == b["open_elements"]
+    assert a["error"] == b["error"]
+    # What the user sees is the exact evaluation of the chosen elements from the same paths.
+    mask = np.zeros(scene.element_count, dtype=np.uint8)
+    mask[a["open_elements"]] = 1
+    exact, _ = c.evaluate(mask)
+    assert [s["predicted"] for s in a["sensors"]] == pytest.approx(exact.tolist(), rel=1e-9)
+    assert [s["goal"] for s in a["sensors"]] == pytest.approx([400.0, 150.0, 250.0])
+
+
+@pytest.mark.parametrize("goals, units, needle", [
+    ([0.5, -0.1, 0.2], "normalized", "goals[1]"),
+    ([0.5, 1.2, 0.2], "normalized", "goals[1]"),
+    ([None, None, None], "lux", "no sensor has a goal"),
+])
+def test_bad_goals_are_refused(small_room, tmp_path, goals, units, needle):
+    scene = with_goals(small_room, goals, units=units)
+    out = tmp_path / "result.json"
+    r = run("solve", scene, "-o", out, "--paths", 64, "--quiet")
+    assert r.returncode == 1
+    assert needle in r.stderr
+    assert not out.exists()
