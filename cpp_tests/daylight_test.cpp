@@ -16,6 +16,7 @@ namespace {
 
 using test::ObjBuilder;
 using test::TempDir;
+using test::mask_of_elements_inside;
 using test::within_sigma;
 
 DaylightSettings athens_summer(int width = 512, int height = 256) {
@@ -255,16 +256,6 @@ TEST(SunLights, PicksInProportionToIlluminanceAndStaysUnbiased) {
   EXPECT_NEAR(picked[1], 0.3 * kDraws, 2);
   EXPECT_NEAR(mean, 10000.0, 0.1);
   EXPECT_NEAR(luminance(lights.horizontal_illuminance()), 1000.0f + 0.0f + 6000.0f * 0.8f, 1e-2f);
-}
-
-std::vector<uint8_t> mask_of_elements_inside(const Scene& scene, const Rectangle& r) {
-  const Vec3 lo = r[0].cwiseMin(r[2]), hi = r[0].cwiseMax(r[2]);
-  std::vector<uint8_t> mask(scene.domain.element_count(), 0);
-  for (size_t k = 0; k < mask.size(); ++k) {
-    const Vec3 c = scene.domain.elements()[k].center;
-    mask[k] = (c.array() >= lo.array() - 1e-4f).all() && (c.array() <= hi.array() + 1e-4f).all();
-  }
-  return mask;
 }
 
 std::string box_scene_json(const std::string& domain_material, const std::string& sensors, int paths,

@@ -93,6 +93,17 @@ inline double parallel_corner_view_factor(double a, double b, double c) {
   return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2.0 * M_PI);
 }
 
+// Elements whose centres lie inside the axis-aligned rectangle r (an opening in world coordinates).
+inline std::vector<uint8_t> mask_of_elements_inside(const Scene& scene, const std::array<Vec3, 4>& r) {
+  const Vec3 lo = r[0].cwiseMin(r[2]), hi = r[0].cwiseMax(r[2]);
+  std::vector<uint8_t> mask(scene.domain.element_count(), 0);
+  for (size_t k = 0; k < mask.size(); ++k) {
+    const Vec3 c = scene.domain.elements()[k].center;
+    mask[k] = (c.array() >= lo.array() - 1e-4f).all() && (c.array() <= hi.array() + 1e-4f).all();
+  }
+  return mask;
+}
+
 // |a - b| within k combined standard errors.
 inline ::testing::AssertionResult within_sigma(double a, double sa, double b, double sb, double k = 4.0) {
   const double sigma = std::sqrt(sa * sa + sb * sb);

@@ -15,6 +15,7 @@ namespace {
 
 using test::ObjBuilder;
 using test::TempDir;
+using test::mask_of_elements_inside;
 using test::within_sigma;
 
 constexpr double kRadiance = 1000.0 / M_PI;  // cd/m^2: an unobstructed horizontal sensor reads 1000 lux
@@ -40,16 +41,6 @@ Scene black_box(const TempDir& dir, int paths) {
                        R"({"materials": ["roof"], "element_size": 0.25})",
                        R"({"points": [[1, 1, 0], [0.5, 1.5, 0]], "normals": [0, 0, 1]})", paths));
   return load_scene(dir.file("scene.json"));
-}
-
-std::vector<uint8_t> mask_of_elements_inside(const Scene& scene, const Rectangle& r) {
-  const Vec3 lo = r[0].cwiseMin(r[2]), hi = r[0].cwiseMax(r[2]);
-  std::vector<uint8_t> mask(scene.domain.element_count(), 0);
-  for (size_t k = 0; k < mask.size(); ++k) {
-    const Vec3 c = scene.domain.elements()[k].center;
-    mask[k] = (c.array() >= lo.array() - 1e-4f).all() && (c.array() <= hi.array() + 1e-4f).all();
-  }
-  return mask;
 }
 
 TEST(Trace, UnobstructedUniformSkyGivesPiL) {
