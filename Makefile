@@ -3,7 +3,7 @@ PYTHON := /usr/bin/python3
 BUILD  := build
 JOBS   ?= $(shell nproc)
 
-.PHONY: deps build test cpp-test py-test demo bench install clean
+.PHONY: deps build test cpp-test py-test demo bench validate install install-addon clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -20,12 +20,17 @@ py-test: build
 
 test: cpp-test py-test
 
-demo: build
+demo: build install-addon
 	@./scripts/demo.sh $(BUILD)
 
 bench: build
 	$(BUILD)/bench/fenestra_sky_bench
+	$(BUILD)/bench/fenestra_solver_bench
 	$(BUILD)/bench/fenestra_bench
+
+# Ground truth: known openings' light as goals, solved for and checked (out/validate/, README table).
+validate: build
+	$(PYTHON) scripts/validate.py
 
 # Puts `fenestra` on PATH and makes `import fenestra` work in /usr/bin/python3 (this checkout's addon/).
 SITE := $(shell $(PYTHON) -c "import site; print(site.getsitepackages()[0])")
@@ -34,6 +39,18 @@ install: build
 	mkdir -p $(SITE)
 	echo "$(CURDIR)/addon" > $(SITE)/fenestra.pth
 	@echo "installed: /usr/local/bin/fenestra and $(SITE)/fenestra.pth -> $(CURDIR)/addon"
+
+# Links addon/fenestra (with its native module) into Blender's user add-ons and enables it.
+BLENDER ?= blender
+install-addon: build
+	@if ! command -v $(BLENDER) >/dev/null; then echo "install-addon: Blender not found, skipped"; exit 0; fi; \
+	dir=$$($(BLENDER) -b --factory-startup --python-expr "import bpy; print('ADDONS=' + bpy.utils.user_resource('SCRIPTS', path='addons'))" 2>/dev/null | sed -n 's/^ADDONS=//p'); \
+	test -n "$$dir" || { echo "install-addon: could not ask Blender for its add-on folder"; exit 1; }; \
+	mkdir -p "$$dir"; \
+	if [ -e "$$dir/fenestra" ] && [ ! -L "$$dir/fenestra" ]; then echo "install-addon: $$dir/fenestra exists and is not a link: remove it first"; exit 1; fi; \
+	ln -sfn $(CURDIR)/addon/fenestra "$$dir/fenestra"; \
+	$(BLENDER) -b --python-exit-code 1 --python-expr "import bpy; bpy.ops.preferences.addon_enable(module='fenestra'); bpy.ops.wm.save_userpref()" >/dev/null && \
+	echo "installed and enabled: $$dir/fenestra -> $(CURDIR)/addon/fenestra (3D View > Sidebar > Fenestra)"
 
 clean:
 	rm -rf $(BUILD)

@@ -7,6 +7,16 @@ reference_room: the grey 4 x 4 x 3 m room of ../shared/reference/radiance-scene-
     0.2 x 1000/pi), with that reference's window in window.json.
 paper_scale: the benchmark scene of the size the paper reports (100 sensors, 200 elements,
     a few thousand triangles): a grey room with furniture on a ground plane, uniform sky.
+
+Ground-truth scenes (scripts/validate.py), each with truth.json, openings aligned with the
+element grid whose light becomes the sensors' goals:
+window_room: a 5 x 4 x 2.8 m room on a ground plane, its south wall the opening domain (0.35 m
+    elements), 30 sensors at 0.8 m, CIE overcast sky; two windows.
+apartment: two rooms side by side sharing a wall with a door, the south wall of the west room and
+    the east wall of the east room the opening domain (0.4 m elements), 36 sensors in both rooms,
+    Preetham sky and sun on a spring morning; a window in each domain wall.
+atrium: a 6 x 6 x 9 m hall with a gallery, its flat roof the opening domain (0.5 m elements),
+    25 sensors on the floor and 5 on the gallery, uniform sky; two skylights.
 """
 
 import json
@@ -133,7 +143,151 @@ def paper_scale():
         json.dump(scene, f, indent=2)
 
 
+def grid_rectangle(scene, panel, rows, columns):
+    """Corners (meters) of the rectangle covering elements rows[0]..rows[1] x columns[0]..columns[1]
+    (inclusive) of a panel of the scene's element grid."""
+    grid, corners = scene.element_grid, scene.element_corners
+
+    def element(r, c):
+        hit = np.flatnonzero((grid[:, 0] == panel) & (grid[:, 1] == r) & (grid[:, 2] == c))
+        if hit.size != 1:
+            raise ValueError("panel %d has no element at row %d, column %d" % (panel, r, c))
+        return corners[hit[0]]
+
+    (r0, r1), (c0, c1) = rows, columns
+    quad = [element(r0, c0)[0], element(r0, c1)[1], element(r1, c1)[2], element(r1, c0)[3]]
+    return [[round(float(x), 6) for x in p] for p in quad]
+
+
+def panel_facing(scene, normal):
+    """Index of the panel whose elements face along normal (either way) -- unique in these scenes."""
+    normal = np.asarray(normal, float)
+    grid, corners = scene.element_grid, scene.element_corners
+    found = set()
+    for k in range(len(grid)):
+        c = corners[k]
+        n = np.cross(c[1] - c[0], c[3] - c[0])
+        if abs(np.dot(n / np.linalg.norm(n), normal)) > 0.999:
+            found.add(int(grid[k, 0]))
+    if len(found) != 1:
+        raise ValueError("expected one panel facing %s, found %s" % (normal, sorted(found)))
+    return found.pop()
+
+
+def write_scene(out, scene, openings):
+    """Writes scene.json and truth.json (openings given as (normal, rows, columns) on the grid)."""
+    with open(os.path.join(out, "scene.json"), "w") as f:
+        json.dump(scene, f, indent=2)
+    loaded = fenestra.load_scene(os.path.join(out, "scene.json"))
+    truth = {"openings": [{"corners": grid_rectangle(loaded, panel_facing(loaded, n), rows, columns)}
+                          for n, rows, columns in openings]}
+    with open(os.path.join(out, "truth.json"), "w") as f:
+        json.dump(truth, f, indent=2)
+
+
+GREY = {
+    "wall": {"type": "diffuse", "reflectance": 0.6},
+    "facade": {"type": "diffuse", "reflectance": 0.6},
+    "floor": {"type": "diffuse", "reflectance": 0.3},
+    "ceiling": {"type": "diffuse", "reflectance": 0.8},
+    "ground": {"type": "diffuse", "reflectance": 0.2},
+}
+
+
+def window_room():
+    out = os.path.join(HERE, "window_room")
+    os.makedirs(out, exist_ok=True)
+    obj = Obj()
+    room(obj, 5, 4, 2.8, "facade")
+    obj.quad("ground", "ground", (-20, -20, -0.05), (20, -20, -0.05), (-20, 20, -0.05))
+    obj.write(os.path.join(out, "scene.obj"))
+    xs, ys = np.linspace(0.5, 4.5, 6), np.linspace(0.5, 3.5, 5)
+    scene = {
+        "fenestra": 1,
+        "geometry": "scene.obj",
+        "materials": GREY,
+        "opening_domain": {"materials": ["facade"], "element_size": 0.35, "thickness": 0.0},
+        "sensors": {"points": [[float(x), float(y), 0.8] for y in ys for x in xs], "normals": [0, 0, 1]},
+        "sky": {"type": "cie_overcast", "horizontal_illuminance": 10000.0, "ground_reflectance": 0.2,
+                "resolution": [256, 128]},
+        "render": {"paths_per_sensor": 4096, "max_bounces": 8, "seed": 1, "threads": 0},
+    }
+    # 14 columns (from x = 4.95 toward x = 0) x 8 rows (from the floor up).
+    write_scene(out, scene, [((0, 1, 0), (2, 6), (1, 4)), ((0, 1, 0), (2, 6), (8, 11))])
+
+
+def apartment():
+    out = os.path.join(HERE, "apartment")
+    os.makedirs(out, exist_ok=True)
+    w1, w2, d, h = 5.0, 4.0, 4.0, 2.8
+    door = (2.6, 3.5, 2.1)  # y from, y to, height
+    w = w1 + w2
+    obj = Obj()
+    obj.quad("floor", "floor", (0, 0, 0), (0, d, 0), (w, 0, 0), 4, 9)
+    obj.quad("ceiling", "ceiling", (0, 0, h), (w, 0, h), (0, d, h), 9, 4)
+    obj.quad("west_room_south", "facade", (w1, 0, 0), (0, 0, 0), (w1, 0, h))
+    obj.quad("east_room_south", "wall", (w, 0, 0), (w1, 0, 0), (w, 0, h), 4, 3)
+    obj.quad("wall_north", "wall", (0, d, 0), (w, d, 0), (0, d, h), 9, 3)
+    obj.quad("wall_west", "wall", (0, 0, 0), (0, 0, h), (0, d, 0), 3, 4)
+    obj.quad("east_room_east", "facade", (w, 0, 0), (w, d, 0), (w, 0, h))
+    # The shared wall (both faces of one surface), with the door between the rooms.
+    obj.quad("partition", "wall", (w1, 0, 0), (w1, door[0], 0), (w1, 0, h), 3, 3)
+    obj.quad("partition", "wall", (w1, door[1], 0), (w1, d, 0), (w1, door[1], h), 1, 3)
+    obj.quad("partition", "wall", (w1, door[0], door[2]), (w1, door[1], door[2]), (w1, door[0], h))
+    obj.quad("ground", "ground", (-20, -20, -0.05), (30, -20, -0.05), (-20, 30, -0.05))
+    obj.write(os.path.join(out, "scene.obj"))
+    ys = np.linspace(0.5, 3.5, 4)
+    points = [[float(x), float(y), 0.8] for y in ys for x in np.linspace(0.5, 4.5, 5)]
+    points += [[float(x), float(y), 0.8] for y in ys for x in np.linspace(5.5, 8.5, 4)]
+    scene = {
+        "fenestra": 1,
+        "geometry": "scene.obj",
+        "materials": GREY,
+        "opening_domain": {"materials": ["facade"], "element_size": 0.4, "thickness": 0.0},
+        "sensors": {"points": points, "normals": [0, 0, 1]},
+        "sky": {"type": "preetham", "latitude": 48.85, "longitude": 2.35, "timezone": "Europe/Paris",
+                "date": "2026-03-21", "time": "10:00", "turbidity": 3.0, "ground_reflectance": 0.2,
+                "resolution": [256, 128]},
+        "render": {"paths_per_sensor": 4096, "max_bounces": 8, "seed": 1, "threads": 0},
+    }
+    # South wall: 12 columns (from x = 4.9 toward x = 0) x 7 rows; east wall: 10 columns x 7 rows.
+    write_scene(out, scene, [((0, 1, 0), (2, 5), (3, 7)), ((1, 0, 0), (2, 5), (2, 5))])
+
+
+def atrium():
+    out = os.path.join(HERE, "atrium")
+    os.makedirs(out, exist_ok=True)
+    w, h, gallery = 6.0, 9.0, 4.5
+    obj = Obj()
+    obj.quad("floor", "floor", (0, 0, 0), (0, w, 0), (w, 0, 0), 6, 6)
+    obj.quad("roof", "roof", (0, 0, h), (w, 0, h), (0, w, h))
+    obj.quad("wall_south", "wall", (w, 0, 0), (0, 0, 0), (w, 0, h), 6, 9)
+    obj.quad("wall_north", "wall", (0, w, 0), (w, w, 0), (0, w, h), 6, 9)
+    obj.quad("wall_west", "wall", (0, 0, 0), (0, 0, h), (0, w, 0), 9, 6)
+    obj.quad("wall_east", "wall", (w, 0, 0), (w, w, 0), (w, 0, h), 6, 9)
+    obj.box("gallery", "floor", (0.0, 4.5, gallery - 0.25), (w, w, gallery))
+    obj.write(os.path.join(out, "scene.obj"))
+    xs = np.linspace(0.6, 5.4, 5)
+    points = [[float(x), float(y), 0.1] for y in np.linspace(0.6, 3.8, 5) for x in xs]
+    points += [[float(x), 5.25, gallery + 0.8] for x in xs]
+    materials = dict(GREY, roof={"type": "diffuse", "reflectance": 0.7})
+    scene = {
+        "fenestra": 1,
+        "geometry": "scene.obj",
+        "materials": materials,
+        "opening_domain": {"materials": ["roof"], "element_size": 0.5, "thickness": 0.0},
+        "sensors": {"points": points, "normals": [0, 0, 1]},
+        "sky": {"type": "uniform", "radiance": 1000.0 / np.pi},
+        "render": {"paths_per_sensor": 4096, "max_bounces": 8, "seed": 1, "threads": 0},
+    }
+    # 12 x 12 elements, rows along +X.
+    write_scene(out, scene, [((0, 0, 1), (2, 4), (2, 8)), ((0, 0, 1), (7, 9), (4, 6))])
+
+
 if __name__ == "__main__":
     reference_room()
     paper_scale()
+    window_room()
+    apartment()
+    atrium()
     print("examples written under", HERE)

@@ -26,3 +26,4 @@ PY
 echo
 echo "Results are in $out/: contributions.npz (E, A, T, ... for numpy.load), contributions.json"
 echo "(every element with its panel, row, column and corners), window.json (per-sensor lux)."
+if command -v blender >/dev/null; then echo "The Blender add-on is installed and enabled: 3D View > Sidebar (N) > Fenestra (docs/blender.md)."; fi

@@ -1,8 +1,8 @@
 """Fenestra: design windows and skylights from daylight goals.
 
 This package is the Python API (importable in any Python 3.11 with NumPy, no Blender needed)
-and is laid out to become the Blender add-on (bl_info); its Blender modules, which alone will
-import bpy, are not written yet.
+and the Blender add-on (bl_info, register/unregister): its Blender modules, in fenestra.blender,
+alone import bpy (docs/blender.md).
 
     import fenestra
     scene = fenestra.load_scene("examples/reference_room/scene.json")
@@ -17,35 +17,46 @@ bl_info = {
     "author": "Fenestra developers",
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
-    "location": "Properties > Scene > Fenestra",
+    "location": "3D View > Sidebar > Fenestra",
     "description": "Design openings (windows, skylights) from daylight goals",
     "category": "Lighting",
 }
 
-from ._core import (  # noqa: E402
-    preetham_radiance,
-    preetham_sun,
-    solar_position,
-    sun_direction,
-    sunrise_sunset,
-    utc_seconds,
-)
-from .api import (  # noqa: E402
-    Cancelled,
-    Contributions,
-    Progress,
-    Scene,
-    contributions,
-    evaluate,
-    load_scene,
-    openings_array,
-    read_openings,
-    scene_from_dict,
-    sky,
-    solve,
-    write_image,
-    write_sky,
-)
+import sys  # noqa: E402
+
+try:
+    from ._core import (
+        preetham_radiance,
+        preetham_sun,
+        solar_position,
+        sun_direction,
+        sunrise_sunset,
+        utc_seconds,
+    )
+    from .api import (
+        Cancelled,
+        Contributions,
+        Progress,
+        Scene,
+        contributions,
+        evaluate,
+        load_scene,
+        openings_array,
+        read_openings,
+        scene_from_dict,
+        sky,
+        solve,
+        write_image,
+        write_sky,
+    )
+except ImportError as exc:
+    # Inside Blender the add-on still registers and its panel says why the native module is missing.
+    if "bpy" not in sys.modules:
+        raise
+    import_error = exc
+else:
+    import_error = None
+
 
 __all__ = [
     "Cancelled",
@@ -69,3 +80,13 @@ __all__ = [
     "write_image",
     "write_sky",
 ]
+
+
+def register():
+    from . import blender
+    blender.register()
+
+
+def unregister():
+    from . import blender
+    blender.unregister()

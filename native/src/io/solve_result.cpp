@@ -15,17 +15,42 @@ json error_json(const GoalError& e) {
   return {{"relative_rms", e.relative_rms}, {"max_relative", e.max_relative}, {"worst_sensor", e.worst_sensor}};
 }
 
-json openings_json(const SolveResult& r) {
+json openings_json(const std::vector<OpeningRectangle>& openings) {
   json list = json::array();
-  for (const OpeningRectangle& o : r.openings) {
+  for (const OpeningRectangle& o : openings) {
     json corners = json::array();
     for (const Vec3& c : o.corners) corners.push_back(point(c));
     list.push_back({{"corners", corners},
+                    {"centre", point(o.centre)},
+                    {"width", o.width},
+                    {"height", o.height},
+                    {"normal", point(o.outward)},
                     {"panel", o.panel},
                     {"rows", {o.row0, o.row1}},
                     {"columns", {o.col0, o.col1}},
                     {"elements", o.elements}});
   }
+  return list;
+}
+
+json constraints_json(const OpeningConstraints& c) {
+  json j = json::object();
+  const std::pair<const char*, double> values[] = {
+      {"min_area", c.min_area},     {"max_area", c.max_area},     {"min_aspect", c.min_aspect},
+      {"max_aspect", c.max_aspect}, {"min_width", c.min_width},   {"max_width", c.max_width},
+      {"min_height", c.min_height}, {"max_height", c.max_height}, {"min_gap", c.min_gap},
+      {"margin", c.margin},         {"sill_min", c.sill_min},     {"sill_max", c.sill_max},
+      {"head_min", c.head_min},     {"head_max", c.head_max}};
+  for (const auto& [name, value] : values)
+    if (std::isfinite(value) && value > 0.0) j[name] = value;  // only what constrains
+  if (c.max_openings > 0) j["max_openings"] = c.max_openings;
+  return j;
+}
+
+json open_list(const std::vector<uint8_t>& open) {
+  json list = json::array();
+  for (size_t k = 0; k < open.size(); ++k)
+    if (open[k]) list.push_back(k);
   return list;
 }
 
@@ -42,6 +67,10 @@ json sensors_json(const SolveResult& r) {
                     {"predicted_stderr", r.predicted_stderr[i]},
                     {"linear", r.linear[i]},
                     {"compensated", r.compensated[i]}});
+    if (r.verified) {
+      list.back()["verified"] = r.verified_value[i];
+      list.back()["verified_stderr"] = r.verified_stderr[i];
+    }
   }
   return list;
 }
@@ -49,9 +78,6 @@ json sensors_json(const SolveResult& r) {
 }  // namespace
 
 json solve_result_json(const Scene& scene, const SolveResult& r) {
-  json open = json::array();
-  for (size_t k = 0; k < r.open.size(); ++k)
-    if (r.open[k]) open.push_back(k);
   json history = json::array();
   for (const GenerationRecord& g : r.history)
     history.push_back({{"generation", g.generation}, {"best", g.best}, {"mean", g.mean}, {"seconds", g.seconds}});
@@ -61,8 +87,8 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
   return {
       {"units", "sensor values: luminance-weighted irradiance, lux for a sky in cd/m^2; corners in meters"},
       {"goal_units", scene.sensors.goal_units},
-      {"openings", openings_json(r)},
-      {"open_elements", open},
+      {"openings", openings_json(r.openings)},
+      {"open_elements", open_list(r.open)},
       {"element_count", r.open.size()},
       {"element_size", scene.domain.element_size()},
       {"sensors", sensors_json(r)},
@@ -72,8 +98,14 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                  {"linear", error_json(r.linear_error)},
                  {"compensated", error_json(r.compensated_error)},
                  {"start", error_json(r.start_error)},
+                 {"before_constraints", error_json(r.unconstrained_error)},
+                 {"refined", error_json(r.refined_error)},
+                 {"verified", r.verified ? error_json(r.verified_error) : json(nullptr)},
                  {"nnls_relative_rms", r.nnls_relative_rms}}},
       {"fitness", r.fitness},
+      {"unconstrained", {{"open_elements", open_list(r.unconstrained_open)},
+                         {"openings", openings_json(r.unconstrained_openings)},
+                         {"error", error_json(r.unconstrained_error)}}},
       {"timings_s", timings},
       {"genetic", {{"generations", r.generations}, {"coarse_factors", r.coarse_factors}, {"history", history}}},
       {"settings", {{"paths_per_sensor", s.paths_per_sensor > 0 ? s.paths_per_sensor : scene.render.paths_per_sensor},
@@ -84,7 +116,10 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                     {"coarse_to_fine", s.coarse_to_fine},
                     {"shape_weights", {{"isolated", s.isolated_weight}, {"boundary", s.boundary_weight},
                                        {"regions", s.regions_weight}}},
-                    {"bound_weight", s.bound_weight}}}};
+                    {"bound_weight", s.bound_weight},
+                    {"constraints", constraints_json(s.constraints)},
+                    {"improve_iterations", s.improve_iterations},
+                    {"verify", s.verify}}}};
 }
 
 }  // namespace fenestra

@@ -352,13 +352,40 @@ void check_goals(const ScenePath& sp, const Sensors& s) {
   }
 }
 
+// "solver.constraints": what an opening may be. Lengths in meters, areas in m^2.
+OpeningConstraints parse_constraints(const ScenePath& sp, const json& j) {
+  if (!j.is_object()) sp.fail("solver.constraints", "expected an object");
+  const std::string key = "solver.constraints";
+  check_known_keys(sp, j, key,
+                   {"min_area", "max_area", "min_aspect", "max_aspect", "min_width", "max_width", "min_height",
+                    "max_height", "max_openings", "min_gap", "margin", "sill_min", "sill_max", "head_min",
+                    "head_max"});
+  OpeningConstraints c;
+  const std::pair<const char*, double*> values[] = {
+      {"min_area", &c.min_area},     {"max_area", &c.max_area},     {"min_aspect", &c.min_aspect},
+      {"max_aspect", &c.max_aspect}, {"min_width", &c.min_width},   {"max_width", &c.max_width},
+      {"min_height", &c.min_height}, {"max_height", &c.max_height}, {"min_gap", &c.min_gap},
+      {"margin", &c.margin},         {"sill_min", &c.sill_min},     {"sill_max", &c.sill_max},
+      {"head_min", &c.head_min},     {"head_max", &c.head_max}};
+  for (const auto& [name, value] : values) {
+    *value = number_or(sp, j, name, key, *value);
+    if (*value < 0.0) sp.fail(key + "." + name, "must not be negative");
+  }
+  if (j.contains("max_openings")) {
+    const double v = number(sp, j.at("max_openings"), key + ".max_openings");
+    if (v != std::floor(v) || v < 0 || v > 1e6) sp.fail(key + ".max_openings", "expected a whole number >= 0");
+    c.max_openings = static_cast<int>(v);
+  }
+  return c;
+}
+
 SolverSettings parse_solver(const ScenePath& sp, const json& j) {
   SolverSettings s;
   if (j.is_null()) return s;
   if (!j.is_object()) sp.fail("solver", "expected an object");
   check_known_keys(sp, j, "solver",
                    {"element_size", "paths", "population", "generations", "seed", "time_budget_s", "shape_weights",
-                    "bound_weight", "coarse_to_fine", "elite"});
+                    "bound_weight", "coarse_to_fine", "elite", "constraints", "improve_iterations", "verify"});
   auto integer = [&](const char* name, int lo, int hi, int fallback) {
     if (!j.contains(name)) return fallback;
     const double v = number(sp, j.at(name), std::string("solver.") + name);
@@ -380,6 +407,12 @@ SolverSettings parse_solver(const ScenePath& sp, const json& j) {
     if (!j.at("coarse_to_fine").is_boolean()) sp.fail("solver.coarse_to_fine", "expected true or false");
     s.coarse_to_fine = j.at("coarse_to_fine").get<bool>();
   }
+  s.improve_iterations = integer("improve_iterations", 0, 100000000, s.improve_iterations);
+  if (j.contains("verify")) {
+    if (!j.at("verify").is_boolean()) sp.fail("solver.verify", "expected true or false");
+    s.verify = j.at("verify").get<bool>();
+  }
+  if (j.contains("constraints")) s.constraints = parse_constraints(sp, j.at("constraints"));
   if (j.contains("shape_weights")) {
     const json& w = j.at("shape_weights");
     if (!w.is_object()) sp.fail("solver.shape_weights", "expected {\"isolated\", \"boundary\", \"regions\"}");
@@ -487,6 +520,11 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     parse_sky(sp, j.value("sky", json::object()), base, &scene);
     scene.render = parse_render(sp, j.value("render", json()));
     scene.solver = parse_solver(sp, j.value("solver", json()));
+    try {
+      check_feasible(scene.solver.constraints, scene.domain.element_size());
+    } catch (const std::invalid_argument& e) {
+      sp.fail("solver.constraints", e.what());
+    }
   } catch (const json::exception& e) {
     sp.fail("(structure)", e.what());
   }

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "solve/constraints.h"
+
 namespace fenestra {
 
 // One goal level for a set of sensors, optionally with bounds penalised outside (in the scene's
@@ -26,6 +28,9 @@ struct SolverSettings {
   double bound_weight = 10.0;  // penalty of a sensor outside its [min, max], relative to the error
   bool coarse_to_fine = true;
   int elite = 8;               // best genetic states re-ranked with the exact evaluation
+  OpeningConstraints constraints;  // what an opening may be (docs/solver.md)
+  int improve_iterations = 2000;   // local search over whole openings after the refinement; 0: none
+  bool verify = true;              // path-trace the final openings with real cutters (evaluate)
 };
 
 }  // namespace fenestra

@@ -5,6 +5,28 @@
 
 namespace fenestra {
 
+OpeningRectangle to_world(const OpeningDomain& domain, const GridRectangle& rect) {
+  const Panel& panel = domain.panels()[rect.panel];
+  OpeningRectangle r;
+  r.panel = rect.panel;
+  r.row0 = rect.row0;
+  r.row1 = rect.row1;
+  r.col0 = rect.col0;
+  r.col1 = rect.col1;
+  for (int row = rect.row0; row <= rect.row1; ++row)
+    for (int col = rect.col0; col <= rect.col1; ++col) r.elements.push_back(panel.grid[row * panel.cols + col]);
+  const double a = domain.element_size();
+  const Vec3 base = panel.origin + static_cast<float>(rect.col0 * a) * panel.u_axis +
+                    static_cast<float>(rect.row0 * a) * panel.v_axis;
+  r.width = rect.cols() * a;
+  r.height = rect.rows() * a;
+  const Vec3 u = static_cast<float>(r.width) * panel.u_axis, v = static_cast<float>(r.height) * panel.v_axis;
+  r.corners = {base, base + u, base + u + v, base + v};
+  r.centre = base + 0.5f * (u + v);
+  r.outward = panel.outward;
+  return r;
+}
+
 std::vector<OpeningRectangle> merge_into_rectangles(const OpeningDomain& domain, const std::vector<uint8_t>& open) {
   const auto& elements = domain.elements();
   std::map<std::tuple<int, int, int>, int> index;  // (panel, row, col) -> element
@@ -27,20 +49,9 @@ std::vector<OpeningRectangle> merge_into_rectangles(const OpeningDomain& domain,
       if (!whole) break;
       ++row1;
     }
-    OpeningRectangle r;
-    r.panel = panel;
-    r.row0 = row0;
-    r.row1 = row1;
-    r.col0 = col0;
-    r.col1 = col1;
     for (int rr = row0; rr <= row1; ++rr)
-      for (int c = col0; c <= col1; ++c) {
-        r.elements.push_back(free_at(panel, rr, c));
-        index.erase({panel, rr, c});
-      }
-    const auto corner = [&](int rr, int c, int which) { return elements[r.elements[(rr - row0) * (col1 - col0 + 1) + (c - col0)]].corners[which]; };
-    r.corners = {corner(row0, col0, 0), corner(row0, col1, 1), corner(row1, col1, 2), corner(row1, col0, 3)};
-    out.push_back(std::move(r));
+      for (int c = col0; c <= col1; ++c) index.erase({panel, rr, c});
+    out.push_back(to_world(domain, {panel, row0, row1, col0, col1}));
   }
   return out;
 }

@@ -5,15 +5,22 @@
 #include <vector>
 
 #include "scene/opening_domain.h"
+#include "solve/constraints.h"
 
 namespace fenestra {
 
 struct OpeningRectangle {
   std::array<Vec3, 4> corners;  // counter-clockwise about the panel normal, meters
+  Vec3 centre;
+  double width = 0.0, height = 0.0;  // along the panel's u axis (horizontal on walls) and v axis
+  Vec3 outward;                 // panel normal pointing away from the sensors (through the wall)
   int panel = 0;
   int row0 = 0, row1 = 0, col0 = 0, col1 = 0;  // inclusive element ranges
   std::vector<int> elements;
 };
+
+// A grid rectangle of whole elements, in world coordinates.
+OpeningRectangle to_world(const OpeningDomain& domain, const GridRectangle& rect);
 
 std::vector<OpeningRectangle> merge_into_rectangles(const OpeningDomain& domain, const std::vector<uint8_t>& open);
 

@@ -8,6 +8,8 @@
 #include "solve/compensation.h"
 #include "solve/linear_start.h"
 #include "solve/nnls.h"
+#include "solve/refine_openings.h"
+#include "trace/evaluate.h"
 
 namespace fenestra {
 namespace {
@@ -155,6 +157,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   t = Clock::now();
   std::vector<std::vector<uint8_t>> candidates = result.elite;
   if (candidates.empty()) candidates.push_back(result.best);
+  candidates.push_back(fine_start.open);
   double best = std::numeric_limits<double>::infinity();
   SensorValues chosen;
   for (const auto& open : candidates) {
@@ -166,6 +169,40 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
       chosen = exact;
     }
   }
+  out.start_error = goal_error(out.goals, c.evaluate(fine_start.open).value);
+  out.unconstrained_open = out.open;
+  out.unconstrained_openings = merge_into_rectangles(scene.domain, out.open);
+  out.unconstrained_error = goal_error(out.goals, chosen.value);
+  out.timings.push_back({"exact evaluation", since(t)});
+
+  // Architectural refinement: regions become admissible rectangles (the paper's final step),
+  // then a local search over whole openings; the exact evaluation has the last word.
+  if (progress) progress->start("solving: openings within the constraints", 1);
+  t = Clock::now();
+  OpeningConstraints constraints = settings.constraints;
+  constraints.panel_base_z = panel_base_heights(scene.domain, scene.mesh);
+  auto exact_of = [&](const std::vector<GridRectangle>& rects, SensorValues* values) {
+    const std::vector<uint8_t> open = rectangles_mask(scene.domain, rects);
+    *values = c.evaluate(open);
+    return exact_fitness(objective, grid, shape, open, values->value - c.closed.value);
+  };
+  std::vector<GridRectangle> rects = refine_openings(scene.domain, out.open, objective, constraints);
+  best = exact_of(rects, &chosen);
+  out.refined_error = goal_error(out.goals, chosen.value);
+  if (settings.improve_iterations > 0) {
+    const std::vector<GridRectangle> improved =
+        improve_rectangles(scene.domain, rects, objective, constraints, settings.seed, settings.improve_iterations);
+    SensorValues improved_values;
+    const double f = exact_of(improved, &improved_values);
+    if (f < best) {
+      best = f;
+      rects = improved;
+      chosen = improved_values;
+    }
+  }
+  out.open = rectangles_mask(scene.domain, rects);
+  out.openings.clear();
+  for (const GridRectangle& r : rects) out.openings.push_back(to_world(scene.domain, r));
   out.fitness = best;
   out.predicted = chosen.value;
   out.predicted_stderr = chosen.standard_error;
@@ -174,9 +211,20 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.error = goal_error(out.goals, out.predicted);
   out.linear_error = goal_error(out.goals, out.linear);
   out.compensated_error = goal_error(out.goals, out.compensated);
-  out.start_error = goal_error(out.goals, c.evaluate(fine_start.open).value);
-  out.openings = merge_into_rectangles(scene.domain, out.open);
-  out.timings.push_back({"exact evaluation", since(t)});
+  out.timings.push_back({"constraints", since(t)});
+  if (progress) progress->throw_if_cancelled();
+
+  if (settings.verify) {
+    t = Clock::now();
+    std::vector<Rectangle> cutters;
+    for (const OpeningRectangle& o : out.openings) cutters.push_back(o.corners);
+    const SensorValues v = evaluate_openings(scene, cutters, progress);
+    out.verified = true;
+    out.verified_value = v.value;
+    out.verified_stderr = v.standard_error;
+    out.verified_error = goal_error(out.goals, v.value);
+    out.timings.push_back({"verification", since(t)});
+  }
   out.timings.push_back({"total", since(start)});
   if (progress) progress->advance();
   return out;

@@ -17,14 +17,23 @@
 namespace fenestra {
 
 struct SolveResult {
-  std::vector<uint8_t> open;                 // per element
-  std::vector<OpeningRectangle> openings;    // open elements merged into rectangles
+  std::vector<uint8_t> open;                 // per element: the final openings' elements
+  std::vector<OpeningRectangle> openings;    // the final openings: admissible rectangles
+  // Before the architectural refinement: the genetic algorithm's (exactly re-ranked) elements,
+  // merged into rectangles, and their exact error; after the paper's refinement alone.
+  std::vector<uint8_t> unconstrained_open;
+  std::vector<OpeningRectangle> unconstrained_openings;
+  GoalError unconstrained_error, refined_error;
   SolverGoals goals;
   // Per sensor, for the chosen state: the exact value from the path records (what the user sees),
   // its standard error, the linear model and the paper's compensated estimate (Eq. 3).
   Eigen::VectorXd predicted, predicted_stderr, linear, compensated;
   GoalError error, linear_error, compensated_error;
   GoalError start_error;                     // the rounded stage-1 state (exact evaluation)
+  // The final openings path-traced with real cutters (`evaluate`), when solver.verify is on.
+  bool verified = false;
+  Eigen::VectorXd verified_value, verified_stderr;
+  GoalError verified_error;
   double nnls_relative_rms = 0.0;            // the continuous NNLS solution in the linear model
   int nnls_iterations = 0;
   std::vector<GenerationRecord> history;     // the fine-grid genetic stage

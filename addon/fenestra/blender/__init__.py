@@ -1,0 +1,23 @@
+"""The Blender add-on over the fenestra API: the only part of the package that imports bpy.
+
+properties (scene.fenestra, object.fenestra), export (scene -> study files), materials, sky,
+results (cutters, Booleans, achieved lux), operators, panels (3D View sidebar, "Fenestra" tab).
+"""
+
+import bpy
+
+from . import operators, panels, properties
+
+classes = properties.classes + operators.classes + panels.classes
+
+
+def register():
+    for cls in classes:
+        bpy.utils.register_class(cls)
+    properties.register()
+
+
+def unregister():
+    properties.unregister()
+    for cls in reversed(classes):
+        bpy.utils.unregister_class(cls)

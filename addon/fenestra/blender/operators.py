@@ -1,0 +1,308 @@
+"""Operators: opening domain, sensor grid, sky preview, Solve Openings, Clear Results."""
+
+import json
+import os
+import tempfile
+import threading
+
+import bpy
+import numpy as np
+from mathutils import Vector
+
+from . import export, native, results, sky
+
+
+def _native_or_report(op):
+    reason = native.unavailable()
+    if reason:
+        op.report({'ERROR'}, reason)
+    return reason is None
+
+
+# Opening domain ---------------------------------------------------------------------------------
+
+def _mark_selected(context, value):
+    """Sets `fenestra_domain` on the selected faces of the meshes in Edit Mode; returns the count."""
+    objects = [o for o in context.objects_in_mode if o.type == 'MESH']
+    bpy.ops.object.mode_set(mode='OBJECT')
+    changed = 0
+    try:
+        for obj in objects:
+            mesh = obj.data
+            n = len(mesh.polygons)
+            selected = np.zeros(n, bool)
+            mesh.polygons.foreach_get("select", selected)
+            attr = mesh.attributes.get(export.DOMAIN_ATTRIBUTE)
+            if attr is None:
+                if not value or not selected.any():
+                    continue
+                attr = mesh.attributes.new(export.DOMAIN_ATTRIBUTE, 'BOOLEAN', 'FACE')
+            flags = np.zeros(n, bool)
+            attr.data.foreach_get("value", flags)
+            flags[selected] = value
+            attr.data.foreach_set("value", flags)
+            changed += int(selected.sum())
+            mesh.update()
+        _count_domain(context.scene)
+    finally:
+        bpy.ops.object.mode_set(mode='EDIT')
+    return changed
+
+
+def _count_domain(scene):
+    """Domain faces and area over the scene's meshes (undeformed, world scale)."""
+    faces, area = 0, 0.0
+    for obj in scene.objects:
+        if obj.type != 'MESH' or export.DOMAIN_ATTRIBUTE not in obj.data.attributes:
+            continue
+        flags = export._face_flags(obj.data, export.DOMAIN_ATTRIBUTE)
+        areas = np.zeros(len(flags))
+        obj.data.polygons.foreach_get("area", areas)
+        scale = abs(obj.matrix_world.to_3x3().determinant()) ** (2.0 / 3.0)
+        faces += int(flags.sum())
+        area += float(areas[flags].sum()) * scale
+    scene.fenestra.domain_faces, scene.fenestra.domain_area = faces, area
+
+
+class FENESTRA_OT_mark_domain(bpy.types.Operator):
+    """Mark the selected faces as opening domain: openings may be cut there"""
+    bl_idname = "fenestra.mark_domain"
+    bl_label = "Mark Selected Faces"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        return context.mode == 'EDIT_MESH'
+
+    def execute(self, context):
+        n = _mark_selected(context, True)
+        self.report({'INFO'}, "%d faces marked as opening domain" % n)
+        return {'FINISHED'}
+
+
+class FENESTRA_OT_clear_domain(bpy.types.Operator):
+    """Remove the selected faces from the opening domain"""
+    bl_idname = "fenestra.clear_domain"
+    bl_label = "Clear"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        return context.mode == 'EDIT_MESH'
+
+    def execute(self, context):
+        n = _mark_selected(context, False)
+        self.report({'INFO'}, "%d faces removed from the opening domain" % n)
+        return {'FINISHED'}
+
+
+# Sensors ----------------------------------------------------------------------------------------
+
+class FENESTRA_OT_add_sensor_grid(bpy.types.Operator):
+    """Add a grid of upward sensors over the selected floor object, at the set height and spacing"""
+    bl_idname = "fenestra.add_sensor_grid"
+    bl_label = "Add Sensor Grid"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return context.mode == 'OBJECT' and obj is not None and obj.type == 'MESH'
+
+    def execute(self, context):
+        settings = context.scene.fenestra
+        floor = context.active_object
+        height, spacing = settings.sensor_height, settings.sensor_spacing
+        corners = np.array([floor.matrix_world @ Vector(c) for c in floor.bound_box])
+        lo, hi = corners.min(axis=0), corners.max(axis=0)
+        nx = max(1, int((hi[0] - lo[0]) // spacing))
+        ny = max(1, int((hi[1] - lo[1]) // spacing))
+        x0 = lo[0] + (hi[0] - lo[0] - (nx - 1) * spacing) / 2
+        y0 = lo[1] + (hi[1] - lo[1] - (ny - 1) * spacing) / 2
+        z = lo[2] + height
+        # Keep the points with the floor right below them (ray cast in the floor's space).
+        depsgraph = context.evaluated_depsgraph_get()
+        inverse = floor.matrix_world.inverted()
+        down = (inverse.to_3x3() @ Vector((0, 0, -1))).normalized()
+        index, verts = {}, []
+        for i in range(nx):
+            for j in range(ny):
+                p = Vector((x0 + i * spacing, y0 + j * spacing, z))
+                hit, *_ = floor.ray_cast(inverse @ p, down, distance=height * 1.01 + 1e-3, depsgraph=depsgraph)
+                if hit:
+                    index[i, j] = len(verts)
+                    verts.append(p)
+        if not verts:
+            self.report({'ERROR'}, "No floor of '%s' lies under the grid at %.2f m" % (floor.name, height))
+            return {'CANCELLED'}
+        faces = [(index[i, j], index[i + 1, j], index[i + 1, j + 1], index[i, j + 1])
+                 for i in range(nx - 1) for j in range(ny - 1)
+                 if all(k in index for k in ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)))]
+        mesh = bpy.data.meshes.new("Fenestra Sensors")
+        mesh.from_pydata([tuple(v) for v in verts], [], faces)
+        goal = mesh.color_attributes.new(export.GOAL_ATTRIBUTE, 'FLOAT_COLOR', 'POINT')
+        level = min(settings.goals.level, 1.0) if settings.goals.units == 'NORMALIZED' else 0.5
+        goal.data.foreach_set("color_srgb", [level, level, level, 1.0] * len(verts))
+        obj = bpy.data.objects.new("Fenestra Sensors", mesh)
+        obj.fenestra.is_sensor = True
+        obj.hide_render = True
+        context.collection.objects.link(obj)
+        self.report({'INFO'}, "%d sensors at %.2f m" % (len(verts), height))
+        return {'FINISHED'}
+
+
+# Sky --------------------------------------------------------------------------------------------
+
+class FENESTRA_OT_preview_sky(bpy.types.Operator):
+    """Compute the study's sky map and light the World with it (the sun is not in the map)"""
+    bl_idname = "fenestra.preview_sky"
+    bl_label = "Preview Sky"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        if not _native_or_report(self):
+            return {'CANCELLED'}
+        from .. import api as fenestra
+        scene = context.scene
+        path = os.path.join(export.study_directory(scene), "sky.exr")
+        try:
+            with tempfile.TemporaryDirectory() as probe:
+                native_scene = native.probe_scene(probe, sky=sky.sky_dict(scene))
+                os.makedirs(os.path.dirname(path), exist_ok=True)
+                fenestra.write_sky(native_scene, path)
+                summary = fenestra.sky(native_scene)["horizontal_illuminance"]
+        except (ValueError, OSError) as exc:
+            self.report({'ERROR'}, str(exc))
+            return {'CANCELLED'}
+        sky.show_in_world(scene, path, scene.fenestra.sky.preview_strength)
+        self.report({'INFO'}, "Sky %.0f lux + sun %.0f lux on the horizontal (mean over the interval)"
+                    % (summary["sky"], summary["sun"]))
+        return {'FINISHED'}
+
+
+# Solve ------------------------------------------------------------------------------------------
+
+class FENESTRA_OT_solve_openings(bpy.types.Operator):
+    """Compute the openings that meet the sensors' daylight goals and cut them into the domain"""
+    bl_idname = "fenestra.solve_openings"
+    bl_label = "Solve Openings"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    _timer = None
+    _thread = None
+
+    @classmethod
+    def poll(cls, context):
+        return context.mode == 'OBJECT'
+
+    def _prepare(self, context):
+        """Exports and loads the study; reports and returns False on a bad setup."""
+        if not _native_or_report(self):
+            return False
+        from .. import api as fenestra
+        try:
+            self._study = export.build(context)
+            path = self._study.write(export.study_directory(context.scene))
+            self._scene = fenestra.load_scene(path)
+        except (ValueError, OSError) as exc:
+            self.report({'ERROR'}, str(exc))
+            return False
+        return True
+
+    def _finish(self, context, result):
+        with open(os.path.join(self._study.directory, "result.json"), "w") as f:
+            json.dump(result, f, indent=1)
+        results.apply(context, self._study, result)
+        r = context.scene.fenestra.results
+        self.report({'INFO'}, "%d openings, relative RMS error %.1f %%, %.1f s (study in %s)"
+                    % (r.openings, 100 * r.relative_rms, r.seconds_total, self._study.directory))
+        return {'FINISHED'}
+
+    def execute(self, context):
+        """Solves on this thread (scripts and background mode)."""
+        if not self._prepare(context):
+            return {'CANCELLED'}
+        from .. import api as fenestra
+        try:
+            result = fenestra.solve(self._scene)
+        except Exception as exc:  # the native message, for the user
+            self.report({'ERROR'}, str(exc))
+            return {'CANCELLED'}
+        return self._finish(context, result)
+
+    def invoke(self, context, event):
+        """Solves on a worker thread; a timer shows progress, Esc cancels."""
+        if bpy.app.background:
+            return self.execute(context)
+        if not self._prepare(context):
+            return {'CANCELLED'}
+        from .. import api as fenestra
+        self._progress = fenestra.Progress()
+        self._outcome = {}
+        scene, progress, outcome = self._scene, self._progress, self._outcome
+
+        def work():  # no bpy here
+            try:
+                outcome["result"] = fenestra.solve(scene, progress=progress)
+            except BaseException as exc:
+                outcome["error"] = exc
+
+        self._thread = threading.Thread(target=work, daemon=True)
+        self._thread.start()
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(0.2, window=context.window)
+        wm.progress_begin(0, 100)
+        wm.modal_handler_add(self)
+        return {'RUNNING_MODAL'}
+
+    def _status(self, context, text):
+        context.workspace.status_text_set(text)
+
+    def _end(self, context):
+        wm = context.window_manager
+        wm.event_timer_remove(self._timer)
+        wm.progress_end()
+        self._status(context, None)
+
+    def modal(self, context, event):
+        if event.type == 'ESC' and event.value == 'PRESS':
+            self._progress.cancel()
+            return {'RUNNING_MODAL'}
+        if event.type != 'TIMER':
+            return {'PASS_THROUGH'}
+        if self._thread.is_alive():
+            fraction = self._progress.fraction
+            context.window_manager.progress_update(int(100 * fraction))
+            self._status(context, "Fenestra: %s %d %% (Esc to cancel)" % (self._progress.status, 100 * fraction))
+            return {'RUNNING_MODAL'}
+        self._end(context)
+        from .. import api as fenestra
+        error = self._outcome.get("error")
+        if isinstance(error, fenestra.Cancelled):
+            self.report({'WARNING'}, "Solve cancelled")
+            return {'CANCELLED'}
+        if error is not None:
+            self.report({'ERROR'}, str(error))
+            return {'CANCELLED'}
+        return self._finish(context, self._outcome["result"])
+
+
+class FENESTRA_OT_clear_results(bpy.types.Operator):
+    """Remove the openings' cutters and Boolean modifiers made by Solve Openings"""
+    bl_idname = "fenestra.clear_results"
+    bl_label = "Clear Results"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        results.clear(context.scene)
+        return {'FINISHED'}
+
+
+classes = (
+    FENESTRA_OT_mark_domain,
+    FENESTRA_OT_clear_domain,
+    FENESTRA_OT_add_sensor_grid,
+    FENESTRA_OT_preview_sky,
+    FENESTRA_OT_solve_openings,
+    FENESTRA_OT_clear_results,
+)

@@ -1,0 +1,203 @@
+"""The Fenestra sidebar tab of the 3D View: domain, sensors, sky, solve, results."""
+
+import bpy
+
+from . import export, native, sky
+
+SHOWN = 12  # sensors listed in the Results panel
+
+
+def draw_warning(layout, text):
+    """A plainly visible warning, wrapped over several lines."""
+    box = layout.box()
+    words, line, first = text.split(), "", True
+    for word in words:
+        if len(line) + len(word) > 40:
+            box.label(text=line, icon='ERROR' if first else 'BLANK1')
+            line, first = "", False
+        line = (line + " " + word).strip()
+    if line:
+        box.label(text=line, icon='ERROR' if first else 'BLANK1')
+
+
+class FenestraPanel:
+    bl_space_type = 'VIEW_3D'
+    bl_region_type = 'UI'
+    bl_category = "Fenestra"
+
+
+class FENESTRA_PT_main(FenestraPanel, bpy.types.Panel):
+    bl_label = "Fenestra"
+
+    def draw(self, context):
+        reason = native.unavailable()
+        if reason:
+            draw_warning(self.layout, reason)
+
+
+class FENESTRA_PT_domain(FenestraPanel, bpy.types.Panel):
+    bl_label = "Opening Domain"
+    bl_parent_id = "FENESTRA_PT_main"
+
+    def draw(self, context):
+        layout, settings = self.layout, context.scene.fenestra
+        row = layout.row(align=True)
+        row.operator("fenestra.mark_domain")
+        row.operator("fenestra.clear_domain")
+        if context.mode != 'EDIT_MESH':
+            layout.label(text="Select faces in Edit Mode", icon='INFO')
+        layout.label(text="%d faces, %.2f m²" % (settings.domain_faces, settings.domain_area))
+        size = settings.solve.element_size
+        layout.label(text="About %d elements of %.2f m" % (settings.domain_area / size ** 2, size))
+
+
+class FENESTRA_PT_sensors(FenestraPanel, bpy.types.Panel):
+    bl_label = "Sensors"
+    bl_parent_id = "FENESTRA_PT_main"
+
+    def draw(self, context):
+        layout, settings = self.layout, context.scene.fenestra
+        col = layout.column(align=True)
+        col.prop(settings, "sensor_height")
+        col.prop(settings, "sensor_spacing")
+        col.operator("fenestra.add_sensor_grid", icon='LIGHTPROBE_GRID')
+        obj = context.active_object
+        if obj is not None and obj.type == 'MESH':
+            layout.prop(obj.fenestra, "is_sensor", text="Sensor Object (%s)" % obj.name)
+        sensors = [o for o in context.scene.objects if o.fenestra.is_sensor and o.type == 'MESH']
+        layout.label(text="%d sensors in %d objects" % (sum(len(o.data.vertices) for o in sensors), len(sensors)))
+        goals = settings.goals
+        layout.prop(goals, "source")
+        layout.prop(goals, "units")
+        if goals.source == 'UNIFORM':
+            layout.prop(goals, "level")
+            for flag, value in (("use_min", "min"), ("use_max", "max")):
+                row = layout.row(align=True)
+                row.prop(goals, flag, text="")
+                sub = row.row()
+                sub.active = getattr(goals, flag)
+                sub.prop(goals, value)
+        else:
+            layout.prop(goals, "scale")
+            layout.label(text="Paint '%s' in Vertex Paint" % export.GOAL_ATTRIBUTE, icon='BRUSH_DATA')
+
+
+class FENESTRA_PT_sky(FenestraPanel, bpy.types.Panel):
+    bl_label = "Sky"
+    bl_parent_id = "FENESTRA_PT_main"
+
+    def draw(self, context):
+        layout, s = self.layout, context.scene.fenestra.sky
+        layout.prop(s, "type")
+        if s.type in {'UNIFORM', 'CIE_OVERCAST'}:
+            layout.prop(s, "horizontal_illuminance")
+        else:
+            sp = sky.sun_position(context.scene)
+            if sp is not None:
+                layout.prop(s, "use_sun_position")
+            col = layout.column(align=True)
+            if sp is not None and s.use_sun_position:
+                lat, lon, utc, north, (y, m, d) = sky.place_and_date(context.scene)
+                col.label(text="Sun Position: %.3f°, %.3f°, UTC%+g" % (lat, lon, utc), icon='LIGHT_SUN')
+                col.label(text="%04d-%02d-%02d, north %.1f°" % (y, m, d, north))
+            else:
+                col.prop(s, "latitude")
+                col.prop(s, "longitude")
+                col.prop(s, "utc_offset")
+                col.prop(s, "north_offset")
+                row = col.row(align=True)
+                row.prop(s, "year", text="")
+                row.prop(s, "month", text="")
+                row.prop(s, "day", text="")
+            layout.prop(s, "use_date_end")
+            if s.use_date_end:
+                row = layout.row(align=True)
+                row.prop(s, "end_year", text="")
+                row.prop(s, "end_month", text="")
+                row.prop(s, "end_day", text="")
+            row = layout.row(align=True)
+            row.prop(s, "start_time")
+            row.prop(s, "end_time")
+            layout.prop(s, "step_minutes")
+            layout.prop(s, "turbidity")
+        if s.type != 'UNIFORM':
+            layout.prop(s, "ground_reflectance")
+            layout.prop(s, "map_width")
+        layout.prop(s, "preview_strength")
+        layout.operator("fenestra.preview_sky", icon='WORLD')
+
+
+class FENESTRA_PT_solve(FenestraPanel, bpy.types.Panel):
+    bl_label = "Solve"
+    bl_parent_id = "FENESTRA_PT_main"
+
+    def draw(self, context):
+        layout, s = self.layout, context.scene.fenestra.solve
+        col = layout.column(align=True)
+        col.prop(s, "element_size")
+        col.prop(s, "wall_thickness")
+        layout.prop(s, "quality")
+        if s.quality == 'CUSTOM':
+            col = layout.column(align=True)
+            col.prop(s, "paths")
+            col.prop(s, "generations")
+            col.prop(s, "population")
+        layout.prop(s, "seed")
+        layout.prop(s, "use_booleans")
+        layout.prop(s, "study_directory")
+        layout.separator()
+        layout.operator("fenestra.solve_openings", icon='MOD_BOOLEAN')
+
+
+class FENESTRA_PT_constraints(FenestraPanel, bpy.types.Panel):
+    bl_label = "Constraints"
+    bl_parent_id = "FENESTRA_PT_solve"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout, c = self.layout, context.scene.fenestra.solve.constraints
+        layout.label(text="0 = unset")
+        col = layout.column(align=True)
+        for key in c.KEYS:
+            col.prop(c, key)
+        if native.unavailable() is None and c.as_dict() and not native.accepts_constraints():
+            draw_warning(layout, "This build of the solver does not take constraints yet: they are not used.")
+
+
+class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
+    bl_label = "Results"
+    bl_parent_id = "FENESTRA_PT_main"
+
+    def draw(self, context):
+        layout, r = self.layout, context.scene.fenestra.results
+        if not r.valid:
+            layout.label(text="No result yet")
+            return
+        col = layout.column(align=True)
+        col.label(text="%d openings" % r.openings)
+        col.label(text="%d of %d elements open" % (r.open_elements, r.elements))
+        col.label(text="Error %.1f %% RMS" % (100 * r.relative_rms))
+        col.label(text="Worst sensor %.1f %%" % (100 * r.max_relative))
+        col.label(text="Time %.1f s (solver %.1f s)" % (r.seconds_total, r.seconds_solver))
+        box = layout.box()
+        col = box.column(align=True)
+        for cells in [("Sensor", "Goal lx", "Got lx")] + [
+                (str(i), "-" if s.goal < 0 else "%.0f" % s.goal, "%.0f" % s.achieved)
+                for i, s in enumerate(r.sensors[:SHOWN])]:
+            row = col.row(align=True)
+            for text in cells:
+                row.label(text=text)
+        if len(r.sensors) > SHOWN:
+            box.label(text="%d more: see 'fenestra_achieved'" % (len(r.sensors) - SHOWN))
+        layout.operator("fenestra.clear_results", icon='X')
+
+
+classes = (
+    FENESTRA_PT_main,
+    FENESTRA_PT_domain,
+    FENESTRA_PT_sensors,
+    FENESTRA_PT_sky,
+    FENESTRA_PT_solve,
+    FENESTRA_PT_constraints,
+    FENESTRA_PT_results,
+)

@@ -1,0 +1,200 @@
+"""Settings of a study: `scene.fenestra` (one PropertyGroup per concern) and `object.fenestra`."""
+
+import datetime
+
+import bpy
+from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty,
+                       PointerProperty, StringProperty)
+from bpy.types import PropertyGroup
+
+TODAY = datetime.date.today()
+
+
+class FenestraObjectSettings(PropertyGroup):
+    is_sensor: BoolProperty(
+        name="Sensor", default=False,
+        description="The vertices of this object are sensor points (vertex normals give their orientation); "
+                    "it is not part of the lit geometry")
+    is_opening: BoolProperty(
+        name="Opening", default=False,
+        description="A cutter made by Solve Openings (replaced by the next solve, not part of the geometry)")
+
+
+class FenestraSkySettings(PropertyGroup):
+    type: EnumProperty(
+        name="Sky", default='PREETHAM',
+        items=(('PREETHAM', "Preetham + Sun", "Clear sky and sun for a place, dates and hours"),
+               ('CIE_CLEAR', "CIE Clear + Sun", "CIE standard clear sky with the same sun"),
+               ('CIE_OVERCAST', "CIE Overcast", "CIE standard overcast sky (daylight factors)"),
+               ('UNIFORM', "Uniform", "The same radiance from every direction")))
+    use_sun_position: BoolProperty(
+        name="Use Sun Position", default=True,
+        description="Take place, time zone, date and north from the Sun Position add-on when it is enabled")
+    latitude: FloatProperty(name="Latitude", description="Degrees, north positive",
+                            min=-90.0, max=90.0, default=48.85, precision=3)
+    longitude: FloatProperty(name="Longitude", description="Degrees, east positive",
+                             min=-180.0, max=180.0, default=2.35, precision=3)
+    utc_offset: FloatProperty(name="UTC Offset", description="Hours the local clock is ahead of UTC",
+                              min=-14.0, max=14.0, default=1.0, step=50)
+    north_offset: FloatProperty(name="North Offset", subtype='ANGLE', default=0.0,
+                                description="True north, clockwise from +Y seen from above")
+    year: IntProperty(name="Year", min=1, max=4000, default=TODAY.year)
+    month: IntProperty(name="Month", min=1, max=12, default=6)
+    day: IntProperty(name="Day", min=1, max=31, default=21)
+    use_date_end: BoolProperty(name="Date Range", default=False,
+                               description="Average every day from the date to an end date")
+    end_year: IntProperty(name="End Year", min=1, max=4000, default=TODAY.year)
+    end_month: IntProperty(name="End Month", min=1, max=12, default=6)
+    end_day: IntProperty(name="End Day", min=1, max=31, default=21)
+    start_time: FloatProperty(name="Start", description="Local clock, hours", min=0.0, max=24.0,
+                              default=9.0, precision=2)
+    end_time: FloatProperty(name="End", description="Local clock, hours (before the start: past midnight)",
+                            min=0.0, max=24.0, default=17.0, precision=2)
+    step_minutes: FloatProperty(name="Step", description="Time step, minutes", min=1.0, max=240.0, default=15.0)
+    turbidity: FloatProperty(name="Turbidity", description="1.7 (very clear) to 10 (hazy)",
+                             min=1.7, max=10.0, default=3.0)
+    ground_reflectance: FloatProperty(name="Ground Reflectance", min=0.0, max=1.0, default=0.2)
+    horizontal_illuminance: FloatProperty(
+        name="Illuminance", description="Overcast and uniform skies: lux on an unobstructed "
+        "horizontal surface", min=1.0, default=10000.0)
+    map_width: IntProperty(name="Map Width", description="Width of the sky map in pixels (height: half)",
+                           min=16, max=8192, default=1024)
+    preview_strength: FloatProperty(
+        name="Preview Strength", min=0.0, default=0.001, precision=5,
+        description="World strength of the previewed sky map (1 = cd/m², as Fenestra lights the scene)")
+
+
+class FenestraGoalSettings(PropertyGroup):
+    source: EnumProperty(
+        name="Goals", default='UNIFORM',
+        items=(('UNIFORM', "Uniform", "One goal for every sensor, with optional bounds"),
+               ('ATTRIBUTE', "Painted", "Per vertex from the sensor mesh's 'fenestra_goal' attribute: "
+                "a colour attribute (its brightness) or a float attribute, times the scale")))
+    units: EnumProperty(
+        name="Units", default='NORMALIZED',
+        items=(('NORMALIZED', "Normalized", "0 = dark, 1 = the sensor's value with every element open"),
+               ('LUX', "Lux", "Illuminance"),
+               ('DAYLIGHT_FACTOR', "Daylight Factor", "Percent of the unobstructed horizontal illuminance")))
+    level: FloatProperty(name="Goal", min=0.0, default=0.5, description="Uniform goal, in the goal units")
+    use_min: BoolProperty(name="Minimum", default=False)
+    min: FloatProperty(name="Minimum", min=0.0, default=0.3, description="Penalised below this, goal units")
+    use_max: BoolProperty(name="Maximum", default=False)
+    max: FloatProperty(name="Maximum", min=0.0, default=0.8, description="Penalised above this, goal units")
+    scale: FloatProperty(name="Scale", min=0.0, default=1.0,
+                         description="Painted goals: the goal of a white vertex (or of a float value 1)")
+
+
+class FenestraConstraints(PropertyGroup):
+    """Architectural constraints on the openings; 0 leaves one unset."""
+    min_area: FloatProperty(name="Min Area", min=0.0, default=0.0, unit='AREA')
+    max_area: FloatProperty(name="Max Area", min=0.0, default=0.0, unit='AREA')
+    min_aspect: FloatProperty(name="Min Aspect", min=0.0, default=0.0, description="Width / height")
+    max_aspect: FloatProperty(name="Max Aspect", min=0.0, default=0.0, description="Width / height")
+    min_width: FloatProperty(name="Min Width", min=0.0, default=0.0, unit='LENGTH')
+    max_width: FloatProperty(name="Max Width", min=0.0, default=0.0, unit='LENGTH')
+    min_height: FloatProperty(name="Min Height", min=0.0, default=0.0, unit='LENGTH')
+    max_height: FloatProperty(name="Max Height", min=0.0, default=0.0, unit='LENGTH')
+    max_openings: IntProperty(name="Max Openings", min=0, default=0)
+    min_gap: FloatProperty(name="Min Gap", min=0.0, default=0.0, unit='LENGTH',
+                           description="Between two openings")
+    margin: FloatProperty(name="Margin", min=0.0, default=0.0, unit='LENGTH',
+                          description="From the edges of a panel")
+    sill_min: FloatProperty(name="Min Sill", min=0.0, default=0.0, unit='LENGTH',
+                            description="Lowest sill height above the panel's bottom")
+    head_max: FloatProperty(name="Max Head", min=0.0, default=0.0, unit='LENGTH',
+                            description="Highest head height above the panel's bottom")
+
+    KEYS = ("min_area", "max_area", "min_aspect", "max_aspect", "min_width", "max_width", "min_height",
+            "max_height", "max_openings", "min_gap", "margin", "sill_min", "head_max")
+
+    def as_dict(self):
+        """The constraints that are set, as the scene file's solver.constraints."""
+        return {k: getattr(self, k) for k in self.KEYS if getattr(self, k) > 0}
+
+
+QUALITY = {'PREVIEW': (2048, 150, 32), 'FINAL': (16384, 500, 64)}  # paths, generations, population
+
+
+class FenestraSolveSettings(PropertyGroup):
+    element_size: FloatProperty(name="Element Size", min=0.001, soft_min=0.05, soft_max=2.0, default=0.25,
+                                unit='LENGTH', description="Side of the square opening elements")
+    wall_thickness: FloatProperty(name="Wall Thickness", min=0.0, default=0.0, unit='LENGTH',
+                                  description="Depth the openings cut through, away from the sensors")
+    quality: EnumProperty(
+        name="Quality", default='PREVIEW',
+        items=(('PREVIEW', "Preview", "%d paths per sensor, %d generations" % QUALITY['PREVIEW'][:2]),
+               ('FINAL', "Final", "%d paths per sensor, %d generations" % QUALITY['FINAL'][:2]),
+               ('CUSTOM', "Custom", "Paths, generations and population as set")))
+    paths: IntProperty(name="Paths", min=16, default=4096, description="Paths per sensor")
+    generations: IntProperty(name="Generations", min=0, default=300)
+    population: IntProperty(name="Population", min=4, default=64)
+    seed: IntProperty(name="Seed", min=0, default=1)
+    constraints: PointerProperty(type=FenestraConstraints)
+    use_booleans: BoolProperty(name="Cut Domain Objects", default=True,
+                               description="Add a Boolean Difference with the openings to the domain objects")
+    cutter_margin: FloatProperty(name="Cutter Margin", min=0.0, default=0.02, unit='LENGTH',
+                                 description="The cutters reach this far beyond the wall on both sides")
+    study_directory: StringProperty(
+        name="Study Folder", subtype='DIR_PATH', default="",
+        description="Where scene.json, scene.obj and result.json are written (empty: next to the .blend "
+                    "file, or Blender's temporary folder for an unsaved file)")
+
+    def budget(self):
+        """(paths per sensor, generations, population) of the chosen quality."""
+        if self.quality == 'CUSTOM':
+            return self.paths, self.generations, self.population
+        return QUALITY[self.quality]
+
+
+class FenestraSensorResult(PropertyGroup):
+    goal: FloatProperty(name="Goal", description="Lux (negative: no goal)")
+    achieved: FloatProperty(name="Achieved", description="Lux")
+
+
+class FenestraResults(PropertyGroup):
+    valid: BoolProperty(default=False)
+    relative_rms: FloatProperty(name="Relative RMS Error")
+    max_relative: FloatProperty(name="Worst Sensor Error")
+    openings: IntProperty(name="Openings")
+    open_elements: IntProperty(name="Open Elements")
+    elements: IntProperty(name="Elements")
+    seconds_total: FloatProperty(name="Total", unit='TIME_ABSOLUTE')
+    seconds_contributions: FloatProperty(name="Contributions", unit='TIME_ABSOLUTE')
+    seconds_solver: FloatProperty(name="Solver", unit='TIME_ABSOLUTE')
+    study_path: StringProperty(name="Study", subtype='FILE_PATH')
+    sensors: CollectionProperty(type=FenestraSensorResult)
+
+
+class FenestraSceneSettings(PropertyGroup):
+    sky: PointerProperty(type=FenestraSkySettings)
+    goals: PointerProperty(type=FenestraGoalSettings)
+    solve: PointerProperty(type=FenestraSolveSettings)
+    results: PointerProperty(type=FenestraResults)
+    sensor_height: FloatProperty(name="Height", min=0.0, default=0.8, unit='LENGTH',
+                                 description="Sensor grid: height above the floor")
+    sensor_spacing: FloatProperty(name="Spacing", min=0.05, default=0.5, unit='LENGTH',
+                                  description="Sensor grid: distance between sensors")
+    domain_faces: IntProperty(name="Domain Faces", description="Faces marked as opening domain (last count)")
+    domain_area: FloatProperty(name="Domain Area", unit='AREA', description="Their area (last count)")
+
+
+classes = (
+    FenestraObjectSettings,
+    FenestraSkySettings,
+    FenestraGoalSettings,
+    FenestraConstraints,
+    FenestraSolveSettings,
+    FenestraSensorResult,
+    FenestraResults,
+    FenestraSceneSettings,
+)
+
+
+def register():
+    bpy.types.Scene.fenestra = PointerProperty(type=FenestraSceneSettings)
+    bpy.types.Object.fenestra = PointerProperty(type=FenestraObjectSettings)
+
+
+def unregister():
+    del bpy.types.Object.fenestra
+    del bpy.types.Scene.fenestra

@@ -1,0 +1,100 @@
+#pragma once
+// What makes an opening architecturally admissible (the paper's shape constraints): a rectangle
+// of whole elements within one panel, with limits on its size, proportions, placement and count.
+//
+// Width runs along the panel's u axis (rows: horizontal on walls), height along v (up the
+// panel); aspect = width / height. Two openings must always be separate regions of the open
+// mask (at least one element apart, so that the mask and the rectangles describe the same
+// openings), and at least `min_gap` apart.
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "scene/mesh.h"
+#include "scene/opening_domain.h"
+
+namespace fenestra {
+
+// Lengths in meters, areas in m^2. The defaults constrain nothing.
+struct OpeningConstraints {
+  static constexpr double kUnlimited = std::numeric_limits<double>::infinity();
+  double min_area = 0.0, max_area = kUnlimited;
+  double min_aspect = 0.0, max_aspect = kUnlimited;
+  double min_width = 0.0, max_width = kUnlimited;
+  double min_height = 0.0, max_height = kUnlimited;
+  int max_openings = 0;  // over the whole domain; 0: unlimited
+  double min_gap = 0.0;  // clear distance between the edges of two openings of one panel
+  double margin = 0.0;   // clear distance from the panel's edges and holes, in whole elements of its grid
+  // On walls only (normal within 30 degrees of horizontal), above the panel's base height.
+  double sill_min = 0.0, sill_max = kUnlimited;
+  double head_min = 0.0, head_max = kUnlimited;
+  // World Z of each panel's lowest point, which sills and heads are measured from
+  // (panel_base_heights()). Empty: the bottom of each panel's element grid, which the grid's
+  // centring may lift above the panel's edge by up to half an element.
+  std::vector<double> panel_base_z;
+
+  bool any() const;  // whether anything is constrained beyond plain rectangles
+  std::string to_string() const;
+};
+
+// Elements [row0, row1] x [col0, col1] (inclusive) of one panel.
+struct GridRectangle {
+  int panel = 0;
+  int row0 = 0, row1 = 0, col0 = 0, col1 = 0;
+
+  int rows() const { return row1 - row0 + 1; }
+  int cols() const { return col1 - col0 + 1; }
+  int element_count() const { return rows() * cols(); }
+  bool operator==(const GridRectangle& o) const {
+    return panel == o.panel && row0 == o.row0 && row1 == o.row1 && col0 == o.col0 && col1 == o.col1;
+  }
+  bool operator!=(const GridRectangle& o) const { return !(*this == o); }
+  bool operator<(const GridRectangle& o) const;  // panel, then bottom-left corner, then size
+  std::string to_string() const;
+};
+
+// Throws std::invalid_argument naming the values when no grid-aligned opening (sides multiples
+// of `element_size`) can meet the constraints, or a value is negative or not a number.
+void check_feasible(const OpeningConstraints& constraints, double element_size);
+
+// The constraints counted in whole elements (sizes are multiples of the element size).
+struct GridLimits {
+  int min_rows = 1, max_rows = 0, min_cols = 1, max_cols = 0;
+  int64_t min_elements = 1, max_elements = 0;
+  double min_aspect = 0.0, max_aspect = 0.0;
+  int margin_elements = 0;  // whole elements kept clear around an opening (margin rounded up)
+  int gap_elements = 1;     // whole elements between two openings side by side (min_gap, at least one)
+
+  // Size, area and aspect ratio of a rows x cols opening.
+  bool fits(int rows, int cols) const;
+};
+GridLimits grid_limits(const OpeningConstraints& constraints, double element_size);
+
+// Panels whose normal lies within 30 degrees of horizontal: sill and head limits apply there.
+bool is_wall(const Panel& panel);
+// Sill and head limits of an opening spanning rows [row0, row1] of panel `panel_index`
+// (true on roofs). Rows are horizontal on walls, so columns do not matter.
+bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const OpeningConstraints& constraints,
+                double element_size, std::string* why = nullptr);
+// World Z of the lowest vertex of each panel's faces.
+std::vector<double> panel_base_heights(const OpeningDomain& domain, const Mesh& mesh);
+
+// One opening: inside its panel's grid on existing elements, `margin` clear of the panel's
+// edges, and within the size, aspect, sill and head limits. `why` (optional) says what fails.
+bool satisfies(const GridRectangle& rect, const Panel& panel, const OpeningConstraints& constraints,
+               double element_size, std::string* why = nullptr);
+// Clear distance between the edges of two openings of one panel (0 when they touch or
+// overlap; infinity on different panels).
+double clear_distance(const GridRectangle& a, const GridRectangle& b, double element_size);
+// Whether two openings are separate regions and at least min_gap apart.
+bool apart(const GridRectangle& a, const GridRectangle& b, const OpeningConstraints& constraints,
+           double element_size);
+// Every opening satisfies(), every pair is apart(), and there are at most max_openings.
+bool satisfies_all(const OpeningDomain& domain, const std::vector<GridRectangle>& rects,
+                   const OpeningConstraints& constraints, std::string* why = nullptr);
+
+// The open mask (one value per element of the domain) of a set of openings.
+std::vector<uint8_t> rectangles_mask(const OpeningDomain& domain, const std::vector<GridRectangle>& rects);
+
+}  // namespace fenestra

@@ -1,0 +1,251 @@
+"""The Blender add-on end to end, inside Blender (run by test_blender_addon.py):
+
+    blender -b --factory-startup --python-exit-code 1 --python addon_study.py -- OUT_DIR
+
+The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
+
+import json
+import os
+import sys
+import unittest
+
+import addon_utils
+import bpy
+import numpy as np
+
+OUT = sys.argv[sys.argv.index("--") + 1] if "--" in sys.argv else "/tmp/fenestra_addon_test"
+ROOM = (4.0, 4.0, 2.7)
+
+
+def enable():
+    addon_utils.enable("fenestra", default_set=True, handle_error=None)
+    assert hasattr(bpy.types.Scene, "fenestra"), "the add-on did not register"
+
+
+def disable():
+    addon_utils.disable("fenestra", default_set=True, handle_error=None)
+
+
+def reset():
+    bpy.ops.wm.read_homefile(use_empty=True)
+    enable()
+
+
+def box_room():
+    """A closed 4 x 4 x 2.7 m box; face 2 is the south wall (y = 0)."""
+    x, y, z = ROOM
+    verts = [(0, 0, 0), (x, 0, 0), (x, y, 0), (0, y, 0), (0, 0, z), (x, 0, z), (x, y, z), (0, y, z)]
+    faces = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    mesh = bpy.data.meshes.new("Room")
+    mesh.from_pydata(verts, [], faces)
+    room = bpy.data.objects.new("Room", mesh)
+    bpy.context.collection.objects.link(room)
+    material = bpy.data.materials.new("Plaster")
+    material.use_nodes = True
+    material.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.6, 0.6, 0.6, 1)
+    material.node_tree.nodes["Principled BSDF"].inputs["Roughness"].default_value = 1.0
+    mesh.materials.append(material)
+    return room
+
+
+def select_only(obj):
+    for o in bpy.context.view_layer.objects:
+        o.select_set(False)
+    obj.select_set(True)
+    bpy.context.view_layer.objects.active = obj
+
+
+def mark_south_wall(room):
+    select_only(room)
+    bpy.ops.object.mode_set(mode='EDIT')
+    bpy.ops.mesh.select_all(action='DESELECT')
+    bpy.ops.object.mode_set(mode='OBJECT')
+    room.data.polygons[2].select = True
+    bpy.ops.object.mode_set(mode='EDIT')
+    assert bpy.ops.fenestra.mark_domain() == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+
+
+def study(sensors=True, domain=True):
+    """The whole setup, through the add-on's operators and settings."""
+    room = box_room()
+    if domain:
+        mark_south_wall(room)
+    f = bpy.context.scene.fenestra
+    f.sensor_height, f.sensor_spacing = 0.8, 1.0
+    if sensors:
+        select_only(room)
+        assert bpy.ops.fenestra.add_sensor_grid() == {'FINISHED'}
+    f.goals.source, f.goals.units, f.goals.level = 'UNIFORM', 'NORMALIZED', 0.5
+    f.sky.type, f.sky.horizontal_illuminance = 'UNIFORM', 10000.0
+    s = f.solve
+    s.element_size, s.wall_thickness = 0.5, 0.2
+    s.quality, s.paths, s.generations, s.population, s.seed = 'CUSTOM', 512, 40, 16, 3
+    s.study_directory = os.path.join(OUT, "study")
+    return room
+
+
+def cutters():
+    return [o for o in bpy.data.objects if o.fenestra.is_opening]
+
+
+def snapshot():
+    """What a failed solve must leave alone."""
+    return (sorted(o.name for o in bpy.data.objects), sorted(c.name for c in bpy.data.collections),
+            sorted((o.name, m.name) for o in bpy.data.objects for m in o.modifiers),
+            bpy.context.scene.fenestra.results.valid, len(bpy.data.meshes))
+
+
+class Registration(unittest.TestCase):
+    def test_register_unregister_twice(self):
+        for _ in range(2):
+            enable()
+            self.assertTrue(hasattr(bpy.types.Scene, "fenestra"))
+            self.assertTrue(hasattr(bpy.ops.fenestra, "solve_openings"))
+            self.assertIn("FENESTRA_PT_main", dir(bpy.types))
+            disable()
+            self.assertFalse(hasattr(bpy.types.Scene, "fenestra"))
+        enable()
+
+
+class Solve(unittest.TestCase):
+    def setUp(self):
+        reset()
+
+    def test_solve_cuts_openings_in_the_south_wall(self):
+        room = study()
+        self.assertEqual(bpy.context.scene.fenestra.domain_faces, 1)
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        found = cutters()
+        self.assertGreaterEqual(len(found), 1)
+        self.assertEqual(len(found), bpy.context.scene.fenestra.results.openings)
+        for obj in found:
+            self.assertEqual(obj.display_type, 'WIRE')
+            corners = np.array([obj.matrix_world @ v.co for v in obj.data.vertices])
+            lo, hi = corners.min(axis=0), corners.max(axis=0)
+            self.assertTrue(np.all(hi - lo > 0), (lo, hi))
+            # Through the south wall plane y = 0, away from the sensors (y > 0) by the thickness.
+            self.assertLess(lo[1], -0.2 + 1e-6)
+            self.assertGreater(hi[1], 0.0)
+            self.assertLess(hi[1], 0.1)
+            self.assertTrue(-1e-6 <= lo[0] and hi[0] <= ROOM[0] + 1e-6, (lo, hi))
+            self.assertTrue(-1e-6 <= lo[2] and hi[2] <= ROOM[2] + 1e-6, (lo, hi))
+        self.assertIn("Fenestra Openings", [m.name for m in room.modifiers])
+        r = bpy.context.scene.fenestra.results
+        self.assertTrue(r.valid)
+        self.assertLess(r.relative_rms, 1.0)
+        sensors = bpy.data.objects["Fenestra Sensors"]
+        achieved = sensors.data.attributes["fenestra_achieved"]
+        values = np.zeros(len(achieved.data))
+        achieved.data.foreach_get("value", values)
+        self.assertTrue(np.all(values > 0))
+        self.assertEqual(len(r.sensors), len(values))
+        # The study folder re-runs with the command line.
+        scene_json = json.load(open(os.path.join(OUT, "study", "scene.json")))
+        self.assertEqual(scene_json["opening_domain"]["groups"], ["Room.domain"])
+        self.assertTrue(os.path.exists(os.path.join(OUT, "study", "result.json")))
+
+        # Solving again replaces the results; the domain is read uncut.
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        self.assertEqual(len(cutters()), bpy.context.scene.fenestra.results.openings)
+        self.assertEqual(len(bpy.data.collections["Fenestra Openings"].objects), len(cutters()))
+        self.assertEqual([m.name for m in room.modifiers].count("Fenestra Openings"), 1)
+        self.assertEqual(json.load(open(os.path.join(OUT, "study", "scene.json")))["opening_domain"]["groups"],
+                         ["Room.domain"])
+
+    def test_constraints_reach_the_study_when_set(self):
+        from fenestra.blender import native
+        study()
+        path = os.path.join(OUT, "study", "scene.json")
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        self.assertNotIn("constraints", json.load(open(path))["solver"])  # none set: none written
+        bpy.context.scene.fenestra.solve.constraints.max_openings = 1
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        solver = json.load(open(path))["solver"]
+        if native.accepts_constraints():
+            self.assertEqual(solver["constraints"], {"max_openings": 1})
+            self.assertLessEqual(bpy.context.scene.fenestra.results.openings, 1)
+        else:
+            self.assertNotIn("constraints", solver)
+
+    def test_settings_survive_save_and_reload(self):
+        study()
+        f = bpy.context.scene.fenestra
+        f.sky.type, f.sky.latitude, f.solve.constraints.max_openings = 'PREETHAM', 37.98, 3
+        f.goals.use_min, f.goals.min = True, 0.25
+        path = os.path.join(OUT, "settings.blend")
+        bpy.ops.wm.save_as_mainfile(filepath=path)
+        bpy.ops.wm.read_homefile(use_empty=True)
+        bpy.ops.wm.open_mainfile(filepath=path)
+        f = bpy.context.scene.fenestra
+        self.assertEqual(f.sky.type, 'PREETHAM')
+        self.assertAlmostEqual(f.sky.latitude, 37.98, places=4)
+        self.assertEqual(f.solve.constraints.max_openings, 3)
+        self.assertEqual((f.solve.quality, f.solve.paths, f.solve.element_size), ('CUSTOM', 512, 0.5))
+        self.assertTrue(f.goals.use_min)
+        self.assertTrue(bpy.data.objects["Fenestra Sensors"].fenestra.is_sensor)
+        flags = np.zeros(6, bool)
+        bpy.data.objects["Room"].data.attributes["fenestra_domain"].data.foreach_get("value", flags)
+        self.assertEqual(flags.tolist(), [False, False, True, False, False, False])
+
+
+class BadSetups(unittest.TestCase):
+    """Each fails with an ERROR report naming the problem and leaves the file as it was."""
+
+    def setUp(self):
+        reset()
+
+    def assert_refused(self, words):
+        before = snapshot()
+        with self.assertRaises(RuntimeError) as failure:  # bpy.ops raises on an ERROR report
+            bpy.ops.fenestra.solve_openings()
+        message = str(failure.exception)
+        for word in words:
+            self.assertIn(word, message)
+        self.assertEqual(snapshot(), before)
+
+    def test_no_domain(self):
+        study(domain=False)
+        self.assert_refused(["No opening domain"])
+
+    def test_no_sensors(self):
+        study(sensors=False)
+        self.assert_refused(["No sensors"])
+
+    def test_sensor_without_vertices(self):
+        study()
+        empty = bpy.data.objects.new("Empty Sensors", bpy.data.meshes.new("Empty Sensors"))
+        empty.fenestra.is_sensor = True
+        bpy.context.collection.objects.link(empty)
+        self.assert_refused(["Empty Sensors", "no vertices"])
+
+    def test_no_goals(self):
+        study()
+        bpy.context.scene.fenestra.goals.source = 'ATTRIBUTE'
+        sensors = bpy.data.objects["Fenestra Sensors"].data
+        sensors.color_attributes.remove(sensors.color_attributes["fenestra_goal"])
+        self.assert_refused(["No goals", "fenestra_goal"])
+
+    def test_element_size_larger_than_the_wall(self):
+        study()
+        bpy.context.scene.fenestra.solve.element_size = 50.0
+        self.assert_refused(["element_size", "larger"])
+
+    def test_element_size_too_small(self):
+        study()
+        bpy.context.scene.fenestra.solve.element_size = 0.001
+        self.assert_refused(["too small"])
+
+    def test_bad_setup_after_a_solve_keeps_the_result(self):
+        study()
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        bpy.context.scene.fenestra.solve.element_size = 50.0
+        self.assert_refused(["element_size"])
+        self.assertTrue(bpy.context.scene.fenestra.results.valid)
+
+
+if __name__ == "__main__":
+    os.makedirs(OUT, exist_ok=True)
+    enable()
+    result = unittest.main(argv=[sys.argv[0]], exit=False, verbosity=2).result
+    sys.exit(0 if result.wasSuccessful() else 1)

@@ -1,0 +1,74 @@
+"""The Blender add-on, headless: registration, a solved study, save/reload, bad setups
+(python_tests/blender/addon_study.py, run inside Blender with the add-on on its add-on path)."""
+
+import os
+import shutil
+import subprocess
+
+import pytest
+
+BLENDER = shutil.which("blender")
+HERE = os.path.dirname(os.path.abspath(__file__))
+ADDON = os.path.join(os.path.dirname(HERE), "addon", "fenestra")
+
+
+def run_in_blender(tmp_path, script, *args):
+    scripts = tmp_path / "scripts"
+    (scripts / "addons").mkdir(parents=True)
+    os.symlink(ADDON, scripts / "addons" / "fenestra")
+    env = dict(os.environ, BLENDER_USER_SCRIPTS=str(scripts))
+    cmd = [BLENDER, "-b", "--factory-startup", "--python-exit-code", "1", "--python", script, "--", *args]
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=env)
+
+
+@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+def test_addon_study(tmp_path):
+    r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_study.py"), str(tmp_path / "out"))
+    assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
+    assert "Ran 11 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+
+
+@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+def test_a_failing_blender_test_fails(tmp_path):
+    """The runner sees failures: a script whose test fails exits non-zero."""
+    script = tmp_path / "failing.py"
+    script.write_text("import sys, unittest\n"
+                      "class T(unittest.TestCase):\n"
+                      "    def test_fails(self):\n"
+                      "        self.fail('on purpose')\n"
+                      "r = unittest.main(argv=[sys.argv[0]], exit=False).result\n"
+                      "sys.exit(0 if r.wasSuccessful() else 1)\n")
+    r = run_in_blender(tmp_path, str(script))
+    assert r.returncode != 0
+
+
+@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+def test_addon_registers_without_the_native_module(tmp_path):
+    """A copy of the package without _core: the add-on registers, the panel says why."""
+    copy = tmp_path / "pkg" / "fenestra"
+    shutil.copytree(ADDON, copy, ignore=shutil.ignore_patterns("_core*.so", "__pycache__"))
+    scripts = tmp_path / "scripts"
+    (scripts / "addons").mkdir(parents=True)
+    os.symlink(copy, scripts / "addons" / "fenestra")
+    script = tmp_path / "no_core.py"
+    script.write_text(
+        "import os, sys\n"
+        # Only the copy: not a checkout put on the path by `make install`.
+        "sys.path[:] = [p for p in sys.path if p == %r\n"
+        "               or not os.path.isfile(os.path.join(p, 'fenestra', '__init__.py'))]\n"
+        "import addon_utils, bpy\n"
+        "addon_utils.enable('fenestra', default_set=True, handle_error=None)\n"
+        "assert hasattr(bpy.types.Scene, 'fenestra')\n"
+        "from fenestra.blender import native\n"
+        "assert 'make build' in native.unavailable(), native.unavailable()\n"
+        "try:\n"
+        "    bpy.ops.fenestra.solve_openings()\n"
+        "    raise SystemExit('solved without the native module')\n"
+        "except RuntimeError as exc:\n"
+        "    assert 'native module' in str(exc), exc\n"
+        "addon_utils.disable('fenestra', default_set=True, handle_error=None)\n"
+        % str(scripts / "addons"))
+    env = dict(os.environ, BLENDER_USER_SCRIPTS=str(scripts), PYTHONPATH="")
+    cmd = [BLENDER, "-b", "--factory-startup", "--python-exit-code", "1", "--python", str(script)]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=env)
+    assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
