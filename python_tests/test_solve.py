@@ -74,3 +74,36 @@ def test_bad_goals_are_refused(small_room, tmp_path, goals, units, needle):
     assert r.returncode == 1
     assert needle in r.stderr
     assert not out.exists()
+
+
+def test_constraints_shape_every_opening(small_room, tmp_path):
+    constraints = {"min_width": 1.0, "max_width": 1.5, "min_height": 1.0, "max_height": 1.5, "max_openings": 2,
+                   "margin": 0.25, "sill_min": 0.5}
+    scene = with_goals(small_room, [0.6, 0.4, 0.5], units="normalized",
+                       solver={"generations": 100, "population": 32, "seed": 2, "constraints": constraints})
+    out = tmp_path / "result.json"
+    r = run("solve", scene, "-o", out, "--paths", 512, "--quiet")
+    assert r.returncode == 0, r.stderr
+    result = json.loads(out.read_text())
+    openings = result["openings"]
+    assert 1 <= len(openings) <= 2
+    for o in openings:
+        corners = np.array(o["corners"])
+        assert 1.0 - 1e-6 <= o["width"] <= 1.5 + 1e-6 and 1.0 - 1e-6 <= o["height"] <= 1.5 + 1e-6
+        assert np.allclose(corners.mean(axis=0), o["centre"], atol=1e-5)
+        assert np.allclose(corners[:, 1], 0.0, atol=1e-5)           # on the south wall
+        assert corners[:, 2].min() >= 0.5 - 1e-6                      # sill
+        assert corners[:, 0].min() >= 0.25 - 1e-6 and corners[:, 0].max() <= 2.75 + 1e-6  # margin
+        assert np.allclose(o["normal"], [0, -1, 0], atol=1e-6)       # outward, away from the sensors
+    assert result["settings"]["constraints"]["max_openings"] == 2
+    assert result["error"]["verified"] is not None
+    assert all("verified" in s for s in result["sensors"])
+
+
+def test_infeasible_constraints_are_refused(small_room, tmp_path):
+    scene = with_goals(small_room, [0.6, 0.4, 0.5], units="normalized",
+                       solver={"constraints": {"min_area": 4.0, "max_area": 2.0}})
+    r = run("solve", scene, "-o", tmp_path / "result.json", "--paths", 64, "--quiet")
+    assert r.returncode == 1
+    assert "min_area" in r.stderr and "max_area" in r.stderr
+    assert not (tmp_path / "result.json").exists()
