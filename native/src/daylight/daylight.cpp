@@ -99,7 +99,7 @@ void rasterise_sky(int width, int height, const std::vector<Vec3>& directions, c
 std::string clock(double minutes) {
   const int m = static_cast<int>(std::lround(minutes));
   std::ostringstream s;
-  s << (m / 60) << ":" << (m % 60 < 10 ? "0" : "") << (m % 60);
+  s << (m / 60 < 10 ? "0" : "") << (m / 60) << ":" << (m % 60 < 10 ? "0" : "") << (m % 60);
   return s.str();
 }
 
@@ -111,10 +111,13 @@ std::string DaylightSettings::describe() const {
   s << names[static_cast<int>(model)] << " sky";
   if (model != Model::CieOvercast) {
     s << " at " << place.latitude_deg << ", " << place.longitude_deg << " (" << time_zone.name() << "), "
-      << date.year << "-" << date.month << "-" << date.day;
-    if (days_between(date, date_end) > 0) s << " to " << date_end.year << "-" << date_end.month << "-" << date_end.day;
-    s << ", " << clock(start_minutes) << "-" << clock(end_minutes) << " every " << step_minutes << " min, turbidity "
-      << turbidity;
+      << to_string(date);
+    if (days_between(date, date_end) > 0) s << " to " << to_string(date_end);
+    if (start_minutes == end_minutes)
+      s << " at " << clock(start_minutes);
+    else
+      s << ", " << clock(start_minutes) << "-" << clock(end_minutes) << " every " << step_minutes << " min";
+    s << ", turbidity " << turbidity;
   }
   return s.str();
 }

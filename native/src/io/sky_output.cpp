@@ -77,6 +77,8 @@ nlohmann::json sky_summary(const Scene& scene) {
     j["steps_with_sun"] = d.steps_with_sun;
     j["analytic_sky_horizontal_illuminance"] = luminance(d.analytic_sky_horizontal);
     j["build_seconds"] = d.seconds;
+    if (d.steps_with_sun == 0 && d.steps > 0 && !d.suns.size() && luminance(d.sky_horizontal) == 0.0f)
+      j["warning"] = "the sun is below the horizon at every time step: the sky is dark";
   }
   j["suns"] = nlohmann::json::array();
   for (const SunLight& s : scene.suns.suns()) {
@@ -105,6 +107,7 @@ std::string sky_report(const nlohmann::json& j) {
                   j["steps_with_sun"].get<int>(), j["build_seconds"].get<double>());
     s << line;
   }
+  if (j.contains("warning")) s << "warning: " << j["warning"].get<std::string>() << "\n";
   if (!j["suns"].empty()) {
     s << "suns (one per step; normal illuminance at that instant):\n"
       << "  UTC                   zenith  azimuth   weight  normal lx\n";
