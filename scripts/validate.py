@@ -146,6 +146,10 @@ def validate_scene(name, config, out_root, scale):
         "sky": SKY_NAMES.get(scene_dict["sky"].get("type", "uniform"), scene_dict["sky"].get("type")),
         "sensors": int(scene.sensor_count),
         "elements": int(scene.element_count),
+        "triangles": int(scene.triangle_count),
+        "after_genetic": float(result["error"]["before_constraints"]["relative_rms"]),
+        "after_constraints": float(result["error"]["relative_rms"]),
+        "stages": {k: float(v) for k, v in result["timings_s"].items()},
         "element_size": float(scene.element_size),
         "paths": paths,
         "solver": dict(result.get("settings", {}), **solver),
@@ -203,6 +207,19 @@ def table(rows):
     for r in rows:
         lines.append("| %s | %s | %s | %s |" % (r["scene"], percent(r["exact_vs_evaluate"]),
                                              percent(r["linear_vs_evaluate"]), percent(r["compensated_vs_evaluate"])))
+    lines.append("")
+    lines.append("The solver's stages (seconds) and its own exact error against the goals after the genetic "
+                 "algorithm and after the architectural refinement:")
+    lines.append("")
+    lines.append("| scene | triangles | contributions | linear start + coarse grids | genetic | constraints | "
+                 "error after GA | after constraints |")
+    lines.append("|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        t = r["stages"]
+        lines.append("| %s | %d | %.2f | %.2f | %.2f | %.2f | %s | %s |" % (
+            r["scene"], r["triangles"], t.get("contributions", 0.0),
+            t.get("linear start", 0.0) + t.get("coarse grids", 0.0), t.get("genetic", 0.0),
+            t.get("constraints", 0.0), percent(r["after_genetic"]), percent(r["after_constraints"])))
     settings = sorted({json.dumps(r["solver"], sort_keys=True) for r in rows})
     lines.append("")
     lines.append("Goals and checks: %s paths per sensor; solver settings: %s." % (

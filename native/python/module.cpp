@@ -106,6 +106,7 @@ PYBIND11_MODULE(_core, m) {
           [](Scene& s, const RenderSettings& r) { s.render = r; }, py::return_value_policy::reference_internal)
       .def_property_readonly("sensor_count", [](const Scene& s) { return s.sensors.size(); })
       .def_property_readonly("element_count", [](const Scene& s) { return s.domain.element_count(); })
+      .def_property_readonly("triangle_count", [](const Scene& s) { return s.mesh.triangle_count(); })
       .def_property_readonly("element_size", [](const Scene& s) { return s.domain.element_size(); })
       .def_property_readonly("sensor_points",
                              [](const Scene& s) {
