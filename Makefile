@@ -3,7 +3,7 @@ PYTHON := /usr/bin/python3
 BUILD  := build
 JOBS   ?= $(shell nproc)
 
-.PHONY: deps build test cpp-test py-test demo bench validate install install-addon clean
+.PHONY: deps build test cpp-test py-test demo bench validate install install-addon examples-blend clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -20,7 +20,11 @@ py-test: build
 
 test: cpp-test py-test
 
+# The reference room against Radiance, then the apartment example solved and rendered in Blender.
 demo: build install-addon
+	@if ! $(PYTHON) -c "import matplotlib" 2>/dev/null && command -v apt-get >/dev/null && [ "$$(id -u)" = 0 ]; then \
+	  echo "installing python3-matplotlib (the demo's goal / achieved image)"; \
+	  DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends python3-matplotlib >/dev/null; fi
 	@./scripts/demo.sh $(BUILD)
 
 bench: build
@@ -51,6 +55,12 @@ install-addon: build
 	ln -sfn $(CURDIR)/addon/fenestra "$$dir/fenestra"; \
 	$(BLENDER) -b --python-exit-code 1 --python-expr "import bpy; bpy.ops.preferences.addon_enable(module='fenestra'); bpy.ops.wm.save_userpref()" >/dev/null && \
 	echo "installed and enabled: $$dir/fenestra -> $(CURDIR)/addon/fenestra (3D View > Sidebar > Fenestra)"
+
+# The Blender examples (examples/build_blend_examples.py): room, apartment, museum, thick_walls as
+# out/examples/NAME.blend; their study folders (scene.json + scene.obj) in examples/NAME_study/,
+# the museum's (6.5 MB of OBJ) in out/examples/museum_study/.
+examples-blend: build
+	$(BLENDER) -b --factory-startup --python-exit-code 1 --python examples/build_blend_examples.py -- out/examples --studies examples
 
 clean:
 	rm -rf $(BUILD)

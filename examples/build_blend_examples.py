@@ -8,10 +8,11 @@ marked with the `fenestra_domain` attribute through Mark Selected Faces, sensor 
 Sensor Grid, goals uniform or painted on the sensors' `fenestra_goal` colour attribute, sky, solve
 settings), and exported, with the add-on's own export, as a study folder NAME_study/ (scene.json +
 scene.obj, runnable with `fenestra solve`) under --studies (default OUTDIR). The museum's study
-(about 8 MB of OBJ) is always written under OUTDIR.
+(about 6.5 MB of OBJ) is always written under OUTDIR.
 
 room         a 5 x 4 x 2.8 m room on a ground plane; its south wall is the opening domain. Uniform
-             goal, half the light of the wall fully open; Preetham sky and sun, 21 March 9-17 h, Paris.
+             goal, half the light of the wall fully open; Preetham sky and sun, 21 March 9-17 h, Paris;
+             openings at least 0.5 m wide and 0.75 m high, sills at least 0.5 m up.
 apartment    four 4 x 6 m rooms in a row joined by doors; the south and north facades are the
              opening domain. Goals painted as in the paper's Figure 1: bright (0.85 of the all-open
              light) in the two west rooms, dark (0.05) in the other two; Preetham sky and sun, sill
@@ -19,11 +20,13 @@ apartment    four 4 x 6 m rooms in a row joined by doors; the south and north fa
 museum       a 12 x 12 x 9 m atrium with a gallery floor around a central void and three statues
              (subdivided heads on plinths, about 190 000 triangles in all); the roof is the opening
              domain. Goals painted: the most light around the statues, little on the rest of the
-             ground floor, dark on the gallery; uniform sky.
-thick_walls  the room with 0.3 m solid walls: the domain is the inner face of the south wall and the
-             wall thickness 0.3 m, so the solver estimates with each element cut straight through the
-             wall and verifies its openings path-traced with real reveals (result.json: `predicted`
-             against `verified`). CIE overcast sky, daylight-factor goal.
+             ground floor, dark on the gallery (0.5, 0.15 and 0.05 of the all-open light); uniform sky.
+thick_walls  the room with 0.3 m solid walls; the south wall is modelled by its inner face, a plane
+             that is the opening domain, and Wall Thickness is 0.3 m: the estimate sees a
+             zero-thickness wall (as in the paper), the cutters go 0.3 m deep and the solver's check
+             path-traces the openings with real reveals (result.json: `predicted` against
+             `verified`, the reveals' loss). CIE overcast sky, daylight-factor goal, at most two openings
+             with their sills at least 0.75 m up.
 
 --solve runs Solve Openings on each example (study folder OUTDIR/NAME_solved_study/) and saves
 OUTDIR/NAME_solved.blend; --render also previews the study's sky in the World, adds the study's
@@ -37,7 +40,6 @@ import argparse
 import json
 import math
 import os
-import shutil
 import sys
 import time
 
@@ -69,6 +71,7 @@ def enable_addon():
 
 def new_file():
     bpy.ops.wm.read_homefile(use_empty=True)
+    bpy.context.preferences.filepaths.save_version = 0  # no .blend1 backups
     enable_addon()
 
 
@@ -166,9 +169,12 @@ def select_only(obj):
 def mark_domain(obj, faces):
     """Marks the given faces of obj as opening domain with Mark Selected Faces (Edit Mode)."""
     select_only(obj)
-    flags = np.zeros(len(obj.data.polygons), bool)
-    flags[list(faces)] = True
-    obj.data.polygons.foreach_set("select", flags)
+    bpy.ops.object.mode_set(mode='EDIT')
+    bpy.ops.mesh.select_mode(type='FACE')
+    bpy.ops.mesh.select_all(action='DESELECT')
+    bpy.ops.object.mode_set(mode='OBJECT')
+    for i in faces:
+        obj.data.polygons[i].select = True
     bpy.ops.object.mode_set(mode='EDIT')
     assert bpy.ops.fenestra.mark_domain() == {'FINISHED'}
     bpy.ops.object.mode_set(mode='OBJECT')
@@ -254,7 +260,9 @@ def build_room():
     f = bpy.context.scene.fenestra
     f.goals.source, f.goals.units, f.goals.level = 'UNIFORM', 'NORMALIZED', 0.5
     preetham(f.sky)
-    f.solve.element_size, f.solve.wall_thickness, f.solve.quality = 0.25, 0.0, 'PREVIEW'
+    s = f.solve
+    s.element_size, s.wall_thickness, s.quality = 0.25, 0.0, 'PREVIEW'
+    s.constraints.min_width, s.constraints.min_height, s.constraints.sill_min = 0.5, 0.75, 0.5
     camera((w / 2 - 6.5, -7.5, 6.0), (w / 2, d / 2, 0.6))
     return {"cutaway": [ceiling.name]}
 
@@ -281,7 +289,8 @@ def build_apartment():
     s = f.solve
     s.element_size, s.wall_thickness, s.quality = 0.4, 0.0, 'PREVIEW'
     s.constraints.sill_min, s.constraints.head_max = 0.4, 2.4
-    camera((-5.0, -10.5, 13.0), (w / 2 - 1.0, d / 2, 0.0), lens=22.0)
+    s.constraints.min_width, s.constraints.min_height, s.constraints.min_gap = 0.8, 0.8, 0.4
+    camera((-1.5, -9.0, 11.0), (w / 2 - 0.5, d / 2 + 0.5, 0.0), lens=24.0)
     return {"cutaway": [ceiling.name]}
 
 
@@ -323,7 +332,7 @@ def build_museum():
     ground_floor = sensor_grid(floor, "Ground floor sensors", 0.8, 1.0, keep=off_plinths)
     remove(floor)
     near = lambda x, y: min(math.hypot(x - sx, y - sy) for (sx, sy), _ in statues)
-    paint_goals(ground_floor, lambda x, y, z: 1.0 if near(x, y) < 1.6 else 0.2)
+    paint_goals(ground_floor, lambda x, y, z: 0.5 if near(x, y) < 1.6 else 0.15)
     upper = sensor_grid(slab, "Gallery sensors", 0.8 + 0.3, 1.5)
     paint_goals(upper, lambda x, y, z: 0.05)
     f.goals.source, f.goals.units, f.goals.scale = 'ATTRIBUTE', 'NORMALIZED', 1.0
@@ -336,14 +345,20 @@ def build_museum():
 
 def build_thick_walls():
     w, d, h, t = 5.0, 4.0, 2.8, 0.3
-    # A hollow solid: the outer box (faces outward) around the room (faces inward).
-    inner, outer = box_verts((0, 0, 0), (w, d, h)), box_verts((-t, -t, -t), (w + t, d + t, h + t))
-    mesh_faces = [tuple(i + 8 for i in f) for f in BOX_FACES] + [tuple(reversed(f)) for f in BOX_FACES]
-    # As wound: the room's faces point into the room, out of the solid (recalc would turn them).
-    shell = mesh_object("Walls", inner + outer, mesh_faces, [material("Plaster", PLASTER)], recalc=False)
+    # Floor, ceiling and three walls as one 0.3 m solid around the room, open to the south; the
+    # south wall is modelled at its inner face (a plane: the domain, zero thickness as the
+    # estimate sees it) and Wall Thickness gives the cutters their depth and the check its reveals.
+    inner = box_verts((0, 0, 0), (w, d, h))
+    outer = box_verts((-t, 0, -t), (w + t, d + t, h + t))
+    faces = [tuple(i + 8 for i in f) for k, f in enumerate(BOX_FACES) if k != SOUTH]   # outward
+    faces += [tuple(reversed(f)) for k, f in enumerate(BOX_FACES) if k != SOUTH]       # into the room
+    south_in, south_out = (0, 1, 5, 4), (8, 9, 13, 12)
+    faces += [(south_out[i], south_out[(i + 1) % 4], south_in[(i + 1) % 4], south_in[i]) for i in range(4)]
+    mesh_object("Walls", inner + outer, faces, [material("Plaster", PLASTER)])
+    south = mesh_object("South wall", [inner[i] for i in south_in], [(0, 1, 2, 3)],
+                        [material("Plaster", PLASTER)])
     ground(z=-t - 0.01)
-    # The room's faces are the second six: its south face is the domain.
-    mark_domain(shell, [6 + SOUTH])
+    mark_domain(south, [0])
     floor = temporary_floor(0.0, 0.0, w, d)
     sensor_grid(floor, "Sensors", 0.8, 0.5)
     remove(floor)
@@ -354,6 +369,7 @@ def build_thick_walls():
     f.sky.map_width = 512
     s = f.solve
     s.element_size, s.wall_thickness, s.quality = 0.25, t, 'PREVIEW'
+    s.constraints.max_openings, s.constraints.sill_min = 2, 0.75
     camera((w / 2 - 5.0, -7.0, 3.5), (w / 2, 0.0, 1.2), lens=28.0)
     return {"cutaway": []}
 
@@ -399,14 +415,37 @@ def add_suns(study_dir):
     return len(summary.get("suns", []))
 
 
-def render(path, cutaway, samples=48, resolution=(640, 360)):
+def open_through(obj, cutters, eps=1e-4):
+    """Removes the faces a Boolean difference leaves inside the cutters: a room modelled with
+    zero-thickness walls is a solid to the Boolean, which caps each hole at the cutter's room side."""
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    inside = []
+    for cutter in cutters:
+        to_local = cutter.matrix_world.inverted() @ obj.matrix_world
+        co = np.array([v.co[:] for v in cutter.data.vertices])
+        lo, hi = co.min(axis=0) - eps, co.max(axis=0) + eps
+        for face in bm.faces:
+            c = np.array((to_local @ face.calc_center_median())[:])
+            if np.all(c >= lo) and np.all(c <= hi):
+                inside.append(face)
+    bmesh.ops.delete(bm, geom=list(set(inside)), context='FACES')
+    bm.to_mesh(obj.data)
+    bm.free()
+    obj.data.update()
+
+
+def render(path, cutaway, samples=128, resolution=(640, 360), exposure=-3.0):
     scene = bpy.context.scene
     for name in cutaway:  # lit by, but not seen through, the camera
         bpy.data.objects[name].visible_camera = False
-    for obj in scene.objects:
-        for m in obj.modifiers:
-            if m.type == 'BOOLEAN':
-                m.use_hole_tolerant = True
+    # The openings cut for good: the cutters are hidden from renders, so Booleans are applied.
+    cutters = [o for o in scene.objects if o.fenestra.is_opening]
+    for obj in list(scene.objects):
+        for m in [m for m in obj.modifiers if m.type == 'BOOLEAN']:
+            select_only(obj)
+            bpy.ops.object.modifier_apply(modifier=m.name)
+            open_through(obj, cutters)
     scene.render.engine = 'CYCLES'
     scene.cycles.device = 'CPU'
     scene.cycles.samples = samples
@@ -419,7 +458,7 @@ def render(path, cutaway, samples=48, resolution=(640, 360)):
     scene.render.threads_mode = 'AUTO'
     scene.view_settings.view_transform = 'Filmic'
     scene.view_settings.look = 'Medium High Contrast'
-    scene.view_settings.exposure = 0.0
+    scene.view_settings.exposure = exposure
     scene.render.image_settings.file_format = 'PNG'
     scene.render.filepath = path
     bpy.ops.render.render(write_still=True)

@@ -29,7 +29,7 @@ struct SolverSettings {
   bool coarse_to_fine = true;
   int elite = 8;               // best genetic states re-ranked with the exact evaluation
   OpeningConstraints constraints;  // what an opening may be (docs/solver.md)
-  int improve_iterations = 2000;   // local search over whole openings after the refinement; 0: none
+  int improve_iterations = 20000;  // local search over whole openings after the refinement; 0: none
   bool verify = true;              // path-trace the final openings with real cutters (evaluate)
 };
 
