@@ -107,3 +107,10 @@ def test_infeasible_constraints_are_refused(small_room, tmp_path):
     assert r.returncode == 1
     assert "min_area" in r.stderr and "max_area" in r.stderr
     assert not (tmp_path / "result.json").exists()
+
+
+def test_solve_can_be_cancelled(small_room):
+    scene = fenestra.load_scene(with_goals(small_room, [0.5, 0.3, 0.4], units="normalized"))
+    scene.render.paths_per_sensor = 1 << 16  # long enough to be stopped on the way
+    with pytest.raises(fenestra.Cancelled):
+        fenestra.solve(scene, callback=lambda fraction, status: False)

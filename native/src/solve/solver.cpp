@@ -132,7 +132,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
       GeneticSettings level_ga = ga;
       level_ga.generations = std::max(1, ga.generations / 2);
       level_ga.time_budget_s = 0.0;
-      const GeneticResult r = run_genetic(level, coarse.grid, level_seeds, level_ga);
+      const GeneticResult r = run_genetic(level, coarse.grid, level_seeds, level_ga, progress);
       carried = coarse.expand(r.best);
       seeds.push_back(carried);
       out.coarse_factors.push_back(factor);
@@ -146,7 +146,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   // Stage 2 on the fine grid.
   if (progress) progress->start("solving: genetic algorithm", 1);
   t = Clock::now();
-  const GeneticResult result = run_genetic(objective, grid, seeds, ga);
+  const GeneticResult result = run_genetic(objective, grid, seeds, ga, progress);
   out.history = result.history;
   out.generations = result.generations;
   out.timings.push_back({"genetic", since(t)});
