@@ -114,3 +114,42 @@ def test_solve_can_be_cancelled(small_room):
     scene.render.paths_per_sensor = 1 << 16  # long enough to be stopped on the way
     with pytest.raises(fenestra.Cancelled):
         fenestra.solve(scene, callback=lambda fraction, status: False)
+
+
+def test_panel_constraints_apply_to_their_own_panels(tmp_path):
+    from conftest import box_obj
+    (tmp_path / "room.obj").write_text(box_obj(
+        (0, 0, 0), (4, 4, 2.5), lambda f: {"south": "south", "east": "east"}.get(f, "grey")))
+    scene = {
+        "fenestra": 1, "geometry": "room.obj",
+        "materials": {"grey": {"reflectance": 0.6}, "south": {"reflectance": 0.5}, "east": {"reflectance": 0.5}},
+        "opening_domain": {"materials": ["south", "east"], "element_size": 0.5},
+        "sensors": {"points": [[x, y, 0.8] for x in (1, 2, 3) for y in (1, 2, 3)], "normals": [0, 0, 1],
+                    "goals": [0.5] * 9},
+        "sky": {"type": "cie_overcast"},
+        "render": {"paths_per_sensor": 512},
+        "solver": {"generations": 100, "population": 32,
+                   "constraints": {"max_height": 1.5},
+                   "panel_constraints": [{"materials": ["south"], "constraints": {"max_width": 1.0}},
+                                         {"groups": ["east"], "constraints": {"min_width": 1.5}}]},
+    }
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    out = tmp_path / "result.json"
+    r = run("solve", path, "-o", out, "--quiet")
+    assert r.returncode == 0, r.stderr
+    result = json.loads(out.read_text())
+    assert result["openings"]
+    for o in result["openings"]:
+        corners = np.array(o["corners"])
+        assert o["height"] <= 1.5 + 1e-6                   # the global limit holds everywhere
+        if np.allclose(corners[:, 1], 0.0, atol=1e-5):      # south wall
+            assert o["width"] <= 1.0 + 1e-6
+        else:                                               # east wall
+            assert np.allclose(corners[:, 0], 4.0, atol=1e-5)
+            assert o["width"] >= 1.5 - 1e-6
+    # An entry that names nothing is an error.
+    scene["solver"]["panel_constraints"] = [{"materials": ["glass"], "constraints": {"max_width": 1.0}}]
+    path.write_text(json.dumps(scene))
+    r = run("solve", path, "-o", out, "--quiet")
+    assert r.returncode == 1 and "panel_constraints[0]" in r.stderr

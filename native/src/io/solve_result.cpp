@@ -118,6 +118,12 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                                        {"regions", s.regions_weight}}},
                     {"bound_weight", s.bound_weight},
                     {"constraints", constraints_json(s.constraints)},
+                    {"panel_constraints", [&] {
+                       json per_panel = json::array();
+                       for (const OpeningConstraints& set : s.constraints.per_panel)
+                         per_panel.push_back(constraints_json(set));
+                       return per_panel;
+                     }()},
                     {"improve_iterations", s.improve_iterations},
                     {"verify", s.verify}}}};
 }

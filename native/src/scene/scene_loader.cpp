@@ -379,13 +379,57 @@ OpeningConstraints parse_constraints(const ScenePath& sp, const json& j) {
   return c;
 }
 
+// "solver.panel_constraints": [{"materials": [...], "groups": [...], "constraints": {...}}]: on the
+// panels whose material or a face's group is listed, these keys replace the global constraints'.
+void apply_panel_constraints(const ScenePath& sp, const json& solver, Scene* scene) {
+  if (!solver.is_object() || !solver.contains("panel_constraints")) return;
+  const json& list = solver.at("panel_constraints");
+  if (!list.is_array()) sp.fail("solver.panel_constraints", "expected a list of {\"materials\", \"groups\", \"constraints\"}");
+  const json global = solver.value("constraints", json::object());
+  const auto materials = scene->material_names();
+  const auto& panels = scene->domain.panels();
+  std::vector<OpeningConstraints> per_panel(panels.size(), scene->solver.constraints);
+  for (size_t e = 0; e < list.size(); ++e) {
+    const std::string key = "solver.panel_constraints[" + std::to_string(e) + "]";
+    const json& entry = list[e];
+    if (!entry.is_object()) sp.fail(key, "expected an object");
+    check_known_keys(sp, entry, key, {"materials", "groups", "constraints"});
+    const auto want_materials = names(sp, entry, "materials", key), want_groups = names(sp, entry, "groups", key);
+    json merged = global;
+    if (entry.contains("constraints")) {
+      if (!entry.at("constraints").is_object()) sp.fail(key + ".constraints", "expected an object");
+      merged.update(entry.at("constraints"));
+    }
+    const OpeningConstraints set = parse_constraints(sp, merged);
+    try {
+      check_feasible(set, scene->domain.element_size());
+    } catch (const std::invalid_argument& err) {
+      sp.fail(key + ".constraints", err.what());
+    }
+    int matched = 0;
+    for (size_t p = 0; p < panels.size(); ++p) {
+      bool match = panels[p].material >= 0 &&
+                   std::count(want_materials.begin(), want_materials.end(), materials[panels[p].material]) > 0;
+      for (uint32_t t : panels[p].triangles) {
+        const int g = scene->mesh.triangle_group[t];
+        if (g >= 0 && std::count(want_groups.begin(), want_groups.end(), scene->mesh.group_names[g]) > 0) match = true;
+      }
+      if (match) per_panel[p] = set, ++matched;
+    }
+    if (matched == 0) sp.fail(key, "matches no panel of the opening domain");
+  }
+  for (OpeningConstraints& set : per_panel) set.max_openings = scene->solver.constraints.max_openings;
+  scene->solver.constraints.per_panel = std::move(per_panel);
+}
+
 SolverSettings parse_solver(const ScenePath& sp, const json& j) {
   SolverSettings s;
   if (j.is_null()) return s;
   if (!j.is_object()) sp.fail("solver", "expected an object");
   check_known_keys(sp, j, "solver",
                    {"element_size", "paths", "population", "generations", "seed", "time_budget_s", "shape_weights",
-                    "bound_weight", "coarse_to_fine", "elite", "constraints", "improve_iterations", "verify"});
+                    "bound_weight", "coarse_to_fine", "elite", "constraints", "panel_constraints", "improve_iterations",
+                    "verify"});
   auto integer = [&](const char* name, int lo, int hi, int fallback) {
     if (!j.contains(name)) return fallback;
     const double v = number(sp, j.at(name), std::string("solver.") + name);
@@ -525,6 +569,7 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     } catch (const std::invalid_argument& e) {
       sp.fail("solver.constraints", e.what());
     }
+    apply_panel_constraints(sp, j.value("solver", json()), &scene);
   } catch (const json::exception& e) {
     sp.fail("(structure)", e.what());
   }

@@ -256,13 +256,15 @@ void check_feasible(const OpeningConstraints& c, double a) {
 
 bool is_wall(const Panel& panel) { return std::abs(panel.normal.z()) <= kWallCosine; }
 
-bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const OpeningConstraints& c, double a,
+bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const OpeningConstraints& all, double a,
                 std::string* why) {
   if (!is_wall(panel)) return true;
-  if (!c.panel_base_z.empty() && panel_index >= static_cast<int>(c.panel_base_z.size()))
-    throw std::invalid_argument("opening constraints: panel_base_z has " + std::to_string(c.panel_base_z.size()) +
+  const std::vector<double>& base_z = all.panel_base_z;
+  const OpeningConstraints& c = all.for_panel(panel_index);
+  if (!base_z.empty() && panel_index >= static_cast<int>(base_z.size()))
+    throw std::invalid_argument("opening constraints: panel_base_z has " + std::to_string(base_z.size()) +
                                 " values, panel " + std::to_string(panel_index) + " has none");
-  const double base = c.panel_base_z.empty() ? grid_bottom_z(panel, a) : c.panel_base_z[panel_index];
+  const double base = base_z.empty() ? grid_bottom_z(panel, a) : base_z[panel_index];
   const double z0 = panel.origin.z() + row0 * a * panel.v_axis.z();
   const double z1 = panel.origin.z() + (row1 + 1) * a * panel.v_axis.z();
   const double sill = std::min(z0, z1) - base, head = std::max(z0, z1) - base;
@@ -289,7 +291,9 @@ std::vector<double> panel_base_heights(const OpeningDomain& domain, const Mesh& 
   return base;
 }
 
-bool satisfies(const GridRectangle& r, const Panel& panel, const OpeningConstraints& c, double a, std::string* why) {
+bool satisfies(const GridRectangle& r, const Panel& panel, const OpeningConstraints& all, double a,
+               std::string* why) {
+  const OpeningConstraints& c = all.for_panel(r.panel);
   auto fail = [&](const std::string& what) {
     if (why) *why = r.to_string() + " " + what;
     return false;
@@ -312,7 +316,7 @@ bool satisfies(const GridRectangle& r, const Panel& panel, const OpeningConstrai
   const std::string size = size_problem(r.rows(), r.cols(), c, g, a);
   if (!size.empty()) return fail(size);
   std::string heights;
-  if (!heights_ok(panel, r.panel, r.row0, r.row1, c, a, &heights)) return fail(heights);
+  if (!heights_ok(panel, r.panel, r.row0, r.row1, all, a, &heights)) return fail(heights);
   return true;
 }
 
@@ -327,7 +331,7 @@ bool apart(const GridRectangle& a, const GridRectangle& b, const OpeningConstrai
   if (a.panel != b.panel) return true;
   // Separate regions: no shared or N-8 adjacent elements, i.e. at least one element between.
   const double d = clear_distance(a, b, element_size);
-  return d >= element_size * (1.0 - kRelative) && d >= c.min_gap * (1.0 - kRelative);
+  return d >= element_size * (1.0 - kRelative) && d >= c.for_panel(a.panel).min_gap * (1.0 - kRelative);
 }
 
 bool satisfies_all(const OpeningDomain& domain, const std::vector<GridRectangle>& rects,
@@ -352,7 +356,8 @@ bool satisfies_all(const OpeningDomain& domain, const std::vector<GridRectangle>
       if (!apart(rects[i], rects[j], c, a)) {
         const double d = clear_distance(rects[i], rects[j], a);
         return fail(rects[i].to_string() + " and " + rects[j].to_string() + " are " + meters(d) +
-                    " apart: they must be separate (one element) and at least min_gap " + meters(c.min_gap) +
+                    " apart: they must be separate (one element) and at least min_gap " +
+                    meters(c.for_panel(rects[i].panel).min_gap) +
                     " apart");
       }
   return true;

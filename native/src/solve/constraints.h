@@ -33,7 +33,13 @@ struct OpeningConstraints {
   // (panel_base_heights()). Empty: the bottom of each panel's element grid, which the grid's
   // centring may lift above the panel's edge by up to half an element.
   std::vector<double> panel_base_z;
+  // Empty, or one set per panel that replaces these limits on that panel (max_openings stays
+  // the global one).
+  std::vector<OpeningConstraints> per_panel;
 
+  const OpeningConstraints& for_panel(int panel) const {
+    return per_panel.empty() ? *this : per_panel[static_cast<size_t>(panel)];
+  }
   bool any() const;  // whether anything is constrained beyond plain rectangles
   std::string to_string() const;
 };

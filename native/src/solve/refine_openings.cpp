@@ -245,11 +245,11 @@ class Refiner {
       : domain_(domain),
         constraints_(constraints),
         a_(domain.element_size()),
-        limits_(grid_limits(constraints, a_)),
         light_(domain, objective) {
-    for (const Panel& panel : domain.panels()) {
-      blocked_.push_back(blocked_squares(panel, limits_.margin_elements));
-      smallest_.push_back(smallest_size(panel));
+    for (int p = 0; p < static_cast<int>(domain.panels().size()); ++p) {
+      limits_.push_back(grid_limits(constraints.for_panel(p), a_));
+      blocked_.push_back(blocked_squares(domain.panels()[p], limits_[p].margin_elements));
+      smallest_.push_back(smallest_size(domain.panels()[p], limits_[p]));
     }
   }
 
@@ -397,10 +397,11 @@ class Refiner {
   // Step 4: the side of a region's bounding box to halve, when no one admissible opening could
   // cover the region.
   Split split_of(const GridRectangle& box, size_t elements) const {
+    const GridLimits& limits = limits_[box.panel];
     const double aspect = static_cast<double>(box.cols()) / box.rows();
-    if (box.cols() > limits_.max_cols || aspect > limits_.max_aspect * (1.0 + kRelative)) return Split::kWidth;
-    if (box.rows() > limits_.max_rows || aspect < limits_.min_aspect * (1.0 - kRelative)) return Split::kHeight;
-    if (static_cast<int64_t>(elements) > limits_.max_elements)
+    if (box.cols() > limits.max_cols || aspect > limits.max_aspect * (1.0 + kRelative)) return Split::kWidth;
+    if (box.rows() > limits.max_rows || aspect < limits.min_aspect * (1.0 - kRelative)) return Split::kHeight;
+    if (static_cast<int64_t>(elements) > limits.max_elements)
       return box.cols() >= box.rows() ? Split::kWidth : Split::kHeight;
     return Split::kNone;
   }
@@ -412,7 +413,7 @@ class Refiner {
     if (how == Split::kNone) return {};
     const bool across_width = how == Split::kWidth;
     const int length = across_width ? region.box.cols() : region.box.rows();
-    const int gap = limits_.gap_elements;
+    const int gap = limits_[region.box.panel].gap_elements;
     if (length < gap + 2) return {};
     const int first = (length - gap) / 2;
     std::vector<Cell> halves[2];
@@ -448,6 +449,7 @@ class Refiner {
     const int total = static_cast<int>(region.cells.size());
     const CellCounts& blocked = blocked_[p];
     const VectorXd& sqrt_w = light_.sqrt_weight();
+    const GridLimits& limits = limits_[p];
 
     std::atomic<double> bound{kInfinity};  // best error found so far by any band
     std::vector<Candidate> by_first_row(rows);
@@ -458,9 +460,10 @@ class Refiner {
       const int row0 = w.row0 + i0;
       for (int i1 = i0; i1 < rows; ++i1) {
         const int band = i1 - i0 + 1, row1 = w.row0 + i1;
-        if (band > limits_.max_rows) break;
-        if (band < limits_.min_rows || in_region.in(i0, i1, 0, cols - 1) == 0) continue;
-        if (!heights_ok(panel, p, row0, row1, constraints_, a_) || !wide_enough(blocked, row0, row1, w)) continue;
+        if (band > limits.max_rows) break;
+        if (band < limits.min_rows || in_region.in(i0, i1, 0, cols - 1) == 0) continue;
+        if (!heights_ok(panel, p, row0, row1, constraints_, a_) || !wide_enough(blocked, row0, row1, w))
+          continue;
         const VectorXd left = light_.corner(p, row1 + 1, w.col0) - light_.corner(p, row0, w.col0);
         F.col(0).setZero();
         for (int j = 1; j <= cols; ++j)
@@ -472,8 +475,8 @@ class Refiner {
         for (int j0 = 0; j0 < cols; ++j0)
           for (int j1 = j0 + 1; j1 <= cols; ++j1) {  // columns [j0, j1) of the window
             const int width = j1 - j0;
-            if (width > limits_.max_cols || blocked.in(row0, row1, w.col0 + j0, w.col0 + j1 - 1) > 0) break;
-            if (!limits_.fits(band, width)) continue;
+            if (width > limits.max_cols || blocked.in(row0, row1, w.col0 + j0, w.col0 + j1 - 1) > 0) break;
+            if (!limits.fits(band, width)) continue;
             const int inside = in_region.in(i0, i1, j0, j1 - 1);
             if (inside == 0) continue;
             const double e = G(j1, j1) + G(j0, j0) - 2.0 * G(j1, j0) - 2.0 * (g[j1] - g[j0]) + yy;
@@ -492,10 +495,11 @@ class Refiner {
 
   // Whether rows [row0, row1] of window `w` have min_cols adjacent unblocked columns.
   bool wide_enough(const CellCounts& blocked, int row0, int row1, const GridRectangle& w) const {
+    const GridLimits& limits = limits_[w.panel];
     int run = 0;
     for (int col = w.col0; col <= w.col1; ++col) {
       run = blocked.in(row0, row1, col, col) == 0 ? run + 1 : 0;
-      if (run >= limits_.min_cols) return true;
+      if (run >= limits.min_cols) return true;
     }
     return false;
   }
@@ -519,12 +523,12 @@ class Refiner {
 
   // The admissible size of fewest elements (the squarest among equals) that the panel's grid
   // could hold, ignoring holes and heights.
-  Size smallest_size(const Panel& panel) const {
+  static Size smallest_size(const Panel& panel, const GridLimits& limits) {
     Size best;
     int64_t best_area = 0;
-    for (int rows = limits_.min_rows; rows <= std::min(limits_.max_rows, panel.rows); ++rows)
-      for (int cols = limits_.min_cols; cols <= std::min(limits_.max_cols, panel.cols); ++cols) {
-        if (!limits_.fits(rows, cols)) continue;
+    for (int rows = limits.min_rows; rows <= std::min(limits.max_rows, panel.rows); ++rows)
+      for (int cols = limits.min_cols; cols <= std::min(limits.max_cols, panel.cols); ++cols) {
+        if (!limits.fits(rows, cols)) continue;
         const int64_t area = int64_t{rows} * cols;
         if (best.rows == 0 || area < best_area ||
             (area == best_area && std::abs(rows - cols) < std::abs(best.rows - best.cols)))
@@ -538,7 +542,7 @@ class Refiner {
   bool admissible(const GridRectangle& r) const {
     const Panel& panel = domain_.panels()[r.panel];
     if (r.row0 < 0 || r.col0 < 0 || r.row1 >= panel.rows || r.col1 >= panel.cols) return false;
-    return limits_.fits(r.rows(), r.cols()) && blocked_[r.panel].in(r.row0, r.row1, r.col0, r.col1) == 0 &&
+    return limits_[r.panel].fits(r.rows(), r.cols()) && blocked_[r.panel].in(r.row0, r.row1, r.col0, r.col1) == 0 &&
            heights_ok(panel, r.panel, r.row0, r.row1, constraints_, a_);
   }
 
@@ -561,9 +565,10 @@ class Refiner {
 
   // Whole elements needed between two openings along one axis when `across` elements separate
   // them along the other.
-  int gap_needed(int across) const {
+  int gap_needed(int panel, int across) const {
     for (int n = 0;; ++n)
-      if (apart(GridRectangle{0, 0, 0, 0, 0}, GridRectangle{0, across + 1, across + 1, n + 1, n + 1}, constraints_, a_))
+      if (apart(GridRectangle{panel, 0, 0, 0, 0}, GridRectangle{panel, across + 1, across + 1, n + 1, n + 1},
+                constraints_, a_))
         return n;
   }
 
@@ -572,7 +577,7 @@ class Refiner {
   std::vector<GridRectangle> trims(const GridRectangle& x, const GridRectangle& y) const {
     const int gap_rows = std::max({0, y.row0 - x.row1 - 1, x.row0 - y.row1 - 1});
     const int gap_cols = std::max({0, y.col0 - x.col1 - 1, x.col0 - y.col1 - 1});
-    const int need_cols = gap_needed(gap_rows), need_rows = gap_needed(gap_cols);
+    const int need_cols = gap_needed(x.panel, gap_rows), need_rows = gap_needed(x.panel, gap_cols);
     std::vector<GridRectangle> out;
     auto keep = [&](const GridRectangle& t) {
       if (t.row0 <= t.row1 && t.col0 <= t.col1 && t != x) out.push_back(t);
@@ -612,7 +617,7 @@ class Refiner {
   const OpeningDomain& domain_;
   const OpeningConstraints& constraints_;
   double a_;
-  GridLimits limits_;
+  std::vector<GridLimits> limits_;  // per panel
   RectangleLight light_;
   std::vector<CellCounts> blocked_;  // per panel
   std::vector<Size> smallest_;       // per panel
@@ -636,7 +641,10 @@ void check_inputs(const OpeningDomain& domain, const LinearObjective& o, const O
   if (!c.panel_base_z.empty() && c.panel_base_z.size() != panels)
     fail("panel_base_z has " + std::to_string(c.panel_base_z.size()) + " values for " + std::to_string(panels) +
          " panels");
+  if (!c.per_panel.empty() && c.per_panel.size() != panels)
+    fail("per_panel has " + std::to_string(c.per_panel.size()) + " sets for " + std::to_string(panels) + " panels");
   check_feasible(c, domain.element_size());
+  for (const OpeningConstraints& set : c.per_panel) check_feasible(set, domain.element_size());
 }
 
 }  // namespace
