@@ -1,12 +1,13 @@
 """The Blender add-on over the fenestra API: the only part of the package that imports bpy.
 
 properties (scene.fenestra, object.fenestra), export (scene -> study files), materials, sky,
-results (cutters, Booleans, achieved lux), operators, panels (3D View sidebar, "Fenestra" tab).
+results (cutters, Booleans, achieved lux), operators, panels (3D View sidebar, "Fenestra" tab),
+overlay (the domain drawn highlighted in the viewport).
 """
 
 import bpy
 
-from . import operators, panels, properties
+from . import operators, overlay, panels, properties
 
 classes = properties.classes + operators.classes + panels.classes
 
@@ -15,9 +16,11 @@ def register():
     for cls in classes:
         bpy.utils.register_class(cls)
     properties.register()
+    overlay.register()
 
 
 def unregister():
+    overlay.unregister()
     properties.unregister()
     for cls in reversed(classes):
         bpy.utils.unregister_class(cls)

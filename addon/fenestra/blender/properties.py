@@ -175,6 +175,8 @@ class FenestraSceneSettings(PropertyGroup):
     sensor_spacing: FloatProperty(name="Spacing", min=0.05, default=0.5, unit='LENGTH',
                                   description="Sensor grid: distance between sensors")
     domain_faces: IntProperty(name="Domain Faces", description="Faces marked as opening domain (last count)")
+    show_domain: BoolProperty(name="Highlight Domain", default=True,
+                              description="Draw the opening domain's faces highlighted in the viewport (Object Mode)")
     domain_area: FloatProperty(name="Domain Area", unit='AREA', description="Their area (last count)")
 
 
