@@ -368,6 +368,26 @@ TEST(RefineOpenings, KeepsAValidRectangleAsItIs) {
   EXPECT_EQ(rectangles_mask(d, out), open);
 }
 
+// Two windows joined by a one-element bridge (as the genetic algorithm may leave them) become the
+// two windows, not one rectangle over both.
+TEST(RefineOpenings, WindowsJoinedByAThinBridgeArePartedAtIt) {
+  const OpeningDomain d = wall(5, 2.5, 0.25);
+  std::vector<std::pair<int, int>> windows, bridged;
+  for (int r = 3; r <= 7; ++r)
+    for (int col : {3, 4, 5, 6, 7, 12, 13, 14, 15}) windows.push_back({r, col});
+  bridged = windows;
+  for (int col = 8; col <= 11; ++col) bridged.push_back({2, col});
+  for (int r = 2; r <= 2; ++r) bridged.push_back({r, 7}), bridged.push_back({r, 12});
+  const std::vector<uint8_t> truth = mask_of_cells(d, 0, windows);
+  const LinearObjective o = view_objective(d, truth);
+  const auto out = refine_openings(d, mask_of_cells(d, 0, bridged), o, OpeningConstraints{});
+  ASSERT_EQ(out.size(), 2u);
+  // One opening per window (the right one may keep a row of the bridge it touches); none across.
+  for (const GridRectangle& r : out) EXPECT_TRUE(r.col1 <= 8 || r.col0 >= 11) << r.to_string();
+  EXPECT_TRUE(std::count(out.begin(), out.end(), GridRectangle{0, 3, 7, 3, 7}) == 1);
+  EXPECT_LT(mismatch(o, rectangles_mask(d, out), truth), 0.05 * mismatch(o, truth, std::vector<uint8_t>(truth.size(), 0)));
+}
+
 // The Gram-matrix search agrees with scoring every rectangle of the bounding box directly.
 TEST(RefineOpenings, IrregularRegionsBecomeTheBestMatchingRectangle) {
   const OpeningDomain d = wall(5, 2.5, 0.25);

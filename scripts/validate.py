@@ -51,6 +51,22 @@ SCENES = {
         "paths": 524288,
         "solver": {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8},
     },
+    # The studies the Blender examples write (examples/build_blend_examples.py).
+    "room_study": {
+        "paths": 131072,
+        "solver": {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8},
+    },
+    "apartment_study": {
+        "paths": 131072,
+        "solver": {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8},
+    },
+    # 0.3 m walls: estimated on the zero-thickness domain, checked with real reveals. It shows the
+    # wall-thickness effect the paper discusses rather than the solver's accuracy: no 2 % target.
+    "thick_walls_study": {
+        "paths": 131072,
+        "solver": {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8},
+        "target": False,
+    },
 }
 
 SKY_NAMES = {
@@ -114,6 +130,7 @@ def validate_scene(name, config, out_root, scale):
     derived = dict(scene_dict)
     derived["geometry"] = os.path.relpath(os.path.join(source, scene_dict["geometry"]), out)
     derived["sensors"] = dict(scene_dict["sensors"], goals=[float(g) for g in goals], goal_units="lux")
+    derived.pop("goals", None)  # the example's own goals give way to the truth's light
     derived["solver"] = solver
     if derived["sky"].get("file"):
         derived["sky"] = dict(derived["sky"], file=os.path.relpath(os.path.join(source, derived["sky"]["file"]), out))
@@ -174,7 +191,7 @@ def validate_scene(name, config, out_root, scale):
         "seconds_contributions": float(result["timings_s"].get("contributions", float("nan"))),
         "seconds_check": check_seconds,
     }
-    row["passed"] = row["relative_rms"] <= TARGET
+    row["passed"] = row["relative_rms"] <= TARGET if config.get("target", True) else None
     return row
 
 
@@ -193,7 +210,8 @@ def table(rows):
             r["scene"], r["sky"], r["sensors"], r["elements"], r["element_size"],
             r["openings_truth"], r["openings_solution"],
             r["elements_truth"], r["elements_solution"], r["elements_shared"],
-            percent(r["relative_rms"]), "✓" if r["passed"] else "✗ (> 2 %)",
+            percent(r["relative_rms"]),
+            "(wall thickness)" if r["passed"] is None else "✓" if r["passed"] else "✗ (> 2 %)",
             percent(r["max_relative"]), percent(r["solver_predicted_relative_rms"]),
             percent(r["noise"]), percent(r["truth_again_relative_rms"]),
             r["seconds_solve"], r["seconds_check"]))
@@ -284,7 +302,7 @@ def main():
         update_readme(text)
     print()
     print(text)
-    failed = [r["scene"] for r in rows if not r["passed"]]
+    failed = [r["scene"] for r in rows if r["passed"] is False]
     if failed:
         print("relative RMS above %s: %s" % (percent(TARGET), ", ".join(failed)), file=sys.stderr)
         return 1

@@ -378,13 +378,51 @@ class Refiner {
     std::vector<GridRectangle> best;
     const Candidate single = best_rectangle(region, y);
     if (single.error <= best_error) best = {single.rect}, best_error = single.error;
-    std::vector<GridRectangle> halves = split(region);
-    if (!halves.empty()) {
+    auto consider = [&](std::vector<GridRectangle> rects) {
+      if (rects.empty()) return;
       VectorXd light = VectorXd::Zero(y.size());
-      for (const GridRectangle& r : halves) light += light_.of(r);
-      if ((light_.sqrt_weight().cwiseProduct(light) - y).squaredNorm() < best_error) best = std::move(halves);
-    }
+      for (const GridRectangle& r : rects) light += light_.of(r);
+      const double error = (light_.sqrt_weight().cwiseProduct(light) - y).squaredNorm();
+      if (error < best_error) best = std::move(rects), best_error = error;
+    };
+    consider(split(region));
+    // Openings joined by a thin bridge of elements (the genetic algorithm's answers often have
+    // them) match better as separate openings: try parting the region at its thinnest line.
+    consider(part_at_waist(region, true));
+    consider(part_at_waist(region, false));
     return best;
+  }
+
+  // The refined parts of a region cut across its thinnest run of `gap` columns (across_width) or
+  // rows, when that run holds at most half as many elements as the region's lines do on average.
+  std::vector<GridRectangle> part_at_waist(const Region& region, bool across_width) const {
+    const GridRectangle& box = region.box;
+    const int length = across_width ? box.cols() : box.rows();
+    const int gap = limits_[box.panel].gap_elements;
+    if (length < gap + 2) return {};
+    std::vector<int> line(length, 0);
+    for (const Cell& c : region.cells) ++line[across_width ? c.col - box.col0 : c.row - box.row0];
+    int best_start = -1, best_count = std::numeric_limits<int>::max();
+    for (int start = 1; start + gap < length; ++start) {
+      int count = 0;
+      for (int k = start; k < start + gap; ++k) count += line[k];
+      if (count < best_count) best_count = count, best_start = start;
+    }
+    const double mean_per_line = static_cast<double>(region.cells.size()) / length;
+    if (best_start < 0 || best_count > 0.5 * mean_per_line * gap) return {};
+    std::vector<Cell> parts[2];
+    for (const Cell& c : region.cells) {
+      const int offset = across_width ? c.col - box.col0 : c.row - box.row0;
+      if (offset < best_start)
+        parts[0].push_back(c);
+      else if (offset >= best_start + gap)
+        parts[1].push_back(c);
+    }
+    std::vector<GridRectangle> out;
+    for (const auto& half : parts)
+      for (const Region& part : connected_parts(box.panel, half))
+        for (const GridRectangle& r : refine_region(part)) out.push_back(r);
+    return out;
   }
 
   // Light of a set of cells, times the square root of the sensor weights.
