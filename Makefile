@@ -33,7 +33,7 @@ bench: build
 	$(BUILD)/bench/fenestra_bench
 
 # Ground truth: known openings' light as goals, solved for and checked (out/validate/, README table).
-validate: build
+validate: build examples-blend
 	$(PYTHON) scripts/validate.py
 
 # Puts `fenestra` on PATH and makes `import fenestra` work in /usr/bin/python3 (this checkout's addon/).
