@@ -410,17 +410,23 @@ class Refiner {
     }
     const double mean_per_line = static_cast<double>(region.cells.size()) / length;
     if (best_start < 0 || best_count > 0.5 * mean_per_line * gap) return {};
-    std::vector<Cell> parts[2];
+    return refine_either_side(region, across_width, best_start, gap);
+  }
+
+  // The refined parts of the region on either side of the `gap` lines (columns when
+  // across_width, else rows) starting `start` lines into its bounding box, which are dropped.
+  std::vector<GridRectangle> refine_either_side(const Region& region, bool across_width, int start, int gap) const {
+    std::vector<Cell> sides[2];
     for (const Cell& c : region.cells) {
-      const int offset = across_width ? c.col - box.col0 : c.row - box.row0;
-      if (offset < best_start)
-        parts[0].push_back(c);
-      else if (offset >= best_start + gap)
-        parts[1].push_back(c);
+      const int offset = across_width ? c.col - region.box.col0 : c.row - region.box.row0;
+      if (offset < start)
+        sides[0].push_back(c);
+      else if (offset >= start + gap)
+        sides[1].push_back(c);
     }
     std::vector<GridRectangle> out;
-    for (const auto& half : parts)
-      for (const Region& part : connected_parts(box.panel, half))
+    for (const auto& side : sides)
+      for (const Region& part : connected_parts(region.box.panel, side))
         for (const GridRectangle& r : refine_region(part)) out.push_back(r);
     return out;
   }
@@ -453,20 +459,7 @@ class Refiner {
     const int length = across_width ? region.box.cols() : region.box.rows();
     const int gap = limits_[region.box.panel].gap_elements;
     if (length < gap + 2) return {};
-    const int first = (length - gap) / 2;
-    std::vector<Cell> halves[2];
-    for (const Cell& c : region.cells) {
-      const int offset = across_width ? c.col - region.box.col0 : c.row - region.box.row0;
-      if (offset < first)
-        halves[0].push_back(c);
-      else if (offset >= first + gap)
-        halves[1].push_back(c);
-    }
-    std::vector<GridRectangle> out;
-    for (const auto& half : halves)
-      for (const Region& part : connected_parts(region.box.panel, half))
-        for (const GridRectangle& r : refine_region(part)) out.push_back(r);
-    return out;
+    return refine_either_side(region, across_width, (length - gap) / 2, gap);
   }
 
   // Step 3: the admissible rectangle whose light best matches the region's, searched over the
