@@ -38,41 +38,42 @@ TARGET = 0.02  # relative RMS error of the solution against the goals
 SEEDS = {"goals": 1001, "solution": 2002, "truth again": 3003}
 
 # Per scene: paths per sensor of the goal and check evaluations, and the solver's settings.
+SOLVER = {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8}
 SCENES = {
     "window_room": {
         "paths": 262144,
-        "solver": {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8},
+        "solver": SOLVER,
     },
     "apartment": {
         "paths": 131072,
-        "solver": {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8},
+        "solver": SOLVER,
     },
     "atrium": {
         "paths": 524288,
-        "solver": {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8},
+        "solver": SOLVER,
     },
     # The studies the Blender examples write (examples/build_blend_examples.py).
     "room_study": {
         "paths": 131072,
-        "solver": {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8},
+        "solver": SOLVER,
     },
     "apartment_study": {
         "paths": 131072,
-        "solver": {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8},
+        "solver": SOLVER,
     },
-    # 0.3 m walls: estimated on the zero-thickness domain, checked with real reveals. It shows the
-    # wall-thickness effect the paper discusses rather than the solver's accuracy: no 2 % target.
     # Built by `make examples-blend` (its 189 000-triangle OBJ is not kept in the repository):
     # skipped when absent. Two skylights over the atrium's void.
     "museum_study": {
         "source": os.path.join(ROOT, "out", "examples", "museum_study"),
         "truth_cells": [(0, 6, 9, 6, 9), (0, 13, 17, 12, 17)],
         "paths": 131072,
-        "solver": {"paths": 8192, "population": 64, "generations": 500, "seed": 1, "elite": 8},
+        "solver": dict(SOLVER, paths=8192),
     },
+    # 0.3 m walls: estimated on the zero-thickness domain, checked with real reveals. It shows the
+    # wall-thickness effect the paper discusses rather than the solver's accuracy: no 2 % target.
     "thick_walls_study": {
         "paths": 131072,
-        "solver": {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8},
+        "solver": SOLVER,
         "target": False,
     },
 }

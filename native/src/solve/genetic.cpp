@@ -613,12 +613,7 @@ GenerationRecord record(int generation, const std::vector<Individual>& populatio
 
 }  // namespace
 
-double objective_error(const LinearObjective& objective, const std::vector<uint8_t>& open) {
-  check_objective(objective, static_cast<int>(objective.E.cols()));
-  check_state(open, static_cast<int>(objective.E.cols()), "state");
-  VectorXd o(open.size());
-  for (size_t k = 0; k < open.size(); ++k) o[k] = open[k] != 0;
-  const VectorXd p = objective.E * o;
+double prediction_error(const LinearObjective& objective, const VectorXd& p) {
   double error = 0.0;
   for (Eigen::Index i = 0; i < p.size(); ++i) {
     double bounds = 0.0;
@@ -628,6 +623,14 @@ double objective_error(const LinearObjective& objective, const std::vector<uint8
     error += objective.weight[i] * (r * r + objective.bound_weight * bounds);
   }
   return error;
+}
+
+double objective_error(const LinearObjective& objective, const std::vector<uint8_t>& open) {
+  check_objective(objective, static_cast<int>(objective.E.cols()));
+  check_state(open, static_cast<int>(objective.E.cols()), "state");
+  VectorXd o(open.size());
+  for (size_t k = 0; k < open.size(); ++k) o[k] = open[k] != 0;
+  return prediction_error(objective, objective.E * o);
 }
 
 ShapeCounts shape_counts(const ElementGrid& grid, const std::vector<uint8_t>& open) {

@@ -67,6 +67,8 @@ struct GeneticResult {
   int generations = 0;                      // run (fewer than asked when the budget ran out)
 };
 
+// The error part of the fitness for predictions p (net of the all-closed values), however made.
+double prediction_error(const LinearObjective& objective, const Eigen::VectorXd& p);
 // The error part of the fitness of one state (p = E o computed in full).
 double objective_error(const LinearObjective& objective, const std::vector<uint8_t>& open);
 ShapeCounts shape_counts(const ElementGrid& grid, const std::vector<uint8_t>& open);

@@ -74,19 +74,7 @@ ShapeWeights shape_of(const SolverSettings& s) {
 // Fitness with the error part taken from exact predictions (the shape part as the GA counts it).
 double exact_fitness(const LinearObjective& o, const ElementGrid& grid, const ShapeWeights& shape,
                      const std::vector<uint8_t>& open, const Eigen::VectorXd& predicted_net) {
-  LinearObjective empty;
-  empty.E = Eigen::MatrixXd::Zero(1, static_cast<Eigen::Index>(open.size()));
-  empty.target = empty.weight = Eigen::VectorXd::Zero(1);
-  empty.lower = Eigen::VectorXd::Constant(1, -std::numeric_limits<double>::infinity());
-  empty.upper = Eigen::VectorXd::Constant(1, std::numeric_limits<double>::infinity());
-  double f = fitness(empty, grid, shape, open);
-  for (Eigen::Index i = 0; i < predicted_net.size(); ++i) {
-    if (!(o.weight[i] > 0.0)) continue;
-    const double p = predicted_net[i], d = p - o.target[i];
-    const double below = std::max(0.0, o.lower[i] - p), above = std::max(0.0, p - o.upper[i]);
-    f += o.weight[i] * (d * d + o.bound_weight * (below * below + above * above));
-  }
-  return f;
+  return prediction_error(o, predicted_net) + shape_penalty(shape, shape_counts(grid, open));
 }
 
 }  // namespace
