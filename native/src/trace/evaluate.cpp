@@ -1,6 +1,7 @@
 #include "trace/evaluate.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -84,7 +85,8 @@ SensorValues evaluate_openings(const Scene& scene, const std::vector<Rectangle>&
     const double n = paths;
     const double mean = s / n;
     out.value[i] = mean;
-    out.standard_error[i] = n > 1 ? std::sqrt(std::max(0.0, s2 / n - mean * mean) / (n - 1)) : 0.0;
+    out.standard_error[i] = n > 1 ? std::sqrt(std::max(0.0, s2 / n - mean * mean) / (n - 1))
+                                  : std::numeric_limits<double>::infinity();  // one path: unknown spread
   }
   return out;
 }

@@ -227,6 +227,11 @@ void PathTracer::sensor_portals(size_t sensor, size_t path, SensorPortal* out) c
   // turn from a random start, so every element gets its share of samples up to one; successive
   // visits to an element take successive Halton points with a random shift (Cranley-Patterson),
   // evenly spread over it, which nearby elements need. Groups are independent randomisations.
+  // A sample is weighted by the inverse of its element's expected visits per path: when the group
+  // has samples for every element, the visits are known and at least one (a mean of unbiased
+  // points); with fewer samples than elements, an element is visited once or not at all, with
+  // probability samples / elements over the random start (Horvitz-Thompson), so the light of the
+  // unvisited elements is still counted in expectation.
   const size_t no = portals_.size();
   const size_t group = replicate_of(path);
   const size_t group_paths = replicate_size(group, static_cast<size_t>(scene_.render.paths_per_sensor));
@@ -244,7 +249,10 @@ void PathTracer::sensor_portals(size_t sensor, size_t path, SensorPortal* out) c
     const float a = radical_inverse(visit, 2) + shift.uniform(), b = radical_inverse(visit, 3) + shift.uniform();
     out[j].element = static_cast<int>(k);
     out[j].uv = Vec2(std::min(a - std::floor(a), 0.99999994f), std::min(b - std::floor(b), 0.99999994f));
-    out[j].samples_per_path = static_cast<float>(visits) / static_cast<float>(group_paths);
+    const size_t group_samples = group_paths * kSensorPortals;
+    out[j].samples_per_path = group_samples >= no
+                                  ? static_cast<float>(visits) / static_cast<float>(group_paths)
+                                  : static_cast<float>(static_cast<double>(kSensorPortals) / static_cast<double>(no));
   }
 }
 

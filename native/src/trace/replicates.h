@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace fenestra {
 
@@ -35,7 +36,9 @@ inline void replicate_estimate(const double* group_sums, size_t n_paths, double*
     ++groups;
   }
   *mean = m;
-  *standard_error = groups > 1 ? std::sqrt(var * static_cast<double>(groups) / static_cast<double>(groups - 1)) : 0.0;
+  // One path fills one group: its spread cannot be told, and an unknown error is infinite.
+  *standard_error = groups > 1 ? std::sqrt(var * static_cast<double>(groups) / static_cast<double>(groups - 1))
+                               : std::numeric_limits<double>::infinity();
 }
 
 struct ReplicateSums {
