@@ -103,6 +103,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                  {"verified", r.verified ? error_json(r.verified_error) : json(nullptr)},
                  {"nnls_relative_rms", r.nnls_relative_rms}}},
       {"fitness", r.fitness},
+      {"warnings", r.warnings},
       {"unconstrained", {{"open_elements", open_list(r.unconstrained_open)},
                          {"openings", openings_json(r.unconstrained_openings)},
                          {"error", error_json(r.unconstrained_error)}}},

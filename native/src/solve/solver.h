@@ -45,6 +45,9 @@ struct SolveResult {
     double seconds = 0.0;
   };
   std::vector<Timing> timings;
+  // What the user should know before trusting the result (too few paths, a prediction the
+  // real-cutter check contradicts), in words.
+  std::vector<std::string> warnings;
 };
 
 // Contributions already computed for this scene.

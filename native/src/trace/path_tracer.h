@@ -22,6 +22,10 @@ namespace fenestra {
 
 class PathTracer {
  public:
+  // Portal samples each sensor path sends toward the elements (the direct light through them):
+  // 4 balances the direct term (stratified, cheap to improve) against the indirect paths.
+  static constexpr size_t kSensorPortals = 4;
+
   // `openings` are cut (closed mode); `reveals` line them through the wall (materials per face).
   PathTracer(const Scene& scene, CutterSet openings, Mesh reveals);
 
@@ -56,8 +60,6 @@ class PathTracer {
   void sample_portal(int k, const Vec2& uv, float selection, const Vec3& x, const Vec3& n, const PathState& st,
                      Rng& rng, BsdfOfDirection f_and_pdf, Sink& sink) const;
   // The portal samples a sensor's path sends: element, point on it, and that element's selection.
-  // 4 balances the direct term (stratified, cheap to improve) against the indirect paths.
-  static constexpr size_t kSensorPortals = 4;
   struct SensorPortal {
     int element;
     Vec2 uv;
