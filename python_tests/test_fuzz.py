@@ -1,0 +1,236 @@
+"""Seeded mutations of valid scenes, OBJ files, openings and arguments: every run of the
+command-line program must end by itself, within its time budget and a memory cap, with exit
+status 0, 1 or 2 (never a signal), an error naming the problem, and no output left on failure."""
+
+import concurrent.futures
+import copy
+import json
+import os
+import random
+import resource
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+from conftest import CLI, EXAMPLES, box_obj
+
+CASES = int(os.environ.get("FENESTRA_FUZZ_CASES", "300"))
+TIME_BUDGET_S = 60.0            # per run; valid runs take well under a second
+MEMORY_CAP = 6 * 1024 ** 3      # bytes of address space per run (ulimit -v)
+
+# Values that have broken parsers before: overflow in float or int, wrap-around, wrong types.
+NASTY = [0, -1, 1, 2, 0.5, -0.5, 1e-300, 1e-45, 1e39, -1e39, 1e300, -1e300, 2 ** 31, 2 ** 32, 2 ** 32 + 1,
+         2 ** 53 + 1, 2 ** 63, 2 ** 64 + 5, 4294967424, 1.5, 1e7, 1e8, "x", "", "\u00e9\u00e8", None, True, False,
+         [], {}, [1e39, 1, 1], [0, 0, 0], [1, 2], [[1, 2, 3]], {"type": 3}]
+OBJ_NASTY = ["1e39", "-1e39", "nan", "inf", "1e300", "0", "1e19", "3e18", "-0"]
+INDEX_NASTY = ["0", "-1", "-99999", "99999", "18446744073709551617", "4294967297", "2147483648", "x", ""]
+
+
+def base_scene(kind):
+    scene = {
+        "fenestra": 1,
+        "geometry": "room.obj",
+        "materials": {"grey": {"type": "diffuse", "reflectance": 0.6},
+                      "facade": {"type": "diffuse", "reflectance": 0.5},
+                      "pane": {"type": "glass", "transmittance": 0.8, "ior": 1.52},
+                      "steel": {"type": "glossy", "reflectance": 0.6, "roughness": 0.3, "metallic": 0.5}},
+        "opening_domain": {"materials": ["facade"], "element_size": 0.5, "thickness": 0.0},
+        "sensors": {"points": [[1.5, 1.0, 0.8], [0.5, 2.5, 0.8], [2.5, 0.5, 1.2]], "normals": [0, 0, 1],
+                    "goals": [0.5, 0.3, 0.6], "goal_units": "normalized"},
+        "sky": {"type": "uniform", "radiance": 318.3},
+        "render": {"paths_per_sensor": 32, "max_bounces": 4, "seed": 1, "threads": 2},
+        "solver": {"population": 8, "generations": 4, "improve_iterations": 20, "verify": True,
+                   "constraints": {"min_width": 0.5, "max_openings": 3}},
+    }
+    if kind == "preetham":
+        scene["sky"] = {"type": "preetham", "latitude": 48.85, "longitude": 2.35, "timezone": "Europe/Paris",
+                        "date": "2026-03-21", "start": "09:00", "end": "17:00", "step_minutes": 120,
+                        "turbidity": 3, "resolution": [64, 32]}
+    elif kind == "overcast":
+        scene["sky"] = {"type": "cie_overcast", "horizontal_illuminance": 10000, "resolution": [64, 32]}
+    elif kind == "envmap":
+        scene["sky"] = {"type": "envmap", "file": "sky.exr", "scale": 1.0, "rotation_deg": 30}
+    return scene
+
+
+def leaf_paths(node, prefix=()):
+    """Every key path in the JSON tree, containers included."""
+    yield prefix
+    if isinstance(node, dict):
+        for k, v in node.items():
+            yield from leaf_paths(v, prefix + (k,))
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            yield from leaf_paths(v, prefix + (i,))
+
+
+def set_at(root, path, value):
+    node = root
+    for p in path[:-1]:
+        node = node[p]
+    node[path[-1]] = value
+
+
+def delete_at(root, path):
+    node = root
+    for p in path[:-1]:
+        node = node[p]
+    if isinstance(node, dict):
+        del node[path[-1]]
+    else:
+        node.pop(path[-1])
+
+
+def mutate_json(rng, scene):
+    for _ in range(rng.randint(1, 3)):
+        paths = [p for p in leaf_paths(scene) if p]
+        path = rng.choice(paths)
+        op = rng.random()
+        if op < 0.6:
+            set_at(scene, path, copy.deepcopy(rng.choice(NASTY)))
+        elif op < 0.8:
+            delete_at(scene, path)
+        elif op < 0.9:
+            set_at(scene, path[:-1] + ("unknown_key",) if isinstance(path[-1], str) else path, "surprise")
+        else:  # many copies of a list (sensors, materials)
+            parent = scene
+            for p in path[:-1]:
+                parent = parent[p]
+            if isinstance(parent, list):
+                parent.extend([copy.deepcopy(parent[0])] * rng.choice([10, 1000]))
+    return scene
+
+
+def mutate_text(rng, text):
+    """Byte-level damage: truncation, a stray byte (invalid UTF-8 included), a huge number."""
+    data = text.encode()
+    op = rng.random()
+    at = rng.randrange(len(data))
+    if op < 0.3:
+        return data[:at]
+    if op < 0.6:
+        return data[:at] + bytes([rng.choice([0x00, 0xff, 0xc3, ord("{"), ord('"'), ord(",")])]) + data[at:]
+    digits = [i for i, c in enumerate(text) if c.isdigit()]
+    i = rng.choice(digits)
+    return (text[:i] + rng.choice(["1e400", "-1e400", "99999999999999999999999", "0x10"]) + text[i + 1:]).encode()
+
+
+def mutate_obj(rng, text):
+    lines = text.splitlines()
+    op = rng.random()
+    if op < 0.3:  # a bad coordinate
+        i = rng.choice([k for k, l in enumerate(lines) if l.startswith("v ")])
+        parts = lines[i].split()
+        parts[rng.randrange(1, 4)] = rng.choice(OBJ_NASTY)
+        lines[i] = " ".join(parts)
+    elif op < 0.55:  # a bad face index
+        i = rng.choice([k for k, l in enumerate(lines) if l.startswith("f ")])
+        parts = lines[i].split()
+        parts[rng.randrange(1, len(parts))] = rng.choice(INDEX_NASTY)
+        lines[i] = " ".join(parts)
+    elif op < 0.7:  # exported in millimetres
+        lines = ["v " + " ".join("%g" % (1000 * float(c)) for c in l.split()[1:]) if l.startswith("v ") else l
+                 for l in lines]
+    elif op < 0.85:
+        lines.insert(rng.randrange(len(lines) + 1), rng.choice(["f 1", "v 1 2", "usemtl", "usemtl nowhere",
+                                                               "o", "f 1 1 1", "\x00\x01", "vt 0 0", "f 1/ 2/ 3/"]))
+    else:
+        lines = lines[:rng.randrange(len(lines))]
+    return "\n".join(lines) + "\n"
+
+
+def mutate_args(rng, args):
+    flag = rng.choice(["--paths", "--threads", "--seed"])
+    value = rng.choice(["0", "-1", "4294967296", "4294967297", "2147483648", "1e9", "abc", "", "99999999999999999999",
+                        "1073741825", "3"])
+    return args + [flag, value]
+
+
+def make_case(seed, workdir):
+    """Writes one mutated study into workdir; returns (command line, output paths, what was done)."""
+    rng = random.Random(seed)
+    kind = rng.choice(["uniform", "uniform", "preetham", "overcast", "envmap"])
+    scene = base_scene(kind)
+    obj = box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey")
+    openings = {"openings": [{"corners": [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1, 0, 2]]}]}
+    command = rng.choices(["contributions", "evaluate", "sky", "solve"], weights=[5, 2, 1, 2])[0]
+    target = rng.choices(["json", "text", "obj", "openings", "args"], weights=[6, 2, 3, 1, 1])[0]
+    if target == "openings" and command != "evaluate":
+        target = "json"
+    scene_bytes = None
+    if target == "json":
+        scene = mutate_json(rng, scene)
+    elif target == "text":
+        scene_bytes = mutate_text(rng, json.dumps(scene, indent=1))
+    elif target == "obj":
+        obj = mutate_obj(rng, obj)
+    elif target == "openings":
+        openings = mutate_json(rng, openings)
+    if scene_bytes is None:
+        scene_bytes = json.dumps(scene).encode()
+    (workdir / "scene.json").write_bytes(scene_bytes)
+    (workdir / "room.obj").write_text(obj)
+    (workdir / "openings.json").write_text(json.dumps(openings))
+    if kind == "envmap":
+        shutil.copy(os.path.join(EXAMPLES, "reference_room", "sky.exr"), workdir / "sky.exr")
+    out = workdir / ("out.exr" if command == "sky" else "out.npz" if command == "contributions" else "out.json")
+    args = [CLI, command, str(workdir / "scene.json"), "-o", str(out), "--quiet"]
+    if command == "evaluate":
+        args += ["--openings", str(workdir / "openings.json")]
+    if target == "args":
+        args = mutate_args(rng, args)
+    outputs = [out] + ([workdir / "out.json"] if command == "contributions" else [])
+    return args, outputs, "%s sky, %s, %s mutated" % (kind, command, target)
+
+
+def cap_memory():
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_CAP, MEMORY_CAP))
+
+
+def check_case(seed, root):
+    workdir = root / ("case%04d" % seed)
+    workdir.mkdir()
+    args, outputs, what = make_case(seed, workdir)
+    inputs = set(os.listdir(workdir))
+    try:
+        r = subprocess.run(args, capture_output=True, timeout=TIME_BUDGET_S, preexec_fn=cap_memory)
+    except subprocess.TimeoutExpired:
+        return "seed %d (%s): still running after %.0f s" % (seed, what, TIME_BUDGET_S)
+    stderr = r.stderr.decode("utf-8", "replace")
+    problem = None
+    if r.returncode < 0:
+        problem = "killed by signal %d" % -r.returncode
+    elif r.returncode not in (0, 1, 2):
+        problem = "exit status %d" % r.returncode
+    elif any(s in stderr for s in ("terminate called", "json.exception", "std::bad_alloc", "Assertion", "what():")):
+        problem = "raw internal message"
+    elif r.returncode != 0:
+        if "fenestra: " not in stderr or len(stderr.strip()) < 20:
+            problem = "no message naming the problem"
+        elif set(os.listdir(workdir)) != inputs:
+            problem = "left %s behind" % sorted(set(os.listdir(workdir)) - inputs)
+    else:
+        missing = [str(p) for p in outputs if not p.exists()]
+        leftovers = [f for f in os.listdir(workdir) if ".tmp" in f]
+        if missing or leftovers:
+            problem = "exit 0 but missing %s, temporaries %s" % (missing, leftovers)
+        elif outputs[0].suffix == ".npz":
+            with np.load(outputs[0]) as data:
+                bad = [k for k in data.files if not np.isfinite(data[k]).all() and k != "E_stderr"
+                       and not k.endswith("_stderr")]
+                if bad:
+                    problem = "exit 0 with non-finite %s" % bad
+    if problem:
+        return "seed %d (%s): %s; rc %d; %s" % (seed, what, problem, r.returncode, stderr.strip()[-300:])
+    shutil.rmtree(workdir)
+    return None
+
+
+@pytest.mark.skipif(not os.path.exists(CLI), reason="CLI not built")
+def test_mutated_inputs_end_cleanly(tmp_path):
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+        results = list(pool.map(lambda s: check_case(s, tmp_path), range(CASES)))
+    failures = [r for r in results if r]
+    assert not failures, "%d of %d mutated runs failed:\n%s" % (len(failures), CASES, "\n".join(failures[:25]))
