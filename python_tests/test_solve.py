@@ -153,3 +153,26 @@ def test_panel_constraints_apply_to_their_own_panels(tmp_path):
     path.write_text(json.dumps(scene))
     r = run("solve", path, "-o", out, "--quiet")
     assert r.returncode == 1 and "panel_constraints[0]" in r.stderr
+
+
+def test_cli_solve_with_too_few_paths_for_its_elements_says_so(small_room, tmp_path):
+    # 0.1 m elements: 750 on the wall; 64 paths per sensor send 256 direct samples.
+    scene = with_goals(small_room, [0.5, 0.3, 0.6], units="normalized",
+                       solver={"generations": 20, "population": 16, "seed": 2},
+                       opening_domain={"materials": ["facade"], "element_size": 0.1})
+    out = tmp_path / "result.json"
+    r = run("solve", scene, "-o", out, "--paths", 64, "--quiet")
+    assert r.returncode == 0, r.stderr
+    result = json.loads(out.read_text())
+    assert any("direct samples for 750 elements" in w for w in result["warnings"]), result["warnings"]
+    assert "warning: 64 paths per sensor" in r.stderr
+    assert "checked with real cutters" in r.stdout
+
+
+def test_cli_solve_with_enough_paths_has_no_warning(small_room, tmp_path):
+    scene = with_goals(small_room, [0.5, 0.3, 0.6], units="normalized",
+                       solver={"generations": 20, "population": 16, "seed": 2})
+    out = tmp_path / "result.json"
+    r = run("solve", scene, "-o", out, "--paths", 2048, "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(out.read_text())["warnings"] == []
