@@ -164,7 +164,7 @@ Rgb map_horizontal_illuminance(int width, int height, const std::vector<Rgb>& pi
   return e.cast<float>();
 }
 
-Daylight make_daylight(const DaylightSettings& s) {
+Daylight make_daylight(const DaylightSettings& s, Progress* progress) {
   const auto start = std::chrono::steady_clock::now();
   check(s.width >= 4 && s.height >= 2 && s.height % 2 == 0 && s.width <= 16384 && s.height <= 8192, "resolution",
         "needs width 4..16384 and an even height 2..8192");
@@ -202,6 +202,7 @@ Daylight make_daylight(const DaylightSettings& s) {
   auto add_sky = [&](const RowFiller& fill_row, double weight) {
     const Rgb exact = analytic_horizontal_illuminance(fill_row);
     rasterise_sky(s.width, s.height, directions, fill_row, &step_pixels);
+    if (progress) progress->throw_if_cancelled();  // large maps take a while per step
     const Rgb mapped = map_horizontal_illuminance(s.width, s.height, step_pixels);  // reads the upper half only
     const double scale = luminance(mapped) > 0.0f ? luminance(exact) / luminance(mapped) : 1.0;
     tbb::parallel_for(size_t(0), upper_size, [&](size_t i) { sum[i] += (weight * scale) * step_pixels[i].cast<double>(); });
@@ -219,7 +220,13 @@ Daylight make_daylight(const DaylightSettings& s) {
     add_sky(per_pixel(overcast), 1.0);
     out.steps = 1;
   } else {
-    for (const TimeStep& step : time_steps(s)) {
+    const std::vector<TimeStep> steps = time_steps(s);
+    if (progress) progress->start("building the daylight sky", steps.size());
+    for (const TimeStep& step : steps) {
+      if (progress) {  // a step takes a few milliseconds at the default resolution
+        progress->throw_if_cancelled();
+        progress->advance();
+      }
       ++out.steps;
       SunPosition position = solar_position(step.utc_seconds, s.place, true);
       position.azimuth_deg = std::fmod(position.azimuth_deg + s.north_offset_deg + 720.0, 360.0);

@@ -8,6 +8,7 @@
 #include "daylight/local_time.h"
 #include "daylight/solar_position.h"
 #include "scene/sun_lights.h"
+#include "util/progress.h"
 
 namespace fenestra {
 
@@ -47,8 +48,9 @@ struct Daylight {
   double seconds = 0.0;            // time taken to build it
 };
 
-// Throws std::invalid_argument naming the setting at fault.
-Daylight make_daylight(const DaylightSettings& settings);
+// Throws std::invalid_argument naming the setting at fault. With `progress`, reports the time
+// steps done and polls cancellation between them (throws Cancelled).
+Daylight make_daylight(const DaylightSettings& settings, Progress* progress = nullptr);
 
 // Horizontal illuminance of an equirectangular map's upper hemisphere (exact per-pixel solid
 // angles: pixels are piecewise constant), in the map's radiance units times sr.

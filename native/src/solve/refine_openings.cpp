@@ -27,6 +27,8 @@ constexpr int kMaxRounds = 32;
 constexpr int kAddOneIn = 10;
 // Proposals on an existing opening: 4 moves, 4 sides out, 4 sides in, removal.
 constexpr int kChanges = 13;
+// Local-search proposals between two polls of cancellation (a proposal takes about a microsecond).
+constexpr int kPollProposals = 256;
 
 struct Cell {
   int row = 0, col = 0;
@@ -241,9 +243,11 @@ struct Candidate {
 
 class Refiner {
  public:
-  Refiner(const OpeningDomain& domain, const LinearObjective& objective, const OpeningConstraints& constraints)
+  Refiner(const OpeningDomain& domain, const LinearObjective& objective, const OpeningConstraints& constraints,
+          const Progress* progress = nullptr)
       : domain_(domain),
         constraints_(constraints),
+        progress_(progress),
         a_(domain.element_size()),
         light_(domain, objective) {
     for (int p = 0; p < static_cast<int>(domain.panels().size()); ++p) {
@@ -264,16 +268,24 @@ class Refiner {
           const int k = panel.grid[static_cast<size_t>(r) * panel.cols + c];
           if (k >= 0 && open[k]) cells.push_back({r, c});
         }
-      for (const Region& region : connected_parts(p, cells))
+      for (const Region& region : connected_parts(p, cells)) {
+        poll();
         for (const GridRectangle& r : refine_region(region)) out.push_back(r);
+      }
     }
     return out;
+  }
+
+  // Throws Cancelled once the caller asked to stop.
+  void poll() const {
+    if (progress_) progress_->throw_if_cancelled();
   }
 
   // Step 6: the least change (fewest elements lost, then the lowest error) that parts each pair.
   void separate(std::vector<GridRectangle>* rects) const {
     VectorXd light = light_.of(*rects);
     for (;;) {
+      poll();
       size_t i = 0, j = 0;
       if (!find_conflict(*rects, &i, &j)) return;
       const size_t smaller = (*rects)[j].element_count() <= (*rects)[i].element_count() ? j : i;
@@ -311,6 +323,7 @@ class Refiner {
     if (constraints_.max_openings <= 0) return;
     VectorXd light = light_.of(*rects);
     while (static_cast<int>(rects->size()) > constraints_.max_openings) {
+      poll();
       size_t dropped = 0;
       double best = kInfinity;
       for (size_t i = 0; i < rects->size(); ++i) {
@@ -330,6 +343,7 @@ class Refiner {
     VectorXd light = light_.of(rects);
     double error = light_.error(light);
     for (int it = 0; it < iterations; ++it) {
+      if (it % kPollProposals == 0) poll();
       const int count = static_cast<int>(rects.size());
       const bool room_for_more = constraints_.max_openings <= 0 || count < constraints_.max_openings;
       if (count == 0 || (room_for_more && uniform_int(rng, kAddOneIn) == 0)) {
@@ -371,6 +385,7 @@ class Refiner {
   // best single rectangle, the refined halves (when it needs splitting) and no opening at all
   // matches its light best.
   std::vector<GridRectangle> refine_region(const Region& region) const {
+    poll();
     const GridRectangle& box = region.box;
     if (static_cast<int>(region.cells.size()) == box.element_count() && admissible(box)) return {box};
     const VectorXd y = weighted_light(region.cells, box.panel);
@@ -490,6 +505,7 @@ class Refiner {
       Candidate& best = by_first_row[i0];
       const int row0 = w.row0 + i0;
       for (int i1 = i0; i1 < rows; ++i1) {
+        if (progress_ && progress_->cancelled()) return;  // best_rectangle's caller polls
         const int band = i1 - i0 + 1, row1 = w.row0 + i1;
         if (band > limits.max_rows) break;
         if (band < limits.min_rows || in_region.in(i0, i1, 0, cols - 1) == 0) continue;
@@ -518,6 +534,7 @@ class Refiner {
           }
       }
     });
+    poll();
     Candidate best;
     for (const Candidate& c : by_first_row)
       if (c.error < best.error) best = c;  // ties: the lowest row first, as each band scans
@@ -585,7 +602,7 @@ class Refiner {
 
   // The first pair of openings that are not apart().
   bool find_conflict(const std::vector<GridRectangle>& rects, size_t* i, size_t* j) const {
-    for (size_t x = 0; x < rects.size(); ++x)
+    for (size_t x = 0; x < rects.size(); ++x, poll())
       for (size_t y = x + 1; y < rects.size(); ++y)
         if (!apart(rects[x], rects[y], constraints_, a_)) {
           *i = x, *j = y;
@@ -647,6 +664,7 @@ class Refiner {
 
   const OpeningDomain& domain_;
   const OpeningConstraints& constraints_;
+  const Progress* progress_;
   double a_;
   std::vector<GridLimits> limits_;  // per panel
   RectangleLight light_;
@@ -681,12 +699,13 @@ void check_inputs(const OpeningDomain& domain, const LinearObjective& o, const O
 }  // namespace
 
 std::vector<GridRectangle> refine_openings(const OpeningDomain& domain, const std::vector<uint8_t>& open,
-                                           const LinearObjective& objective, const OpeningConstraints& constraints) {
+                                           const LinearObjective& objective, const OpeningConstraints& constraints,
+                                           const Progress* progress) {
   check_inputs(domain, objective, constraints);
   if (open.size() != domain.element_count())
     throw std::invalid_argument("opening refinement: the open mask has " + std::to_string(open.size()) +
                                 " values for " + std::to_string(domain.element_count()) + " elements");
-  const Refiner refiner(domain, objective, constraints);
+  const Refiner refiner(domain, objective, constraints, progress);
   std::vector<GridRectangle> rects = refiner.rectangles_of(open);
   for (int round = 1; round < kMaxRounds; ++round) {
     std::vector<GridRectangle> next = refiner.rectangles_of(rectangles_mask(domain, rects));
@@ -705,13 +724,13 @@ std::vector<GridRectangle> refine_openings(const OpeningDomain& domain, const st
 
 std::vector<GridRectangle> improve_rectangles(const OpeningDomain& domain, std::vector<GridRectangle> rectangles,
                                               const LinearObjective& objective, const OpeningConstraints& constraints,
-                                              uint64_t seed, int iterations) {
+                                              uint64_t seed, int iterations, const Progress* progress) {
   check_inputs(domain, objective, constraints);
   if (iterations < 0) throw std::invalid_argument("opening improvement: iterations must be >= 0");
   std::string why;
   if (!satisfies_all(domain, rectangles, constraints, &why))
     throw std::invalid_argument("opening improvement: the openings given break the constraints: " + why);
-  const Refiner refiner(domain, objective, constraints);
+  const Refiner refiner(domain, objective, constraints, progress);
   std::vector<GridRectangle> out = refiner.improve(std::move(rectangles), seed, iterations);
   std::sort(out.begin(), out.end());
   return out;

@@ -32,11 +32,15 @@
 #include "scene/opening_domain.h"
 #include "solve/constraints.h"
 #include "solve/genetic.h"
+#include "util/progress.h"
 
 namespace fenestra {
 
+// With `progress`, both poll cancellation often (every band of rows, region, conflict or few
+// hundred proposals) and throw Cancelled.
 std::vector<GridRectangle> refine_openings(const OpeningDomain& domain, const std::vector<uint8_t>& open,
-                                           const LinearObjective& objective, const OpeningConstraints& constraints);
+                                           const LinearObjective& objective, const OpeningConstraints& constraints,
+                                           const Progress* progress = nullptr);
 
 // Stochastic descent over whole openings: each of `iterations` proposals moves one opening by an
 // element, moves one of its sides out or in by an element, removes it, or adds a new opening of
@@ -45,6 +49,6 @@ std::vector<GridRectangle> refine_openings(const OpeningDomain& domain, const st
 // satisfy_all() (refine_openings' result does); otherwise std::invalid_argument says why.
 std::vector<GridRectangle> improve_rectangles(const OpeningDomain& domain, std::vector<GridRectangle> rectangles,
                                               const LinearObjective& objective, const OpeningConstraints& constraints,
-                                              uint64_t seed, int iterations);
+                                              uint64_t seed, int iterations, const Progress* progress = nullptr);
 
 }  // namespace fenestra

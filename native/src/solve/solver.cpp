@@ -146,7 +146,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   if (candidates.empty()) candidates.push_back(result.best);
   if (ga.generations > 0) {
     LinearObjective corrected = objective;
-    const Eigen::VectorXd difference = c.evaluate(result.best).value - linear_prediction(c, result.best);
+    const Eigen::VectorXd difference = c.evaluate(result.best, progress).value - linear_prediction(c, result.best);
     for (Eigen::Index i = 0; i < difference.size(); ++i)
       if (corrected.weight[i] > 0.0) {
         corrected.target[i] -= difference[i];
@@ -172,7 +172,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   double best = std::numeric_limits<double>::infinity();
   SensorValues chosen;
   for (const auto& open : candidates) {
-    const SensorValues exact = c.evaluate(open);
+    const SensorValues exact = c.evaluate(open, progress);
     const double f = exact_fitness(objective, grid, shape, open, exact.value - c.closed.value);
     if (f < best) {
       best = f;
@@ -180,7 +180,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
       chosen = exact;
     }
   }
-  out.start_error = goal_error(out.goals, c.evaluate(fine_start.open).value);
+  out.start_error = goal_error(out.goals, c.evaluate(fine_start.open, progress).value);
   out.unconstrained_open = out.open;
   out.unconstrained_openings = merge_into_rectangles(scene.domain, out.open);
   out.unconstrained_error = goal_error(out.goals, chosen.value);
@@ -194,15 +194,17 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   constraints.panel_base_z = panel_base_heights(scene.domain, scene.mesh);
   auto exact_of = [&](const std::vector<GridRectangle>& rects, SensorValues* values) {
     const std::vector<uint8_t> open = rectangles_mask(scene.domain, rects);
-    *values = c.evaluate(open);
+    *values = c.evaluate(open, progress);
     return exact_fitness(objective, grid, shape, open, values->value - c.closed.value);
   };
-  std::vector<GridRectangle> rects = refine_openings(scene.domain, out.open, objective, constraints);
+  std::vector<GridRectangle> rects = refine_openings(scene.domain, out.open, objective, constraints, progress);
   best = exact_of(rects, &chosen);
   out.refined_error = goal_error(out.goals, chosen.value);
   if (settings.improve_iterations > 0) {
+    if (progress) progress->start("solving: local search over openings", 1);
     const std::vector<GridRectangle> improved =
-        improve_rectangles(scene.domain, rects, objective, constraints, settings.seed, settings.improve_iterations);
+        improve_rectangles(scene.domain, rects, objective, constraints, settings.seed, settings.improve_iterations,
+                           progress);
     SensorValues improved_values;
     const double f = exact_of(improved, &improved_values);
     if (f < best) {

@@ -13,6 +13,9 @@
 namespace fenestra {
 namespace {
 
+// Paths between two polls of cancellation in loops over path records (well under a millisecond).
+constexpr size_t kPollPaths = 4096;
+
 
 struct Touched {
   int element;
@@ -21,7 +24,8 @@ struct Touched {
 };
 
 // Per-path analysis: E's row, A, T and the closed / all-open values from the event list.
-void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Contributions* out) {
+void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Contributions* out,
+                    const Progress* progress = nullptr) {
   const size_t n_paths = rec.path_count();
   std::vector<double> e_sum(elements * kReplicates, 0.0), a_sum(elements, 0.0);
   ReplicateSums closed, open;
@@ -29,6 +33,7 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
   std::vector<double> base_suffix, all_suffix;
   const std::vector<uint8_t> all_open_mask(elements, 1);
   for (size_t p = 0; p < n_paths; ++p) {
+    if (progress && p % kPollPaths == 0) progress->throw_if_cancelled();  // a sensor's record may be huge
     const uint32_t b = rec.path_begin[p], e = rec.path_begin[p + 1];
     const size_t m = e - b;
     base_suffix.assign(m + 1, 0.0);
@@ -95,8 +100,9 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
 }
 
 // Light leaving through element n on paths that reflected off element m before, summed.
-void accumulate_transport(const SensorRecord& rec, Eigen::MatrixXd* transport) {
+void accumulate_transport(const SensorRecord& rec, Eigen::MatrixXd* transport, const Progress* progress) {
   for (size_t p = 0; p < rec.path_count(); ++p) {
+    if (progress && p % kPollPaths == 0) progress->throw_if_cancelled();
     const uint32_t b = rec.path_begin[p], e = rec.path_begin[p + 1];
     for (uint32_t j = b; j < e; ++j) {
       const PathEvent& first = rec.events[j];
@@ -112,7 +118,7 @@ void accumulate_transport(const SensorRecord& rec, Eigen::MatrixXd* transport) {
 
 }  // namespace
 
-SensorValues Contributions::evaluate(const std::vector<uint8_t>& open) const {
+SensorValues Contributions::evaluate(const std::vector<uint8_t>& open, const Progress* progress) const {
   if (open.size() != element_count())
     throw std::invalid_argument("open-element mask has " + std::to_string(open.size()) + " entries, expected " +
                                 std::to_string(element_count()));
@@ -121,9 +127,13 @@ SensorValues Contributions::evaluate(const std::vector<uint8_t>& open) const {
   out.standard_error.resize(records.size());
   tbb::parallel_for(size_t(0), records.size(), [&](size_t i) {
     ReplicateSums sums;
-    for (size_t p = 0; p < records[i].path_count(); ++p) sums.add(p, path_value(records[i], p, open));
+    for (size_t p = 0; p < records[i].path_count(); ++p) {
+      if (progress && p % kPollPaths == 0 && progress->cancelled()) return;
+      sums.add(p, path_value(records[i], p, open));
+    }
     sums.estimate(records[i].path_count(), &out.value[i], &out.standard_error[i]);
   });
+  if (progress) progress->throw_if_cancelled();
   return out;
 }
 
@@ -167,13 +177,14 @@ Contributions compute_contributions(const Scene& scene, Progress* progress) {
   parallel_tasks(sensors, scene.render.threads, progress, [&](size_t i) {
     SensorRecord& rec = c.records[i];
     for (size_t t = 0; t < tasks_per_sensor; ++t) {
+      if (progress && t % 64 == 0) progress->throw_if_cancelled();  // a sensor's paths may be many chunks
       rec.append(chunks[i * tasks_per_sensor + t]);
       SensorRecord().events.swap(chunks[i * tasks_per_sensor + t].events);
     }
-    analyse_sensor(rec, i, elements, &c);
+    analyse_sensor(rec, i, elements, &c, progress);
   });
   c.T.setZero(elements, elements);
-  for (const auto& rec : c.records) accumulate_transport(rec, &c.T);
+  for (const auto& rec : c.records) accumulate_transport(rec, &c.T, progress);
   c.T = (c.T + c.T.transpose()).eval() / static_cast<double>(paths * sensors);
   for (const auto& r : c.records) c.events += r.events.size();
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

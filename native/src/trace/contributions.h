@@ -32,7 +32,8 @@ struct Contributions {
   size_t sensor_count() const { return records.size(); }
   size_t element_count() const { return static_cast<size_t>(E.cols()); }
   // Exact value of every sensor with the elements where open[k] != 0 open, from the same paths.
-  SensorValues evaluate(const std::vector<uint8_t>& open) const;
+  // With `progress`, polls cancellation every few thousand paths (throws Cancelled).
+  SensorValues evaluate(const std::vector<uint8_t>& open, const Progress* progress = nullptr) const;
   size_t memory_bytes() const;
 };
 
