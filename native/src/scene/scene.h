@@ -14,6 +14,7 @@
 namespace fenestra {
 
 struct Daylight;  // daylight/daylight.h
+class Progress;   // util/progress.h
 
 struct Sensors {
   std::vector<Vec3> points;   // meters
@@ -44,15 +45,20 @@ struct Scene {
   std::shared_ptr<const Daylight> daylight;  // how a daylight sky was built (null for others)
   RenderSettings render;
   SolverSettings solver;
+  // Files the scene was read from: the scene file (when loaded from one), the OBJ, an
+  // environment map. Outputs must not overwrite them.
+  std::vector<std::string> input_files;
 
   std::vector<std::string> material_names() const;
   std::string to_string() const;
 };
 
 // Reads a scene file (JSON + OBJ, see docs/scene-format.md). Throws std::invalid_argument
-// naming the file and the offending key or value.
-Scene load_scene(const std::string& path);
+// naming the file and the offending key or value. With `progress`, a daylight sky's build
+// reports its steps and polls cancellation (throws Cancelled).
+Scene load_scene(const std::string& path, Progress* progress = nullptr);
 // Same from JSON text; relative paths resolve against `base_dir`.
-Scene parse_scene(const std::string& json_text, const std::string& base_dir, const std::string& source_name);
+Scene parse_scene(const std::string& json_text, const std::string& base_dir, const std::string& source_name,
+                  Progress* progress = nullptr);
 
 }  // namespace fenestra

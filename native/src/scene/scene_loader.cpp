@@ -190,7 +190,7 @@ DaylightSettings parse_daylight(const ScenePath& sp, const json& j, const std::s
   return d;
 }
 
-void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* scene) {
+void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* scene, Progress* progress) {
   if (!j.is_object()) sp.fail("sky", "expected an object");
   const std::string type = j.value("type", std::string("uniform"));
   if (type == "uniform") {
@@ -207,6 +207,7 @@ void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* 
     if (scale < 0.0f) sp.fail("sky.scale", "must not be negative");
     try {
       scene->sky = EnvironmentMap::load(file.string(), scale, rotation);
+      scene->input_files.push_back(file.string());
     } catch (const std::invalid_argument& e) {
       sp.fail("sky.file", e.what());
     }
@@ -216,7 +217,7 @@ void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* 
     const DaylightSettings settings = parse_daylight(sp, j, type);
     std::shared_ptr<Daylight> daylight;
     try {
-      daylight = std::make_shared<Daylight>(make_daylight(settings));
+      daylight = std::make_shared<Daylight>(make_daylight(settings, progress));
     } catch (const std::invalid_argument& e) {
       sp.fail("sky", e.what());
     }
@@ -512,7 +513,8 @@ std::string Scene::to_string() const {
   return s.str();
 }
 
-Scene parse_scene(const std::string& text, const std::string& base_dir, const std::string& source_name) {
+Scene parse_scene(const std::string& text, const std::string& base_dir, const std::string& source_name,
+                  Progress* progress) {
   const ScenePath sp(source_name);
   json j;
   try {
@@ -535,6 +537,7 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     if (!j.contains("geometry") || !j.at("geometry").is_string()) sp.fail("geometry", "expected the OBJ file name");
     try {
       scene.mesh = load_obj((base / j.at("geometry").get<std::string>()).string(), scene.material_names());
+      scene.input_files.push_back((base / j.at("geometry").get<std::string>()).string());
     } catch (const std::invalid_argument& e) {
       sp.fail("geometry", e.what());
     }
@@ -561,7 +564,7 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     scene.domain.orient(scene.sensors.points);
     parse_goals(sp, j.value("goals", json()), &scene.sensors);
     check_goals(sp, scene.sensors);
-    parse_sky(sp, j.value("sky", json::object()), base, &scene);
+    parse_sky(sp, j.value("sky", json::object()), base, &scene, progress);
     scene.render = parse_render(sp, j.value("render", json()));
     scene.solver = parse_solver(sp, j.value("solver", json()));
     try {
@@ -576,13 +579,15 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
   return scene;
 }
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, Progress* progress) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument("cannot open scene file '" + path + "'");
   std::ostringstream s;
   s << in.rdbuf();
   const fs::path p(path);
-  return parse_scene(s.str(), p.parent_path().string().empty() ? "." : p.parent_path().string(), path);
+  Scene scene = parse_scene(s.str(), p.parent_path().string().empty() ? "." : p.parent_path().string(), path, progress);
+  scene.input_files.insert(scene.input_files.begin(), path);
+  return scene;
 }
 
 }  // namespace fenestra
