@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <thread>
 
 #include <tbb/global_control.h>
 
@@ -639,6 +640,61 @@ TEST(RefineOpenings, SameResultOnAnyThreadCount) {
   }
   EXPECT_EQ(one, many);
   EXPECT_FALSE(many.empty());
+}
+
+// Cancelling `work` (which polls `progress`) `after` seconds in: it throws Cancelled; returns the
+// seconds from the cancel to the throw.
+template <typename F>
+double cancel_latency(Progress* progress, double after, F work) {
+  std::atomic<bool> threw{false};
+  std::chrono::steady_clock::time_point ended;
+  std::thread worker([&] {
+    try {
+      work();
+    } catch (const Cancelled&) {
+      threw = true;
+    }
+    ended = std::chrono::steady_clock::now();
+  });
+  std::this_thread::sleep_for(std::chrono::duration<double>(after));
+  const auto cancelled = std::chrono::steady_clock::now();
+  progress->cancel();
+  worker.join();
+  EXPECT_TRUE(threw) << "the work ended without raising Cancelled";
+  return std::chrono::duration<double>(ended - cancelled).count();
+}
+
+// The refinement of a whole 100 x 100 panel takes seconds; a cancel stops it within a fraction.
+TEST(RefineOpenings, CancelStopsTheRefinementAndTheLocalSearch) {
+  const OpeningDomain d = wall(25, 25, 0.25);
+  std::vector<uint8_t> open(d.element_count(), 1);  // ragged edges, as in LargePanelsTakeSeconds
+  Rng rng(5, 1);
+  for (size_t k = 0; k < open.size(); ++k) {
+    const Element& e = d.elements()[k];
+    if ((e.row < 3 || e.col < 3 || e.row > 96 || e.col > 96) && (rng.next_u32() & 1)) open[k] = 0;
+  }
+  const LinearObjective o = view_objective(d, random_blobs(d, 4, 4, 800), 14);
+  OpeningConstraints c;
+  c.max_aspect = 3, c.min_aspect = 1.0 / 3, c.min_gap = 0.5;
+  Progress refine_progress;
+  const double refine_latency =
+      cancel_latency(&refine_progress, 0.2, [&] { refine_openings(d, open, o, c, &refine_progress); });
+  EXPECT_LT(refine_latency, 2.0);
+  // A local search of a billion proposals (minutes) stops as soon.
+  const std::vector<GridRectangle> start = {{0, 10, 20, 10, 20}};
+  Progress improve_progress;
+  const double improve_latency = cancel_latency(
+      &improve_progress, 0.2, [&] { improve_rectangles(d, start, o, c, 1, 1000000000, &improve_progress); });
+  EXPECT_LT(improve_latency, 2.0);
+  std::printf("[ timing   ] cancel latency: refinement %.3f s, local search %.3f s\n", refine_latency, improve_latency);
+  // Already cancelled: nothing is done.
+  Progress cancelled;
+  cancelled.cancel();
+  EXPECT_THROW(refine_openings(d, open, o, c, &cancelled), Cancelled);
+  EXPECT_THROW(improve_rectangles(d, start, o, c, 1, 10, &cancelled), Cancelled);
+  // Without a cancel the same calls finish.
+  Progress fresh;
+  EXPECT_NO_THROW(improve_rectangles(d, start, o, c, 1, 100, &fresh));
 }
 
 }  // namespace

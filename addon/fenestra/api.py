@@ -3,6 +3,7 @@
 import json
 import os
 import threading
+import time
 
 import numpy as np
 
@@ -10,14 +11,19 @@ from ._core import Cancelled, Contributions, Progress, Scene, read_openings, wri
 from . import _core
 
 
-def load_scene(path):
-    """Reads a scene file (JSON + OBJ). Raises ValueError naming the file and the problem."""
-    return Scene.load(os.fspath(path))
+def load_scene(path, progress=None, callback=None):
+    """Reads a scene file (JSON + OBJ). Raises ValueError naming the file and the problem. Runs
+    like contributions(): on a worker thread without the GIL, a daylight sky's build reporting to
+    `progress` / `callback` and stopping on cancel (raises Cancelled)."""
+    path = os.fspath(path)
+    return _run(lambda p: Scene.load(path, p), progress, callback)
 
 
-def scene_from_dict(scene, base_dir="."):
-    """Builds a scene from a dict in the scene-file format; relative paths resolve against base_dir."""
-    return Scene.from_json(json.dumps(scene), os.fspath(base_dir), "<dict>")
+def scene_from_dict(scene, base_dir=".", progress=None, callback=None):
+    """Builds a scene from a dict in the scene-file format; relative paths resolve against base_dir.
+    progress and callback as for load_scene()."""
+    text, base_dir = json.dumps(scene), os.fspath(base_dir)
+    return _run(lambda p: Scene.from_json(text, base_dir, "<dict>", p), progress, callback)
 
 
 def openings_array(openings):
@@ -37,34 +43,52 @@ def openings_array(openings):
     return arr
 
 
+def _wait_for(done):
+    """Waits until the event `done` is set, through any KeyboardInterrupt meanwhile."""
+    while True:
+        try:
+            while not done.is_set():
+                time.sleep(0.02)
+            return
+        except BaseException:  # a further Ctrl-C: the work is already cancelled, keep waiting
+            continue
+
+
 def _run(work, progress, callback):
-    """Runs `work(progress)` (which releases the GIL); calls callback(fraction, status) about ten
-    times a second from this thread; a callback returning False cancels (raises Cancelled)."""
+    """Runs `work(progress)` (native code that releases the GIL) on a worker thread, so that
+    Ctrl-C reaches this thread at once; calls callback(fraction, status) about ten times a second
+    from this thread; a callback returning False cancels (raises Cancelled).
+    On any exception here (KeyboardInterrupt, or one from the callback) the work is cancelled and
+    waited for, through further Ctrl-C, before the exception is raised: no native work is left
+    running on a thread when the interpreter exits (that aborted the process).
+    (Thread.join is not used to wait: in Python 3.11 an interrupted join can leave the thread
+    marked as finished while it still runs.)"""
     progress = progress if progress is not None else Progress()
-    if callback is None:
-        return work(progress)
-    result, error = {}, {}
+    outcome = {}
+    done = threading.Event()
 
     def target():
         try:
-            result["value"] = work(progress)
+            outcome["value"] = work(progress)
         except BaseException as exc:  # re-raised in the caller's thread
-            error["value"] = exc
+            outcome["error"] = exc
+        finally:
+            done.set()
 
-    thread = threading.Thread(target=target, daemon=True)
-    thread.start()
+    thread = threading.Thread(target=target, name="fenestra-worker", daemon=True)
     try:
-        while thread.is_alive():
-            thread.join(0.1)
-            if callback(progress.fraction, progress.status) is False:
+        thread.start()
+        while not done.wait(0.1):
+            if callback is not None and callback(progress.fraction, progress.status) is False:
                 progress.cancel()
     except BaseException:
         progress.cancel()
-        thread.join()
+        if thread.ident is not None:  # started
+            _wait_for(done)
         raise
-    if "value" in error:
-        raise error["value"]
-    return result["value"]
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome["value"]
 
 
 def contributions(scene, progress=None, callback=None):

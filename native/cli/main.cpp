@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -10,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "io/atomic_file.h"
+#include "io/image_writer.h"
 #include "io/results.h"
 #include "io/sky_output.h"
 #include "io/solve_result.h"
@@ -44,6 +47,9 @@ options:
   -h, --help    this text
 
 Values are luminance-weighted irradiance: lux when the sky is given in cd/m^2.
+Outputs are checked before the run (never an input, a symbolic link or a device) and written whole
+or not at all. Exit status: 0 done, 1 error, 2 usage error, 130 / 143 interrupted by SIGINT /
+SIGTERM (nothing written).
 )";
 
 struct Args {
@@ -132,9 +138,49 @@ auto with_progress(fenestra::Progress& progress, bool quiet, F work) {
   }
 }
 
+// SIGINT and SIGTERM cancel the run through the Progress flag (an atomic store: async-signal-
+// safe); the run unwinds, its unfinished outputs vanish and the exit status is 128 + the signal.
+// A second signal terminates at once (SA_RESETHAND); outputs still appear whole or not at all.
+fenestra::Progress g_progress;
+volatile std::sig_atomic_t g_signal = 0;
+static_assert(std::atomic<bool>::is_always_lock_free, "the cancel flag must be safe to set in a signal handler");
+
+void on_signal(int sig) {
+  g_signal = sig;
+  g_progress.cancel();
+}
+
+void install_signal_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  fenestra::set_write_interrupt(&g_progress);  // no output is renamed into place after a signal
+}
+
+// Every file the command writes, in the order written.
+std::vector<std::string> output_paths(const Args& a) {
+  if (a.command == "contributions") {  // as write_contributions names them
+    const bool npz = a.output.size() > 4 && a.output.compare(a.output.size() - 4, 4, ".npz") == 0;
+    const std::string stem = npz ? a.output.substr(0, a.output.size() - 4) : a.output;
+    return {stem + ".npz", stem + ".json"};
+  }
+  if (!a.summary.empty()) return {a.output, a.summary};
+  return {a.output};
+}
+
 int run(const Args& a) {
   using namespace fenestra;
-  Scene scene = load_scene(a.scene);
+  // Outputs are checked before any work (docs/outputs.md): writable, regular files, not inputs.
+  const std::vector<std::string> outputs = output_paths(a);
+  std::vector<std::string> inputs = {a.scene};
+  if (!a.openings.empty()) inputs.push_back(a.openings);
+  check_output_paths(outputs, inputs);
+  if (a.command == "sky") encode_image(a.output, 1, 1, 3, {0.0f, 0.0f, 0.0f});  // a format OpenImageIO writes
+  Scene scene = load_scene(a.scene, &g_progress);
+  check_output_paths(outputs, scene.input_files);  // its OBJ and environment map too
   if (a.overrides.count("--paths")) {
     if (a.overrides.at("--paths") < 1) throw std::invalid_argument("--paths must be at least 1");
     scene.render.paths_per_sensor = static_cast<int>(a.overrides.at("--paths"));
@@ -145,13 +191,24 @@ int run(const Args& a) {
 
   if (a.command == "sky") {
     const nlohmann::json summary = sky_summary(scene);
-    write_sky_image(a.output, sky_image(scene));
-    if (!a.summary.empty()) write_json(a.summary, summary);
+    const SkyImage image = sky_image(scene);
+    std::vector<float> flat;
+    flat.reserve(image.pixels.size() * 3);
+    for (const Rgb& p : image.pixels) flat.insert(flat.end(), {p[0], p[1], p[2]});
+    const std::string bytes = encode_image(a.output, image.width, image.height, 3, flat);
+    // The map and the summary appear together or not at all.
+    std::vector<OutputFile> files = {
+        {a.output, [&](std::ostream& o) { o.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); }}};
+    if (!a.summary.empty())
+      files.push_back({a.summary, [&](std::ostream& o) {
+                         o << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+                       }});
+    write_files_atomically(files, scene.input_files);
     std::printf("%swrote %s\n", sky_report(summary).c_str(), a.output.c_str());
     if (!a.summary.empty()) std::printf("wrote %s\n", a.summary.c_str());
     return 0;
   }
-  Progress progress;
+  Progress& progress = g_progress;
   if (a.command == "solve") {
     if (a.overrides.count("--paths")) scene.solver.paths_per_sensor = scene.render.paths_per_sensor;
     if (a.overrides.count("--seed")) scene.solver.seed = scene.render.seed;
@@ -187,12 +244,25 @@ int run(const Args& a) {
 
 }  // namespace
 
+static const char* signal_name(int sig) {
+  return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal";
+}
+
 int main(int argc, char** argv) {
   const Args args = parse_args(argc, argv);
+  install_signal_handlers();
   try {
-    return run(args);
+    const int status = run(args);
+    if (g_signal) {  // after the outputs were renamed into place: they are complete
+      std::fprintf(stderr, "fenestra: interrupted by %s after writing its output\n", signal_name(g_signal));
+      return 128 + g_signal;
+    }
+    return status;
+  } catch (const fenestra::Cancelled&) {
+    std::fprintf(stderr, "fenestra: interrupted by %s; no output written\n", signal_name(g_signal));
+    return g_signal ? 128 + g_signal : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fenestra: error: %s\n", e.what());
-    return 1;
+    return g_signal ? 128 + g_signal : 1;
   }
 }

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "io/atomic_file.h"
 #include "io/image_writer.h"
 #include "io/results.h"
 #include "io/sky_output.h"
@@ -91,14 +92,22 @@ PYBIND11_MODULE(_core, m) {
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A scene read from a Fenestra scene file (JSON + OBJ).")
       .def_static(
-          "load", [](const std::string& path) { return std::make_shared<Scene>(load_scene(path)); }, py::arg("path"),
-          "Reads a scene file; raises ValueError naming the file and the problem.")
+          "load",
+          [](const std::string& path, std::shared_ptr<Progress> progress) {
+            py::gil_scoped_release release;  // a daylight sky takes a while to build
+            return std::make_shared<Scene>(load_scene(path, progress.get()));
+          },
+          py::arg("path"), py::arg("progress") = nullptr,
+          "Reads a scene file; raises ValueError naming the file and the problem. A daylight sky's build "
+          "reports to `progress` and stops on its cancel() (raises Cancelled).")
       .def_static(
           "from_json",
-          [](const std::string& text, const std::string& base_dir, const std::string& name) {
-            return std::make_shared<Scene>(parse_scene(text, base_dir, name));
+          [](const std::string& text, const std::string& base_dir, const std::string& name,
+             std::shared_ptr<Progress> progress) {
+            py::gil_scoped_release release;
+            return std::make_shared<Scene>(parse_scene(text, base_dir, name, progress.get()));
           },
-          py::arg("text"), py::arg("base_dir") = ".", py::arg("name") = "<json>",
+          py::arg("text"), py::arg("base_dir") = ".", py::arg("name") = "<json>", py::arg("progress") = nullptr,
           "Parses scene JSON text; relative file names resolve against base_dir.")
       .def_readonly("source", &Scene::source)
       .def_property(
@@ -164,17 +173,18 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("memory_bytes", &Contributions::memory_bytes)
       .def(
           "evaluate",
-          [](const Contributions& c, py::array_t<uint8_t, py::array::c_style | py::array::forcecast> open) {
+          [](const Contributions& c, py::array_t<uint8_t, py::array::c_style | py::array::forcecast> open,
+             std::shared_ptr<Progress> progress) {
             if (open.ndim() != 1) throw std::invalid_argument("open mask must be one-dimensional");
             std::vector<uint8_t> mask(open.data(), open.data() + open.size());
             SensorValues v;
             {
               py::gil_scoped_release release;
-              v = c.evaluate(mask);
+              v = c.evaluate(mask, progress.get());
             }
             return values_tuple(std::move(v));
           },
-          py::arg("open"),
+          py::arg("open"), py::arg("progress") = nullptr,
           "Exact (value, stderr) per sensor with the elements where open is true open, from the recorded paths.")
       .def("save", [](const Contributions& c, const Scene& s, const std::string& out) { return write_contributions(s, c, out); },
            py::arg("scene"), py::arg("path"), "Writes PATH.npz and PATH.json; returns both paths.")
@@ -245,7 +255,11 @@ PYBIND11_MODULE(_core, m) {
       "sky_summary", [](const Scene& scene) { return sky_summary(scene).dump(); }, py::arg("scene"),
       "JSON text: horizontal illuminances (lux) and the sun list of the scene's sky.");
   m.def(
-      "write_sky", [](const Scene& scene, const std::string& path) { write_sky_image(path, sky_image(scene)); },
+      "write_sky",
+      [](const Scene& scene, const std::string& path) {
+        check_output_path(path, scene.input_files);  // before the map is made; never over an input
+        write_sky_image(path, sky_image(scene));
+      },
       py::arg("scene"), py::arg("path"), "Writes the scene's sky map (.exr or .hdr).");
   m.def("rays_traced", &rays_traced, "Rays traced by parallel computations since the module was loaded.");
   m.def("read_openings", [](const std::string& path) {

@@ -45,6 +45,7 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
   const bool has_ext = out.size() > 4 && out.compare(out.size() - 4, 4, ".npz") == 0;
   const std::string stem = has_ext ? out.substr(0, out.size() - 4) : out;
   const std::string npz_path = stem + ".npz", json_path = stem + ".json";
+  check_output_paths({npz_path, json_path}, scene.input_files);  // before the arrays are copied
 
   const size_t ns = c.sensor_count(), no = c.element_count();
   NpzWriter npz;
@@ -88,13 +89,12 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
       {"panels", panels},
       {"elements", elements_json(scene)},
   };
-  write_atomically(npz_path, [&](std::ostream& o) { npz.write(o); });
-  try {
-    write_json(json_path, summary);
-  } catch (...) {
-    std::remove(npz_path.c_str());
-    throw;
-  }
+  // The pair appears together or not at all (io/atomic_file.h); the summary, which names the
+  // arrays, is renamed into place last.
+  write_files_atomically(
+      {{npz_path, [&](std::ostream& o) { npz.write(o); }},
+       {json_path, [&](std::ostream& o) { o << summary.dump(2, ' ', false, json::error_handler_t::replace) << "\n"; }}},
+      scene.input_files);
   return {npz_path, json_path};
 }
 
