@@ -15,6 +15,7 @@
 
 #include "daylight/daylight.h"
 #include "io/atomic_file.h"
+#include "solve/nnls.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
 
@@ -183,6 +184,16 @@ TEST(Cancel, TheDaylightBuildStopsBetweenSteps) {
   const double latency = std::chrono::duration<double>(ended - cancelled).count();
   EXPECT_LT(latency, 2.0);
   std::printf("[ timing   ] daylight build cancel latency %.3f s\n", latency);
+}
+
+TEST(Cancel, TheLinearStartPollsTheFlag) {
+  const Eigen::MatrixXd A = Eigen::MatrixXd::Random(20, 40).cwiseAbs();
+  const Eigen::VectorXd b = A * Eigen::VectorXd::Ones(40);
+  Progress running;
+  EXPECT_NO_THROW(nnls(A, b, 0, 0.0, &running));
+  Progress cancelled;
+  cancelled.cancel();
+  EXPECT_THROW(nnls(A, b, 0, 0.0, &cancelled), Cancelled);
 }
 
 TEST(Cancel, TheExactEvaluationPollsTheFlag) {

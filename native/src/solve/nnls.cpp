@@ -165,7 +165,8 @@ double nnls_default_tolerance(const MatrixXd& A, const VectorXd& b) {
   return 10.0 * kEps * static_cast<double>(std::max(A.rows(), A.cols())) * a_norm1 * b.norm();
 }
 
-NnlsResult nnls(const MatrixXd& A, const VectorXd& b, int max_iterations, double tolerance) {
+NnlsResult nnls(const MatrixXd& A, const VectorXd& b, int max_iterations, double tolerance,
+                const Progress* progress) {
   check_input(A, b, max_iterations, tolerance);
   const Index n = A.cols();
   if (max_iterations == 0) max_iterations = static_cast<int>(std::min<Index>(3 * n, std::numeric_limits<int>::max()));
@@ -182,6 +183,7 @@ NnlsResult nnls(const MatrixXd& A, const VectorXd& b, int max_iterations, double
 
   VectorXd z;  // least-squares solution on the free set, in qr.columns() order
   for (;;) {
+    if (progress) progress->throw_if_cancelled();  // an iteration is O(rows x columns)
     gradient(A, r, &w);
     // Free the bound variable with the largest gradient component.
     bool joined = false;

@@ -3,6 +3,8 @@
 // method (Solving Least Squares Problems, 1974, ch. 23), on Eigen.
 #include <Eigen/Dense>
 
+#include "util/progress.h"
+
 namespace fenestra {
 
 struct NnlsResult {
@@ -18,8 +20,10 @@ struct NnlsResult {
 // above the rounding noise in w. On consistent but ill-conditioned systems (smooth contribution
 // columns) a gradient that small still allows a residual of ~1e-7 ||b||; a smaller tolerance
 // goes further, but below the noise the iteration limit ends the search (converged = false).
-// Throws std::invalid_argument on mismatched sizes, non-finite input or negative settings.
-NnlsResult nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int max_iterations = 0, double tolerance = 0.0);
+// Throws std::invalid_argument on mismatched sizes, non-finite input or negative settings. With
+// `progress`, polls cancellation every outer iteration (throws Cancelled).
+NnlsResult nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int max_iterations = 0, double tolerance = 0.0,
+                const Progress* progress = nullptr);
 
 // 10 eps max(m, n) ||A||_1 ||b||_2: |w_j| <= ||A||_1 ||r|| <= ||A||_1 ||b|| bounds the gradient's
 // scale, and rounding in a length-max(m, n) product perturbs it by a few eps times that.

@@ -49,11 +49,11 @@ struct LinearStart {
 };
 
 // Stage 1: NNLS on the weighted system, excess over 1 to the neighbours, rounded.
-LinearStart linear_start(const LinearObjective& o, const ElementGrid& grid) {
+LinearStart linear_start(const LinearObjective& o, const ElementGrid& grid, const Progress* progress) {
   const Eigen::VectorXd sqrt_w = o.weight.cwiseSqrt();
   const Eigen::MatrixXd A = sqrt_w.asDiagonal() * o.E;
   const Eigen::VectorXd b = sqrt_w.cwiseProduct(o.target);
-  const NnlsResult r = nnls(A, b);
+  const NnlsResult r = nnls(A, b, 0, 0.0, progress);
   Eigen::VectorXd x = r.x;
   redistribute_excess(grid, &x);
   LinearStart s;
@@ -98,7 +98,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   // Stage 1 on the fine grid, and coarse-to-fine starts (4a, then 2a) when the grid is large enough.
   if (progress) progress->start("solving: linear start", 1);
   auto t = Clock::now();
-  const LinearStart fine_start = linear_start(objective, grid);
+  const LinearStart fine_start = linear_start(objective, grid, progress);
   out.nnls_relative_rms = fine_start.relative_rms;
   out.nnls_iterations = fine_start.iterations;
   std::vector<std::vector<uint8_t>> seeds = {fine_start.open};
@@ -111,7 +111,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
       const auto level_start = Clock::now();
       LinearObjective level = objective;
       level.E = coarse.columns(objective.E);
-      std::vector<std::vector<uint8_t>> level_seeds = {linear_start(level, coarse.grid).open};
+      std::vector<std::vector<uint8_t>> level_seeds = {linear_start(level, coarse.grid, progress).open};
       if (!carried.empty()) {  // the coarser answer, as well as it fits this grid
         std::vector<uint8_t> mapped(coarse.grid.size(), 0);
         for (size_t k = 0; k < carried.size(); ++k) mapped[coarse.coarse_of[k]] |= carried[k];
