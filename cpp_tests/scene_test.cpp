@@ -3,9 +3,13 @@
 
 #include <cmath>
 
+#include "io/image_writer.h"
 #include "io/results.h"
+#include "io/sky_output.h"
+#include "solve/solver.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
+#include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
 
 namespace fenestra {
@@ -182,6 +186,213 @@ TEST(SceneErrors, OpeningsOffTheDomainOrNotRectangles) {
   EXPECT_THROW(evaluate_openings(scene, {skew}), std::invalid_argument);
   dir.write("openings.json", R"({"openings": [{"corners": [[1, 0, 1], [2, 0, 1]]}]})");
   EXPECT_THROW(read_openings(dir.file("openings.json")), std::invalid_argument);
+}
+
+// ---- Every number validated after its conversion (issue 12, items 2 and 6) ----
+
+// Expects load_scene on `json` (with room_obj()) to fail naming scene.json and every fragment.
+void expect_scene_error(const std::string& json, const std::vector<std::string>& fragments) {
+  TempDir dir;
+  dir.write("scene.obj", room_obj());
+  dir.write("scene.json", json);
+  std::vector<std::string> all = {"scene.json"};
+  all.insert(all.end(), fragments.begin(), fragments.end());
+  expect_error(dir, all);
+}
+
+const char* kDomain = R"({"materials": ["facade"]})";
+
+TEST(Validation, SensorCoordinatesOutsideTheRangeAreRefused) {
+  // 1e39 is infinite as a float; 2e18 reached Embree and aborted.
+  for (const char* p : {"[1e39, 1, 1]", "[1, 2e18, 1]", "[1, 1, -1000001]"})
+    expect_scene_error(scene_text(kDomain, std::string(R"({"points": [[2, 1.5, 0.8], )") + p + "]}"),
+                       {"sensors.points[1]", "1e+06 m"});
+  TempDir dir;
+  dir.write("scene.obj", room_obj());
+  dir.write("scene.json", scene_text(kDomain, R"({"points": [[2, 1.5, 0.8], [1000000, 1, 1]]})"));
+  EXPECT_NO_THROW(load_scene(dir.file("scene.json")));  // the limit itself is accepted
+}
+
+TEST(Validation, NormalsAreNormalizedInDoublePrecisionAndNeverZero) {
+  // 1e30 squared overflows a float: normalized in float it became [0, 0, 0].
+  expect_scene_error(scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]], "normals": [1e30, 0, 0]})"),
+                     {"sensors.normals[0]"});
+  expect_scene_error(scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]], "normals": [1e-30, 0, 0]})"),
+                     {"sensors.normals[0]", "zero"});
+  TempDir dir;
+  dir.write("scene.obj", room_obj());
+  dir.write("scene.json", scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]], "normals": [0, 1e-5, 5e5]})"));
+  const Scene s = load_scene(dir.file("scene.json"));
+  EXPECT_NEAR(s.sensors.normals[0].norm(), 1.0f, 1e-6f);
+  EXPECT_NEAR(s.sensors.normals[0].z(), 1.0f, 1e-6f);
+}
+
+TEST(Validation, IntegersAreCheckedBeforeTheyAreConverted) {
+  // Read as an int, 4294967297 was 1 and 4294967424 was 128.
+  std::string text = scene_text();
+  expect_scene_error(R"({"fenestra": 4294967297)" + text.substr(text.find(',')), {"fenestra", "4294967297"});
+  expect_scene_error(scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]]})",
+                                R"({"type": "cie_overcast", "resolution": [4294967424, 64]})"),
+                     {"sky.resolution[0]", "16384"});
+  expect_scene_error(scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]]})",
+                                R"({"type": "cie_overcast", "resolution": [64, -2]})"),
+                     {"sky.resolution[1]"});
+  text.pop_back();
+  expect_scene_error(text + R"(, "render": {"paths_per_sensor": 4294967296}})", {"render.paths_per_sensor", "1073741824"});
+  expect_scene_error(text + R"(, "render": {"threads": 2147483648}})", {"render.threads", "4096"});
+  expect_scene_error(text + R"(, "render": {"paths": 10}})", {"render.paths", "unknown key"});
+}
+
+TEST(Validation, ObjIndicesAndCoordinatesAreCheckedWithTheirLine) {
+  TempDir dir;
+  dir.write("scene.json", scene_text());
+  const std::string room = room_obj();
+  const auto lines = std::count(room.begin(), room.end(), '\n');
+  // tinyobjloader wraps an index past 2^64 around to another vertex.
+  dir.write("scene.obj", room + "usemtl wall\nf 1 2 18446744073709551619\n");
+  expect_error(dir, {"scene.obj", "line " + std::to_string(lines + 2), "18446744073709551619"});
+  dir.write("scene.obj", room + "usemtl wall\nf 1 2 999\n");
+  expect_error(dir, {"scene.obj", "line " + std::to_string(lines + 2), "past the last vertex"});
+  dir.write("scene.obj", room + "usemtl wall\nf 1 2 -9999\n");
+  expect_error(dir, {"scene.obj", "line " + std::to_string(lines + 2), "-9999"});
+  dir.write("scene.obj", room + "usemtl wall\nf 1 2 3x\n");
+  expect_error(dir, {"scene.obj", "not an integer"});
+  dir.write("scene.obj", "usemtl facade\nv 0 0 0\nv 2e6 0 0\nv 0 0 1\nf 1 2 3\n");
+  expect_error(dir, {"scene.obj", "line 3", "out of range"});
+}
+
+TEST(Validation, RadianceScaleAndAnglesMustStayFiniteAsFloats) {
+  const std::string points = R"({"points": [[2, 1.5, 0.8]]})";
+  // 1e39 cd/m^2 is infinite as a float: every value came out 0.
+  expect_scene_error(scene_text(kDomain, points, R"({"type": "uniform", "radiance": 1e39})"), {"sky.radiance"});
+  expect_scene_error(scene_text(kDomain, points, R"({"type": "uniform", "radiance": [1, 1, 2e12]})"),
+                     {"sky.radiance", "1e+12"});
+  expect_scene_error(scene_text(kDomain, points, R"({"radiance": 100})"), {"sky.type", "missing"});
+  expect_scene_error(scene_text(kDomain, points, R"({"type": "uniform", "radiance": 100, "scale": 2})"),
+                     {"sky.scale", "unknown key"});
+  expect_scene_error(scene_text(kDomain, points, R"({"type": "cie_overcast", "horizontal_illuminance": 1e300})"),
+                     {"sky.horizontal_illuminance"});
+
+  TempDir dir;
+  dir.write("scene.obj", room_obj());
+  write_image(dir.file("sky.exr"), 8, 4, 3, std::vector<float>(8 * 4 * 3, 1000.0f));
+  auto envmap = [&](const std::string& extra) {
+    dir.write("scene.json", scene_text(kDomain, points, R"({"type": "envmap", "file": "sky.exr")" + extra + "}"));
+  };
+  envmap(R"(, "scale": 1e300)");
+  expect_error(dir, {"scene.json", "sky.scale"});
+  envmap(R"(, "scale": 1e10)");  // finite, but 1000 x 1e10 cd/m^2
+  expect_error(dir, {"scene.json", "sky.file", "brightest pixel"});
+  envmap(R"(, "rotation_deg": 1e300)");
+  expect_error(dir, {"scene.json", "sky.rotation_deg", "360"});
+  envmap(R"(, "scale": 2, "rotation_deg": -90)");
+  EXPECT_NO_THROW(load_scene(dir.file("scene.json")));
+}
+
+TEST(Validation, JsonErrorsNameTheFileLineAndKeyInWords) {
+  TempDir dir;
+  dir.write("scene.obj", room_obj());
+  dir.write("scene.json", scene_text(kDomain, "{\n\"points\": [[2, 1.5, 1e400]]}"));
+  try {
+    load_scene(dir.file("scene.json"));
+    FAIL() << "1e400 accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("scene.json"), std::string::npos) << m;
+    EXPECT_NE(m.find("line 2"), std::string::npos) << m;
+    EXPECT_NE(m.find("sensors.points[0][2]"), std::string::npos) << m;
+    EXPECT_EQ(m.find("json.exception"), std::string::npos) << m;
+  }
+  dir.write("scene.json", scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]]})", R"({"type": 3})"));
+  expect_error(dir, {"scene.json", "sky.type", "expected a string"});
+  dir.write("scene.json", scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]]})", R"({"type": "uniform"})",
+                                     R"({"wall": {"type": 3}, "facade": {}})"));
+  expect_error(dir, {"scene.json", "materials.wall.type", "expected a string"});
+  dir.write("openings.json", "{\"openings\": [\n{\"corners\": [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1e400, 0, 2]]}]}");
+  try {
+    read_openings(dir.file("openings.json"));
+    FAIL() << "1e400 accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("openings.json"), std::string::npos) << m;
+    EXPECT_NE(m.find("line 2"), std::string::npos) << m;
+    EXPECT_NE(m.find("openings[0].corners[3][0]"), std::string::npos) << m;
+  }
+  dir.write("openings.json", R"({"openings": [{"corners": [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1e39, 0, 2]]}]})");
+  try {
+    read_openings(dir.file("openings.json"));
+    FAIL() << "1e39 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("opening 0: corner 3"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Validation, InputsThatAreNotRegularFilesAreRefused) {
+  TempDir dir;
+  dir.write("scene.json", scene_text());
+  std::filesystem::create_directory(dir.file("scene.obj"));
+  expect_error(dir, {"scene.obj", "not a regular file"});
+  dir.write("scene.json", R"({"fenestra": 1, "geometry": "/dev/zero", "materials": {"a": {}}})");
+  expect_error(dir, {"/dev/zero", "not a regular file"});  // read forever before
+  EXPECT_THROW(load_scene("/dev/null"), std::invalid_argument);
+  EXPECT_THROW(read_openings("/dev/zero"), std::invalid_argument);
+}
+
+TEST(Validation, ContributionsOfAnotherSceneAreRefused) {
+  TempDir dir;
+  dir.write("scene.obj", room_obj());
+  auto scene = [&](const std::string& sensors) {
+    dir.write("scene.json", scene_text(kDomain, sensors));
+    Scene s = load_scene(dir.file("scene.json"));
+    s.render.paths_per_sensor = 32;
+    return s;
+  };
+  const Scene a = scene(R"({"points": [[2, 1.5, 0.8]], "goals": [0.5]})");
+  Contributions c = compute_contributions(a);
+  // Counts are always checked, even without the origin.
+  const Scene two = scene(R"({"points": [[2, 1.5, 0.8], [1, 1, 1]], "goals": [0.5, 0.5]})");
+  try {
+    solve_openings(two, c);
+    FAIL() << "solved 2 sensors with the contributions of 1";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("1 sensors x 160 elements"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("2 sensors x 160 elements"), std::string::npos) << e.what();
+  }
+  c.origin = contributions_origin(a);
+  const Scene moved = scene(R"({"points": [[2, 1.0, 0.8]], "goals": [0.5]})");
+  EXPECT_THROW(solve_openings(moved, c), std::invalid_argument);
+  EXPECT_THROW(write_contributions(moved, c, dir.file("c.npz")), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("c.npz")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("c.json")));
+  const Scene same = scene(R"({"points": [[2, 1.5, 0.8]], "goals": [0.5]})");
+  EXPECT_NO_THROW(check_contributions_match(same, c, "solve"));
+  Scene other_sky = same;
+  dir.write("scene.json", scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]]})", R"({"type": "uniform", "radiance": 50})"));
+  other_sky = load_scene(dir.file("scene.json"));
+  EXPECT_THROW(check_contributions_match(other_sky, c, "solve"), std::invalid_argument);
+}
+
+TEST(Validation, PolarNightIsRefusedBySolveAndWarnedOtherwise) {
+  TempDir dir;
+  dir.write("scene.obj", room_obj());
+  dir.write("scene.json", scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]], "goals": [0.5]})",
+                                     R"({"type": "preetham", "latitude": 78, "longitude": 15, "utc_offset": 1,
+                                         "date": "2026-12-21", "resolution": [64, 32]})"));
+  Scene s = load_scene(dir.file("scene.json"));
+  s.render.paths_per_sensor = 16;
+  EXPECT_NE(dark_sky_warning(s).find("below the horizon"), std::string::npos);
+  try {
+    solve_openings(s);
+    FAIL() << "solved under a sky without light";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("2026-12-21"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("78, 15"), std::string::npos) << e.what();
+  }
+  EXPECT_NE(sky_summary(s).dump().find("warning"), std::string::npos);
+  dir.write("scene.json", scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]]})",
+                                     R"({"type": "preetham", "latitude": 48, "longitude": 2, "utc_offset": 1,
+                                         "date": "2026-06-21", "resolution": [64, 32]})"));
+  EXPECT_EQ(dark_sky_warning(load_scene(dir.file("scene.json"))), "");
 }
 
 }  // namespace

@@ -16,7 +16,7 @@ import pytest
 
 from conftest import CLI, EXAMPLES, box_obj
 
-CASES = int(os.environ.get("FENESTRA_FUZZ_CASES", "300"))
+CASES = int(os.environ.get("FENESTRA_FUZZ_CASES", "200"))
 TIME_BUDGET_S = 60.0            # per run; valid runs take well under a second
 MEMORY_CAP = 6 * 1024 ** 3      # bytes of address space per run (ulimit -v)
 

@@ -4,6 +4,7 @@ import json
 import os
 import threading
 import time
+import warnings
 
 import numpy as np
 
@@ -91,15 +92,26 @@ def _run(work, progress, callback):
     return outcome["value"]
 
 
+def _warn_if_dark(scene):
+    """A daylight sky with the sun never up gives every sensor 0: say so (solve() refuses it)."""
+    message = _core.dark_sky_warning(scene)
+    if message:
+        warnings.warn(message, RuntimeWarning, stacklevel=3)
+
+
 def contributions(scene, progress=None, callback=None):
     """One pass of paths per sensor: returns a Contributions with E, E_stderr, A, T, closed,
-    all_open (and their standard errors) and evaluate(open_mask) for exact values of any set."""
+    all_open (and their standard errors) and evaluate(open_mask) for exact values of any set.
+    Warns (RuntimeWarning) when the scene's daylight sky gives no light (the sun never up)."""
+    _warn_if_dark(scene)
     return _run(lambda p: _core.compute_contributions(scene, p), progress, callback)
 
 
 def evaluate(scene, openings, progress=None, callback=None):
-    """Path-traces the scene with the openings really cut. Returns (value, stderr) arrays."""
+    """Path-traces the scene with the openings really cut. Returns (value, stderr) arrays.
+    Warns (RuntimeWarning) when the scene's daylight sky gives no light (the sun never up)."""
     rects = openings_array(openings)
+    _warn_if_dark(scene)
     return _run(lambda p: _core.evaluate(scene, rects, p), progress, callback)
 
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -17,6 +18,7 @@
 #include "io/sky_output.h"
 #include "io/solve_result.h"
 #include "solve/solver.h"
+#include "scene/input_limits.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
@@ -39,9 +41,9 @@ const char* kUsage = R"(usage:
       and prints the horizontal illuminances and the sun list (also as JSON with --json).
 
 options:
-  --paths N     paths per sensor (overrides render.paths_per_sensor)
-  --seed N      random seed (overrides render.seed)
-  --threads N   worker threads, 0 = all (overrides render.threads)
+  --paths N     paths per sensor, 1 to 1073741824 (overrides render.paths_per_sensor)
+  --seed N      random seed, 0 to 9007199254740992 (overrides render.seed)
+  --threads N   worker threads, 0 to 4096, 0 = all (overrides render.threads)
   --json PATH   (sky) also write the summary as JSON
   --quiet       no progress on stderr
   -h, --help    this text
@@ -63,15 +65,21 @@ struct Args {
   std::exit(2);
 }
 
-long long parse_integer(const std::string& flag, const std::string& text) {
+// The same ranges as the scene file's keys (scene/input_limits.h), checked before any conversion.
+long long parse_integer(const std::string& flag, const std::string& text, const fenestra::IntegerRange& range) {
+  const std::string expected = flag + " expects an integer from " + std::to_string(range.lo) + " to " +
+                               std::to_string(range.hi) + " (as " + range.key + "), got '" + text + "'";
+  long long v = 0;
   try {
     size_t used = 0;
-    const long long v = std::stoll(text, &used);
-    if (used != text.size() || v < 0) throw std::invalid_argument("");
-    return v;
+    v = std::stoll(text, &used);
+    if (used != text.size() || text.find_first_not_of("0123456789") != std::string::npos)
+      throw std::invalid_argument("");
   } catch (const std::exception&) {
-    usage_error(flag + " expects a non-negative integer, got '" + text + "'");
+    usage_error(expected);
   }
+  if (!range.contains(v)) usage_error(expected);
+  return v;
 }
 
 Args parse_args(int argc, char** argv) {
@@ -93,7 +101,10 @@ Args parse_args(int argc, char** argv) {
     } else if (arg == "--json") {
       a.summary = value();
     } else if (arg == "--paths" || arg == "--seed" || arg == "--threads") {
-      a.overrides[arg] = parse_integer(arg, value());
+      a.overrides[arg] = parse_integer(arg, value(),
+                                       arg == "--paths"  ? fenestra::limits::kPathsPerSensor
+                                       : arg == "--seed" ? fenestra::limits::kSeed
+                                                         : fenestra::limits::kThreads);
     } else if (arg == "--quiet") {
       a.quiet = true;
     } else if (!arg.empty() && arg[0] == '-') {
@@ -138,6 +149,9 @@ auto with_progress(fenestra::Progress& progress, bool quiet, F work) {
   }
 }
 
+// What the program is doing, for an out-of-memory message.
+std::string g_stage = "starting";
+
 // SIGINT and SIGTERM cancel the run through the Progress flag (an atomic store: async-signal-
 // safe); the run unwinds, its unfinished outputs vanish and the exit status is 128 + the signal.
 // A second signal terminates at once (SA_RESETHAND); outputs still appear whole or not at all.
@@ -173,6 +187,7 @@ std::vector<std::string> output_paths(const Args& a) {
 
 int run(const Args& a) {
   using namespace fenestra;
+  g_stage = "loading scene '" + a.scene + "'";
   // Outputs are checked before any work (docs/outputs.md): writable, regular files, not inputs.
   const std::vector<std::string> outputs = output_paths(a);
   std::vector<std::string> inputs = {a.scene};
@@ -181,6 +196,7 @@ int run(const Args& a) {
   if (a.command == "sky") encode_image(a.output, 1, 1, 3, {0.0f, 0.0f, 0.0f});  // a format OpenImageIO writes
   Scene scene = load_scene(a.scene, &g_progress);
   check_output_paths(outputs, scene.input_files);  // its OBJ and environment map too
+  g_stage = "running " + a.command + " on scene '" + a.scene + "'";
   if (a.overrides.count("--paths")) {
     if (a.overrides.at("--paths") < 1) throw std::invalid_argument("--paths must be at least 1");
     scene.render.paths_per_sensor = static_cast<int>(a.overrides.at("--paths"));
@@ -188,6 +204,10 @@ int run(const Args& a) {
   if (a.overrides.count("--seed")) scene.render.seed = static_cast<uint64_t>(a.overrides.at("--seed"));
   if (a.overrides.count("--threads")) scene.render.threads = static_cast<int>(a.overrides.at("--threads"));
   if (!a.quiet) std::fprintf(stderr, "%s\n", scene.to_string().c_str());
+  if (a.command == "contributions" || a.command == "evaluate") {
+    const std::string dark = dark_sky_warning(scene);  // solve refuses such a sky
+    if (!dark.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", dark.c_str());
+  }
 
   if (a.command == "sky") {
     const nlohmann::json summary = sky_summary(scene);
@@ -261,6 +281,12 @@ int main(int argc, char** argv) {
   } catch (const fenestra::Cancelled&) {
     std::fprintf(stderr, "fenestra: interrupted by %s; no output written\n", signal_name(g_signal));
     return g_signal ? 128 + g_signal : 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "fenestra: error: out of memory while %s: lower render.paths_per_sensor (--paths), the number of "
+                 "sensors or elements (a larger opening_domain.element_size), or the sky's resolution\n",
+                 g_stage.c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fenestra: error: %s\n", e.what());
     return g_signal ? 128 + g_signal : 1;

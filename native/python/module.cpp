@@ -4,6 +4,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <cstring>
+#include <new>
+#include <sstream>
+#include <stdexcept>
+
 #include "io/atomic_file.h"
 #include "io/image_writer.h"
 #include "io/results.h"
@@ -11,6 +17,7 @@
 #include "io/solve_result.h"
 #include "solve/solver.h"
 #include "trace/ray_scene.h"
+#include "scene/input_limits.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
@@ -22,6 +29,44 @@ void bind_daylight(py::module_& m);  // bind_daylight.cpp
 void bind_solver(py::module_& m);    // bind_solver.cpp
 
 namespace {
+
+// std::bad_alloc, with what was being done: MemoryError("out of memory while ...").
+struct OutOfMemory : std::runtime_error {
+  explicit OutOfMemory(const std::string& stage)
+      : std::runtime_error("out of memory while " + stage +
+                           ": lower render.paths_per_sensor, the number of sensors or elements (a larger "
+                           "opening_domain.element_size), or the sky's resolution") {}
+};
+template <typename F>
+auto while_doing(const std::string& stage, F&& work) {
+  try {
+    return work();
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemory(stage);
+  }
+}
+
+// Native text as a Python str: bytes that are not UTF-8 (e.g. from a file name) are replaced,
+// never lost.
+py::str text_of(const std::string& s) {
+  return py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(s.data(), static_cast<py::ssize_t>(s.size()), "replace"));
+}
+
+// A Python integer for a render setting, in the same range as the scene file's key; ValueError
+// naming the attribute otherwise (TypeError for a non-integer).
+long long render_integer(py::handle value, const IntegerRange& range) {
+  if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr()))
+    throw py::type_error(std::string(range.key) + " must be an integer, got " +
+                         std::string(py::str(py::repr(value))));
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+  if (!index) throw py::error_already_set();
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+  if (overflow != 0 || !range.contains(v))
+    throw std::invalid_argument(std::string(range.key) + " " + range.requirement() + ", got " +
+                                std::string(py::str(py::repr(value))));
+  return v;
+}
 
 // A read-only NumPy view of an Eigen matrix owned by `owner` (no copy).
 py::array view(const Eigen::MatrixXd& m, py::handle owner) {
@@ -50,9 +95,16 @@ std::vector<Rectangle> rectangles_from(py::array_t<double, py::array::c_style | 
   auto r = a.unchecked<3>();
   for (py::ssize_t i = 0; i < a.shape(0); ++i)
     for (int c = 0; c < 4; ++c) {
+      for (int k = 0; k < 3; ++k)
+        if (!coordinate_in_range(r(i, c, k))) {
+          std::ostringstream s;
+          s << "opening " << i << ", corner " << c << ": "
+            << (std::isfinite(r(i, c, k)) ? "coordinates " + coordinate_requirement() + ", got "
+                                          : std::string("has a non-finite coordinate, "))
+            << r(i, c, k);
+          throw std::invalid_argument(s.str());
+        }
       out[i][c] = Vec3(r(i, c, 0), r(i, c, 1), r(i, c, 2));
-      if (!is_finite(out[i][c]))
-        throw std::invalid_argument("opening " + std::to_string(i) + " has a non-finite corner");
     }
   return out;
 }
@@ -64,11 +116,38 @@ PYBIND11_MODULE(_core, m) {
   bind_daylight(m);
   bind_solver(m);
   static py::exception<Cancelled> cancelled(m, "Cancelled");
+  // Every native exception reaches Python with its text, decoded with replacement (pybind11's
+  // default translation gives an empty message when the text is not UTF-8, e.g. a file name).
   py::register_exception_translator([](std::exception_ptr p) {
+    auto raise = [](PyObject* type, const char* what) {
+      PyErr_SetObject(type, text_of(what).ptr());
+    };
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const py::builtin_exception&) {
+      throw;  // pybind11's own (TypeError, ...): its default translation
+    } catch (const py::error_already_set&) {
+      throw;
     } catch (const Cancelled& e) {
-      cancelled(e.what());
+      raise(cancelled.ptr(), e.what());
+    } catch (const OutOfMemory& e) {
+      raise(PyExc_MemoryError, e.what());
+    } catch (const std::bad_alloc&) {
+      raise(PyExc_MemoryError, "out of memory");
+    } catch (const std::invalid_argument& e) {
+      raise(PyExc_ValueError, e.what());
+    } catch (const std::domain_error& e) {
+      raise(PyExc_ValueError, e.what());
+    } catch (const std::length_error& e) {
+      raise(PyExc_ValueError, e.what());
+    } catch (const std::out_of_range& e) {
+      raise(PyExc_IndexError, e.what());
+    } catch (const std::range_error& e) {
+      raise(PyExc_ValueError, e.what());
+    } catch (const std::overflow_error& e) {
+      raise(PyExc_OverflowError, e.what());
+    } catch (const std::exception& e) {
+      raise(PyExc_RuntimeError, e.what());
     }
   });
 
@@ -83,11 +162,22 @@ PYBIND11_MODULE(_core, m) {
         return "Progress(" + p.status() + ", " + std::to_string(p.fraction()) + ")";
       });
 
+  // Setters check the scene file's ranges (scene/input_limits.h): ValueError naming the attribute.
   py::class_<RenderSettings>(m, "RenderSettings")
-      .def_readwrite("paths_per_sensor", &RenderSettings::paths_per_sensor)
-      .def_readwrite("max_bounces", &RenderSettings::max_bounces)
-      .def_readwrite("seed", &RenderSettings::seed)
-      .def_readwrite("threads", &RenderSettings::threads)
+      .def_property(
+          "paths_per_sensor", [](const RenderSettings& r) { return r.paths_per_sensor; },
+          [](RenderSettings& r, py::handle v) {
+            r.paths_per_sensor = static_cast<int>(render_integer(v, limits::kPathsPerSensor));
+          })
+      .def_property(
+          "max_bounces", [](const RenderSettings& r) { return r.max_bounces; },
+          [](RenderSettings& r, py::handle v) { r.max_bounces = static_cast<int>(render_integer(v, limits::kMaxBounces)); })
+      .def_property(
+          "seed", [](const RenderSettings& r) { return r.seed; },
+          [](RenderSettings& r, py::handle v) { r.seed = static_cast<uint64_t>(render_integer(v, limits::kSeed)); })
+      .def_property(
+          "threads", [](const RenderSettings& r) { return r.threads; },
+          [](RenderSettings& r, py::handle v) { r.threads = static_cast<int>(render_integer(v, limits::kThreads)); })
       .def("__repr__", &RenderSettings::to_string);
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A scene read from a Fenestra scene file (JSON + OBJ).")
@@ -95,7 +185,8 @@ PYBIND11_MODULE(_core, m) {
           "load",
           [](const std::string& path, std::shared_ptr<Progress> progress) {
             py::gil_scoped_release release;  // a daylight sky takes a while to build
-            return std::make_shared<Scene>(load_scene(path, progress.get()));
+            return while_doing("loading scene '" + path + "'",
+                               [&] { return std::make_shared<Scene>(load_scene(path, progress.get())); });
           },
           py::arg("path"), py::arg("progress") = nullptr,
           "Reads a scene file; raises ValueError naming the file and the problem. A daylight sky's build "
@@ -105,11 +196,17 @@ PYBIND11_MODULE(_core, m) {
           [](const std::string& text, const std::string& base_dir, const std::string& name,
              std::shared_ptr<Progress> progress) {
             py::gil_scoped_release release;
-            return std::make_shared<Scene>(parse_scene(text, base_dir, name, progress.get()));
+            return while_doing("loading scene '" + name + "'",
+                               [&] { return std::make_shared<Scene>(parse_scene(text, base_dir, name, progress.get())); });
           },
           py::arg("text"), py::arg("base_dir") = ".", py::arg("name") = "<json>", py::arg("progress") = nullptr,
           "Parses scene JSON text; relative file names resolve against base_dir.")
-      .def_readonly("source", &Scene::source)
+      .def_property_readonly(
+          "source",
+          [](const Scene& s) {  // a file name: undecodable bytes kept as surrogates, as os.fsdecode does
+            return py::reinterpret_steal<py::str>(
+                PyUnicode_DecodeFSDefaultAndSize(s.source.data(), static_cast<py::ssize_t>(s.source.size())));
+          })
       .def_property(
           "render", [](Scene& s) -> RenderSettings& { return s.render; },
           [](Scene& s, const RenderSettings& r) { s.render = r; }, py::return_value_policy::reference_internal)
@@ -152,7 +249,7 @@ PYBIND11_MODULE(_core, m) {
                              },
                              "(panel, row, column) of every element, shape (elements, 3).")
       .def("elements_json", [](const Scene& s) { return elements_json(s).dump(); })
-      .def("__repr__", &Scene::to_string);
+      .def("__repr__", [](const Scene& s) { return text_of(s.to_string()); });
 
   py::class_<Contributions, std::shared_ptr<Contributions>>(m, "Contributions",
                                                             "Result of one contribution pass over every sensor.")
@@ -177,10 +274,13 @@ PYBIND11_MODULE(_core, m) {
              std::shared_ptr<Progress> progress) {
             if (open.ndim() != 1) throw std::invalid_argument("open mask must be one-dimensional");
             std::vector<uint8_t> mask(open.data(), open.data() + open.size());
+            if (mask.size() != c.element_count())
+              throw std::invalid_argument("open mask has " + std::to_string(mask.size()) + " entries; the contributions have " +
+                                          std::to_string(c.element_count()) + " elements");
             SensorValues v;
             {
               py::gil_scoped_release release;
-              v = c.evaluate(mask, progress.get());
+              v = while_doing("evaluating the contributions", [&] { return c.evaluate(mask, progress.get()); });
             }
             return values_tuple(std::move(v));
           },
@@ -197,7 +297,11 @@ PYBIND11_MODULE(_core, m) {
       "compute_contributions",
       [](const Scene& scene, std::shared_ptr<Progress> progress) {
         py::gil_scoped_release release;
-        return std::make_shared<Contributions>(compute_contributions(scene, progress.get()));
+        auto c = while_doing("computing the contributions of scene '" + scene.source + "'", [&] {
+          return std::make_shared<Contributions>(compute_contributions(scene, progress.get()));
+        });
+        c->origin = contributions_origin(scene);  // solve() and save() refuse it for another scene
+        return c;
       },
       py::arg("scene"), py::arg("progress") = nullptr, "One pass of paths per sensor (see Contributions).");
   m.def(
@@ -208,7 +312,8 @@ PYBIND11_MODULE(_core, m) {
         SensorValues v;
         {
           py::gil_scoped_release release;
-          v = evaluate_openings(scene, rects, progress.get());
+          v = while_doing("evaluating scene '" + scene.source + "'",
+                          [&] { return evaluate_openings(scene, rects, progress.get()); });
         }
         return values_tuple(std::move(v));
       },
@@ -230,9 +335,11 @@ PYBIND11_MODULE(_core, m) {
         std::string text;
         {
           py::gil_scoped_release release;
-          const SolveResult r = contributions ? solve_openings(scene, *contributions, progress.get())
-                                              : solve_openings(scene, progress.get());
-          text = solve_result_json(scene, r).dump();
+          text = while_doing("solving scene '" + scene.source + "'", [&] {
+            const SolveResult r = contributions ? solve_openings(scene, *contributions, progress.get())
+                                                : solve_openings(scene, progress.get());
+            return solve_result_json(scene, r).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+          });
         }
         return text;
       },
@@ -261,6 +368,9 @@ PYBIND11_MODULE(_core, m) {
         write_sky_image(path, sky_image(scene));
       },
       py::arg("scene"), py::arg("path"), "Writes the scene's sky map (.exr or .hdr).");
+  m.def(
+      "dark_sky_warning", [](const Scene& scene) { return text_of(dark_sky_warning(scene)); }, py::arg("scene"),
+      "A sentence when the scene's daylight sky gives no light at all (the sun never up), else \"\".");
   m.def("rays_traced", &rays_traced, "Rays traced by parallel computations since the module was loaded.");
   m.def("read_openings", [](const std::string& path) {
     const auto rects = read_openings(path);

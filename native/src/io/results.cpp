@@ -7,7 +7,10 @@
 #include <stdexcept>
 
 #include "io/atomic_file.h"
+#include "io/json_input.h"
 #include "io/npz_writer.h"
+#include "scene/input_limits.h"
+#include "trace/contributions_origin.h"
 
 namespace fenestra {
 
@@ -46,6 +49,7 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
   const std::string stem = has_ext ? out.substr(0, out.size() - 4) : out;
   const std::string npz_path = stem + ".npz", json_path = stem + ".json";
   check_output_paths({npz_path, json_path}, scene.input_files);  // before the arrays are copied
+  check_contributions_match(scene, c, "saving '" + npz_path + "'");
 
   const size_t ns = c.sensor_count(), no = c.element_count();
   NpzWriter npz;
@@ -114,8 +118,11 @@ std::vector<Rectangle> parse_openings(const json& j, const std::string& source) 
       const json& p = o.at("corners")[c];
       if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
         fail(where + ": corner " + std::to_string(c) + " is not [x, y, z]");
+      for (int k = 0; k < 3; ++k)
+        if (!coordinate_in_range(p[k].get<double>()))
+          fail(where + ": corner " + std::to_string(c) + " " + p.dump() + " is out of range: coordinates " +
+               coordinate_requirement());
       r[c] = Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
-      if (!is_finite(r[c])) fail(where + ": corner " + std::to_string(c) + " is not finite");
     }
     out.push_back(r);
   }
@@ -123,15 +130,17 @@ std::vector<Rectangle> parse_openings(const json& j, const std::string& source) 
 }
 
 std::vector<Rectangle> read_openings(const std::string& path) {
-  std::ifstream in(path);
+  check_input_file(path, "openings file", limits::kMaxSceneFileBytes);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument("cannot open openings file '" + path + "'");
-  json j;
+  std::ostringstream text;
+  text << in.rdbuf();
+  const json j = parse_json_text(text.str(), "openings", path);
   try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw std::invalid_argument("openings '" + path + "' is not valid JSON: " + e.what());
+    return parse_openings(j, path);
+  } catch (const json::exception& e) {
+    throw std::invalid_argument("openings '" + path + "': a value has the wrong type: " + json_error_text(e));
   }
-  return parse_openings(j, path);
 }
 
 json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor,
@@ -151,7 +160,8 @@ json evaluation_json(const SensorValues& values, size_t openings, int paths_per_
 }
 
 void write_json(const std::string& path, const json& j) {
-  write_atomically(path, [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+  // Text that is not UTF-8 (a file name) is written with replacement characters rather than refused.
+  write_atomically(path, [&](std::ostream& o) { o << j.dump(2, ' ', false, json::error_handler_t::replace) << "\n"; });
 }
 
 }  // namespace fenestra

@@ -77,7 +77,7 @@ nlohmann::json sky_summary(const Scene& scene) {
     j["steps_with_sun"] = d.steps_with_sun;
     j["analytic_sky_horizontal_illuminance"] = luminance(d.analytic_sky_horizontal);
     j["build_seconds"] = d.seconds;
-    if (d.steps_with_sun == 0 && d.steps > 0 && !d.suns.size() && luminance(d.sky_horizontal) == 0.0f)
+    if (!dark_sky_warning(scene).empty())
       j["warning"] = "the sun is below the horizon at every time step: the sky is dark";
   }
   j["suns"] = nlohmann::json::array();
@@ -92,6 +92,14 @@ nlohmann::json sky_summary(const Scene& scene) {
                          {"normal_illuminance_rgb", rgb(instant)}});
   }
   return j;
+}
+
+std::string dark_sky_warning(const Scene& scene) {
+  if (!scene.daylight) return "";
+  const Daylight& d = *scene.daylight;
+  if (!(d.steps_with_sun == 0 && d.steps > 0 && d.suns.empty() && luminance(d.sky_horizontal) == 0.0f)) return "";
+  return scene.sky->to_string() + ": the sun is below the horizon at every time step (polar night, or an interval "
+         "at night), so the sky gives no light and every value is 0";
 }
 
 std::string sky_report(const nlohmann::json& j) {

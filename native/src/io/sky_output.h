@@ -25,6 +25,9 @@ nlohmann::json sky_summary(const Scene& scene);
 // Illuminance on an unobstructed horizontal surface from the sky and the sun (lux for a sky in
 // cd/m^2; a daylight sky's interval mean).
 double unobstructed_horizontal_illuminance(const Scene& scene);
+// When a daylight sky gives no light at all (the sun below the horizon at every time step: polar
+// night, or an interval at night), a sentence naming the sky, place and dates; otherwise "".
+std::string dark_sky_warning(const Scene& scene);
 // Human-readable form of the summary, for the command line.
 std::string sky_report(const nlohmann::json& summary);
 

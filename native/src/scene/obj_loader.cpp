@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "scene/input_limits.h"
 #include "scene/mesh.h"
 
 namespace fenestra {
@@ -26,6 +27,7 @@ void Mesh::append(const Mesh& other) {
 namespace {
 
 std::string read_text(const std::string& path) {
+  check_input_file(path, "geometry file", limits::kMaxGeometryFileBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument("cannot open geometry file '" + path + "'");
   std::ostringstream s;
@@ -45,7 +47,47 @@ void check_vertex_line(const std::string& path, size_t line_number, std::istring
     if (token.empty() || *end != '\0' || !std::isfinite(v))
       throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(line_number) +
                                   ": vertex coordinate '" + token + "' is not a finite number");
+    if (!coordinate_in_range(v))
+      throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(line_number) +
+                                  ": vertex coordinate " + token + " is out of range (coordinates " +
+                                  coordinate_requirement() + ")");
   }
+}
+
+// tinyobjloader reads indices with wrapping integer arithmetic (an index past 2^64 silently
+// becomes another vertex): every index of a face must be a plain integer naming an existing
+// vertex (1..n, or -1..-n counting back from the last vertex so far). Returns the largest
+// positive vertex index, checked against the vertex count once the whole file is read.
+long long check_face_line(const std::string& path, size_t line_number, std::istringstream& words,
+                          size_t vertices_so_far) {
+  long long largest = 0;
+  std::string token;
+  while (words >> token) {
+    size_t start = 0;
+    for (int field = 0; field < 3 && start <= token.size(); ++field) {
+      const size_t slash = token.find('/', start);
+      const std::string index = token.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+      start = slash == std::string::npos ? token.size() + 1 : slash + 1;
+      if (index.empty() && field > 0) continue;  // "v//vn" or "v/vt"
+      const char* kinds[] = {"vertex", "texture coordinate", "normal"};
+      auto fail = [&](const std::string& why) {
+        throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(line_number) + ": face " +
+                                    kinds[field] + " index '" + index + "' " + why);
+      };
+      const size_t signs = std::min(index.find_first_not_of("-+"), index.size());
+      if (index.empty() || signs > 1 || index.size() == signs ||
+          index.find_first_not_of("0123456789", signs) != std::string::npos)
+        fail("is not an integer");
+      if (index.size() - signs > 9) fail("is out of range (at most 999999999)");
+      const long long v = std::stoll(index);
+      if (v == 0) fail("is 0 (OBJ indices start at 1)");
+      if (field != 0) continue;
+      if (v < 0 && static_cast<size_t>(-v) > vertices_so_far)
+        fail("refers back past the first vertex (" + std::to_string(vertices_so_far) + " vertices so far)");
+      largest = std::max(largest, v);
+    }
+  }
+  return largest;
 }
 
 std::string prepare_obj_text(const std::string& path, const std::string& text, std::set<std::string>* used) {
@@ -53,13 +95,18 @@ std::string prepare_obj_text(const std::string& path, const std::string& text, s
   std::ostringstream out;
   out << "mtllib fenestra_materials.mtl\n";
   std::string line;
-  size_t line_number = 0;
+  size_t line_number = 0, vertices = 0, largest_line = 0;
+  long long largest_index = 0;
   while (std::getline(in, line)) {
     ++line_number;
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
-    if (keyword == "v") check_vertex_line(path, line_number, words);
+    if (keyword == "v") check_vertex_line(path, line_number, words), ++vertices;
+    if (keyword == "f") {
+      const long long largest = check_face_line(path, line_number, words, vertices);
+      if (largest > largest_index) largest_index = largest, largest_line = line_number;
+    }
     if (keyword == "mtllib") {
       out << "#\n";
       continue;
@@ -73,6 +120,10 @@ std::string prepare_obj_text(const std::string& path, const std::string& text, s
     }
     out << line << "\n";
   }
+  if (largest_index > static_cast<long long>(vertices))
+    throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(largest_line) + ": face vertex index " +
+                                std::to_string(largest_index) + " is past the last vertex (the file has " +
+                                std::to_string(vertices) + ")");
   return out.str();
 }
 

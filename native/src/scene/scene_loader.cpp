@@ -8,7 +8,9 @@
 #include <stdexcept>
 
 #include "daylight/daylight.h"
+#include "io/json_input.h"
 #include "scene/bsdf.h"
+#include "scene/input_limits.h"
 #include "scene/scene.h"
 
 namespace fenestra {
@@ -41,16 +43,67 @@ double number_or(const ScenePath& sp, const json& obj, const std::string& name, 
   return obj.contains(name) ? number(sp, obj.at(name), key + "." + name) : fallback;
 }
 
-Rgb colour(const ScenePath& sp, const json& j, const std::string& key) {
-  if (j.is_number()) return Rgb::Constant(static_cast<float>(number(sp, j, key)));
-  if (j.is_array() && j.size() == 3)
-    return Rgb(number(sp, j[0], key), number(sp, j[1], key), number(sp, j[2], key));
-  sp.fail(key, "expected a number or [r, g, b], got " + j.dump());
+std::string show(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
 }
 
+// obj[name] (or the fallback) within [lo, hi], `unit` for the message (e.g. " m").
+double number_in(const ScenePath& sp, const json& obj, const std::string& name, const std::string& key,
+                 double fallback, double lo, double hi, const std::string& unit) {
+  if (!obj.contains(name)) return fallback;
+  const double v = number(sp, obj.at(name), key + "." + name);
+  if (!(v >= lo && v <= hi))
+    sp.fail(key + "." + name, "must lie in [" + show(lo) + ", " + show(hi) + "]" + unit + ", got " + obj.at(name).dump());
+  return v;
+}
+
+// A whole number within `range`, checked before it is converted to the integer it lands in.
+long long integer_in(const ScenePath& sp, const json& j, const IntegerRange& range, const std::string& key) {
+  const double v = number(sp, j, key);
+  if (v != std::floor(v) || v < static_cast<double>(range.lo) || v > static_cast<double>(range.hi))
+    sp.fail(key, range.requirement() + ", got " + j.dump());
+  return static_cast<long long>(v);
+}
+
+std::string text_or(const ScenePath& sp, const json& obj, const std::string& name, const std::string& key,
+                    const std::string& fallback) {
+  if (!obj.contains(name)) return fallback;
+  if (!obj.at(name).is_string()) sp.fail(key + "." + name, "expected a string, got " + obj.at(name).dump());
+  return obj.at(name).get<std::string>();
+}
+
+Rgb colour(const ScenePath& sp, const json& j, const std::string& key) {
+  Rgb c;
+  if (j.is_number())
+    c = Rgb::Constant(static_cast<float>(number(sp, j, key)));
+  else if (j.is_array() && j.size() == 3)
+    c = Rgb(number(sp, j[0], key), number(sp, j[1], key), number(sp, j[2], key));
+  else
+    sp.fail(key, "expected a number or [r, g, b], got " + j.dump());
+  if (!c.isFinite().all()) sp.fail(key, "is too large for a float (beyond 3.4e38), got " + j.dump());
+  return c;
+}
+
+// A position in meters: finite and within +-limits::kMaxCoordinate.
 Vec3 point(const ScenePath& sp, const json& j, const std::string& key) {
   if (!j.is_array() || j.size() != 3) sp.fail(key, "expected [x, y, z], got " + j.dump());
-  return Vec3(number(sp, j[0], key), number(sp, j[1], key), number(sp, j[2], key));
+  const double x = number(sp, j[0], key), y = number(sp, j[1], key), z = number(sp, j[2], key);
+  if (!coordinate_in_range(x) || !coordinate_in_range(y) || !coordinate_in_range(z))
+    sp.fail(key, "coordinates " + coordinate_requirement() + ", got " + j.dump());
+  return Vec3(x, y, z);
+}
+
+// A direction, normalized in double precision: components within +-limits::kMaxCoordinate, not zero.
+Vec3 direction(const ScenePath& sp, const json& j, const std::string& key) {
+  if (!j.is_array() || j.size() != 3) sp.fail(key, "expected [x, y, z], got " + j.dump());
+  const double x = number(sp, j[0], key), y = number(sp, j[1], key), z = number(sp, j[2], key);
+  if (!coordinate_in_range(x) || !coordinate_in_range(y) || !coordinate_in_range(z))
+    sp.fail(key, "components of a normal must lie within +-" + show(limits::kMaxCoordinate) + ", got " + j.dump());
+  const double n = std::sqrt(x * x + y * y + z * z);
+  if (!(n > 1e-6)) sp.fail(key, "a normal must not be zero (length at least 1e-6), got " + j.dump());
+  return Vec3(x / n, y / n, z / n);
 }
 
 std::vector<std::string> names(const ScenePath& sp, const json& obj, const std::string& name, const std::string& key) {
@@ -78,7 +131,7 @@ Material parse_material(const ScenePath& sp, const std::string& name, const json
   if (!j.is_object()) sp.fail(key, "expected an object");
   Material m;
   m.name = name;
-  const std::string type = j.value("type", std::string("diffuse"));
+  const std::string type = text_or(sp, j, "type", key, "diffuse");
   if (j.contains("reflectance")) m.reflectance = colour(sp, j.at("reflectance"), key + ".reflectance");
   if (type == "diffuse") {
     m.type = MaterialType::Diffuse;
@@ -96,7 +149,7 @@ Material parse_material(const ScenePath& sp, const std::string& name, const json
     check_range(sp, m.transmittance, 0.0f, 1.0f, key + ".transmittance");
     m.ior = static_cast<float>(number_or(sp, j, "ior", key, 1.52));
     if (!(m.ior >= 1.0f && m.ior <= 4.0f)) sp.fail(key + ".ior", "must lie in [1, 4]");
-    const std::string kind = j.value("kind", std::string("thin"));
+    const std::string kind = text_or(sp, j, "kind", key, "thin");
     if (kind != "thin" && kind != "solid") sp.fail(key + ".kind", "must be \"thin\" or \"solid\"");
     m.thin = kind == "thin";
     if (m.thin) {
@@ -145,7 +198,8 @@ DaylightSettings parse_daylight(const ScenePath& sp, const json& j, const std::s
         if (!j.contains(key)) sp.fail(std::string("sky.") + key, "a " + type + " sky needs it");
       d.place.latitude_deg = number(sp, j.at("latitude"), "sky.latitude");
       d.place.longitude_deg = number(sp, j.at("longitude"), "sky.longitude");
-      d.place.elevation_m = number_or(sp, j, "elevation", "sky", 0.0);
+      d.place.elevation_m = number_in(sp, j, "elevation", "sky", 0.0, -limits::kMaxCoordinate,
+                                      limits::kMaxCoordinate, " m");
       if (j.contains("timezone") && j.contains("utc_offset"))
         sp.fail("sky.timezone", "give either timezone or utc_offset, not both");
       if (j.contains("timezone")) {
@@ -164,23 +218,26 @@ DaylightSettings parse_daylight(const ScenePath& sp, const json& j, const std::s
         if (j.contains("start")) d.start_minutes = parse_clock_minutes(text(sp, j, "start", "sky"));
         if (j.contains("end")) d.end_minutes = parse_clock_minutes(text(sp, j, "end", "sky"));
       }
-      d.step_minutes = number_or(sp, j, "step_minutes", "sky", d.step_minutes);
+      d.step_minutes = number_in(sp, j, "step_minutes", "sky", d.step_minutes, limits::kMinStepMinutes,
+                                 limits::kMaxStepMinutes, " minutes");
       d.turbidity = number_or(sp, j, "turbidity", "sky", d.turbidity);
-      d.north_offset_deg = number_or(sp, j, "north_offset_deg", "sky", 0.0);
+      d.north_offset_deg = number_in(sp, j, "north_offset_deg", "sky", 0.0, -limits::kMaxTurnDeg,
+                                     limits::kMaxTurnDeg, " degrees");
     }
     d.ground_reflectance = number_or(sp, j, "ground_reflectance", "sky", d.ground_reflectance);
-    d.zenith_luminance = number_or(sp, j, "zenith_luminance", "sky", 0.0);
-    d.horizontal_illuminance = number_or(sp, j, "horizontal_illuminance", "sky", 0.0);
+    d.zenith_luminance = number_in(sp, j, "zenith_luminance", "sky", 0.0, 0.0, limits::kMaxRadiance, " cd/m^2");
+    d.horizontal_illuminance =
+        number_in(sp, j, "horizontal_illuminance", "sky", 0.0, 0.0, limits::kMaxIlluminance, " lux");
     if (d.zenith_luminance > 0.0 && d.horizontal_illuminance > 0.0)
       sp.fail("sky.zenith_luminance", "give either zenith_luminance or horizontal_illuminance, not both");
     if (d.model != DaylightSettings::Model::CieOvercast && d.horizontal_illuminance > 0.0)
       sp.fail("sky.horizontal_illuminance", "only a cie_overcast sky is scaled by its horizontal illuminance");
     if (j.contains("resolution")) {
       const json& r = j.at("resolution");
-      if (!r.is_array() || r.size() != 2 || !r[0].is_number_integer() || !r[1].is_number_integer())
+      if (!r.is_array() || r.size() != 2)
         sp.fail("sky.resolution", "expected [width, height] in pixels, got " + r.dump());
-      d.width = r[0].get<int>();
-      d.height = r[1].get<int>();
+      d.width = static_cast<int>(integer_in(sp, r[0], limits::kSkyWidth, limits::kSkyWidth.key));
+      d.height = static_cast<int>(integer_in(sp, r[1], limits::kSkyHeight, limits::kSkyHeight.key));
     }
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
@@ -192,20 +249,27 @@ DaylightSettings parse_daylight(const ScenePath& sp, const json& j, const std::s
 
 void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* scene, Progress* progress) {
   if (!j.is_object()) sp.fail("sky", "expected an object");
-  const std::string type = j.value("type", std::string("uniform"));
+  if (!j.contains("type"))
+    sp.fail("sky.type", "missing: give \"uniform\", \"envmap\", \"preetham\", \"cie_clear\" or \"cie_overcast\"");
+  const std::string type = text(sp, j, "type", "sky");
   if (type == "uniform") {
+    check_known_keys(sp, j, "sky", {"type", "radiance"});
     const Rgb l = j.contains("radiance") ? colour(sp, j.at("radiance"), "sky.radiance") : Rgb::Constant(1000.0f / kPi);
     if ((l < 0.0f).any()) sp.fail("sky.radiance", "must not be negative");
+    if ((l > static_cast<float>(limits::kMaxRadiance)).any())
+      sp.fail("sky.radiance", "must not exceed " + show(limits::kMaxRadiance) + " cd/m^2, got " + j.at("radiance").dump());
     scene->sky = std::make_shared<UniformSky>(l);
     return;
   }
   if (type == "envmap") {
+    check_known_keys(sp, j, "sky", {"type", "file", "scale", "rotation_deg"});
     if (!j.contains("file") || !j.at("file").is_string()) sp.fail("sky.file", "an envmap sky needs a \"file\"");
     const fs::path file = base / j.at("file").get<std::string>();
-    const float scale = static_cast<float>(number_or(sp, j, "scale", "sky", 1.0));
-    const float rotation = static_cast<float>(number_or(sp, j, "rotation_deg", "sky", 0.0));
-    if (scale < 0.0f) sp.fail("sky.scale", "must not be negative");
+    const float scale = static_cast<float>(number_in(sp, j, "scale", "sky", 1.0, 0.0, limits::kMaxRadiance, ""));
+    const float rotation = static_cast<float>(
+        number_in(sp, j, "rotation_deg", "sky", 0.0, -limits::kMaxTurnDeg, limits::kMaxTurnDeg, " degrees"));
     try {
+      check_input_file(file.string(), "environment map", limits::kMaxImageFileBytes);
       scene->sky = EnvironmentMap::load(file.string(), scale, rotation);
       scene->input_files.push_back(file.string());
     } catch (const std::invalid_argument& e) {
@@ -243,9 +307,7 @@ Sensors parse_sensors(const ScenePath& sp, const json& j) {
     sp.fail("sensors.normals", "give one normal for all sensors or one per sensor");
   for (size_t i = 0; i < s.points.size(); ++i) {
     const std::string key = "sensors.normals[" + std::to_string(normals.size() == 1 ? 0 : i) + "]";
-    Vec3 n = point(sp, normals[normals.size() == 1 ? 0 : i], key);
-    if (!(n.norm() > 1e-6f)) sp.fail(key, "a normal must not be zero");
-    s.normals.push_back(n.normalized());
+    s.normals.push_back(direction(sp, normals[normals.size() == 1 ? 0 : i], key));
   }
   if (j.contains("goals") && !j.at("goals").is_null()) {
     const json& g = j.at("goals");
@@ -254,7 +316,7 @@ Sensors parse_sensors(const ScenePath& sp, const json& j) {
     for (size_t i = 0; i < g.size(); ++i)
       s.goals.push_back(g[i].is_null() ? std::nan("") : number(sp, g[i], "sensors.goals[" + std::to_string(i) + "]"));
   }
-  s.goal_units = j.value("goal_units", std::string("normalized"));
+  s.goal_units = text_or(sp, j, "goal_units", "sensors", "normalized");
   if (s.goal_units != "normalized" && s.goal_units != "lux" && s.goal_units != "daylight_factor")
     sp.fail("sensors.goal_units", "must be \"normalized\", \"lux\" or \"daylight_factor\"");
   if (j.contains("weights")) {
@@ -337,7 +399,10 @@ void parse_goals(const ScenePath& sp, const json& j, Sensors* s) {
 // Goals must be reachable quantities: not negative, and at most 1 (all open) when normalized.
 void check_goals(const ScenePath& sp, const Sensors& s) {
   const double top = s.goal_units == "normalized" ? 1.0 : s.goal_units == "daylight_factor" ? 100.0
-                                                                                          : HUGE_VAL;
+                                                                                          : limits::kMaxIlluminance;
+  for (size_t i = 0; i < s.weights.size(); ++i)
+    if (s.weights[i] > limits::kMaxWeight)
+      sp.fail("weights[" + std::to_string(i) + "]", "must not exceed " + show(limits::kMaxWeight));
   auto check = [&](double g, const std::string& key) {
     if (std::isnan(g)) return;
     if (g < 0.0) sp.fail(key, "a goal must not be negative, got " + std::to_string(g));
@@ -475,18 +540,15 @@ RenderSettings parse_render(const ScenePath& sp, const json& j) {
   RenderSettings r;
   if (j.is_null()) return r;
   if (!j.is_object()) sp.fail("render", "expected an object");
-  auto integer = [&](const char* name, long long fallback, long long lo, long long hi) {
-    if (!j.contains(name)) return fallback;
-    const double v = number(sp, j.at(name), std::string("render.") + name);
-    if (v != std::floor(v) || v < lo || v > hi)
-      sp.fail(std::string("render.") + name,
-              "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return static_cast<long long>(v);
+  check_known_keys(sp, j, "render", {"paths_per_sensor", "max_bounces", "seed", "threads"});
+  auto integer = [&](const IntegerRange& range, long long fallback) {
+    const std::string name = std::string(range.key).substr(std::string("render.").size());
+    return j.contains(name) ? integer_in(sp, j.at(name), range, range.key) : fallback;
   };
-  r.paths_per_sensor = static_cast<int>(integer("paths_per_sensor", r.paths_per_sensor, 1, 1LL << 30));
-  r.max_bounces = static_cast<int>(integer("max_bounces", r.max_bounces, 0, 1000));
-  r.seed = static_cast<uint64_t>(integer("seed", 1, 0, 1LL << 53));
-  r.threads = static_cast<int>(integer("threads", 0, 0, 4096));
+  r.paths_per_sensor = static_cast<int>(integer(limits::kPathsPerSensor, r.paths_per_sensor));
+  r.max_bounces = static_cast<int>(integer(limits::kMaxBounces, r.max_bounces));
+  r.seed = static_cast<uint64_t>(integer(limits::kSeed, 1));
+  r.threads = static_cast<int>(integer(limits::kThreads, 0));
   return r;
 }
 
@@ -516,15 +578,12 @@ std::string Scene::to_string() const {
 Scene parse_scene(const std::string& text, const std::string& base_dir, const std::string& source_name,
                   Progress* progress) {
   const ScenePath sp(source_name);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw std::invalid_argument("scene '" + source_name + "' is not valid JSON: " + e.what());
-  }
+  const json j = parse_json_text(text, "scene", source_name);
   if (!j.is_object()) sp.fail("(top level)", "expected a JSON object");
-  if (!j.contains("fenestra") || !j.at("fenestra").is_number_integer() || j.at("fenestra").get<int>() != 1)
-    sp.fail("fenestra", "expected the format version 1 (\"fenestra\": 1)");
+  // Compared as a double: an integer such as 4294967297 must not wrap to 1.
+  if (!j.contains("fenestra") || !j.at("fenestra").is_number_integer() || j.at("fenestra").get<double>() != 1.0)
+    sp.fail("fenestra", "expected the format version 1 (\"fenestra\": 1), got " +
+                            (j.contains("fenestra") ? j.at("fenestra").dump() : std::string("nothing")));
 
   Scene scene;
   scene.source = source_name;
@@ -552,7 +611,8 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     // The solver's element size, when given, is the one the domain is diced with.
     if (j.contains("solver") && j.at("solver").is_object() && j.at("solver").contains("element_size"))
       sel.element_size = static_cast<float>(number(sp, j.at("solver").at("element_size"), "solver.element_size"));
-    sel.thickness = static_cast<float>(number_or(sp, od, "thickness", "opening_domain", 0.0));
+    sel.thickness =
+        static_cast<float>(number_in(sp, od, "thickness", "opening_domain", 0.0, 0.0, limits::kMaxThickness, " m"));
     try {
       scene.domain = OpeningDomain::build(scene.mesh, scene.material_names(), sel);
     } catch (const std::invalid_argument& e) {
@@ -564,7 +624,8 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     scene.domain.orient(scene.sensors.points);
     parse_goals(sp, j.value("goals", json()), &scene.sensors);
     check_goals(sp, scene.sensors);
-    parse_sky(sp, j.value("sky", json::object()), base, &scene, progress);
+    // No "sky" at all: the default uniform sky; a "sky" must name its type.
+    parse_sky(sp, j.contains("sky") ? j.at("sky") : json{{"type", "uniform"}}, base, &scene, progress);
     scene.render = parse_render(sp, j.value("render", json()));
     scene.solver = parse_solver(sp, j.value("solver", json()));
     try {
@@ -574,12 +635,13 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     }
     apply_panel_constraints(sp, j.value("solver", json()), &scene);
   } catch (const json::exception& e) {
-    sp.fail("(structure)", e.what());
+    sp.fail("(structure)", "a value has the wrong type: " + json_error_text(e));
   }
   return scene;
 }
 
 Scene load_scene(const std::string& path, Progress* progress) {
+  check_input_file(path, "scene file", limits::kMaxSceneFileBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument("cannot open scene file '" + path + "'");
   std::ostringstream s;

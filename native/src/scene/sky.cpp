@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "sampling/warp.h"
+#include "scene/input_limits.h"
 
 namespace fenestra {
 
@@ -38,18 +39,31 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<Rgb> pixels, f
     : width_(width), height_(height), pixels_(std::move(pixels)), scale_(scale), source_(std::move(source)) {
   if (width < 1 || height < 1 || pixels_.size() != static_cast<size_t>(width) * height)
     throw std::invalid_argument("environment map " + source_ + ": pixel count does not match its size");
+  if (!(std::isfinite(scale) && scale >= 0.0f))
+    throw std::invalid_argument("environment map " + source_ + ": the scale must be finite and not negative");
+  if (!(std::abs(rotation_deg) <= limits::kMaxTurnDeg))
+    throw std::invalid_argument("environment map " + source_ + ": the rotation must lie in [-360, 360] degrees");
   const float rot = rotation_deg * kPi / 180.0f;
   cos_rot_ = std::cos(rot);
   sin_rot_ = std::sin(rot);
   std::vector<double> weights(pixels_.size());
+  float brightest = 0.0f;
   for (int y = 0; y < height; ++y) {
     const double sin_theta = std::sin(kPi * (y + 0.5) / height);
     for (int x = 0; x < width; ++x) {
       const Rgb& p = pixels_[static_cast<size_t>(y) * width + x];
       if (!p.isFinite().all() || (p < 0.0f).any())
         throw std::invalid_argument("environment map " + source_ + ": negative or non-finite pixel values");
+      brightest = std::max(brightest, p.maxCoeff());
       weights[static_cast<size_t>(y) * width + x] = std::max(0.0, static_cast<double>(luminance(p))) * sin_theta;
     }
+  }
+  // Radiance is pixel times scale, in float: bounded so that it and the estimates built on it stay finite.
+  if (static_cast<double>(brightest) * scale > limits::kMaxRadiance) {
+    std::ostringstream s;
+    s << "environment map " << source_ << ": its brightest pixel (" << brightest << ") times the scale (" << scale
+      << ") exceeds " << limits::kMaxRadiance << " cd/m^2";
+    throw std::invalid_argument(s.str());
   }
   distribution_ = Distribution2D(weights, width, height);
 }

@@ -3,12 +3,15 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "solve/coarse_grid.h"
 #include "solve/compensation.h"
 #include "solve/linear_start.h"
 #include "solve/nnls.h"
 #include "solve/refine_openings.h"
+#include "io/sky_output.h"
+#include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
 
 namespace fenestra {
@@ -16,6 +19,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// A daylight sky without light (the sun never up) makes every value 0: no goal can be met.
+void refuse_dark_sky(const Scene& scene) {
+  const std::string dark = dark_sky_warning(scene);
+  if (!dark.empty())
+    throw std::invalid_argument("scene '" + scene.source + "': sky: " + dark +
+                                "; the goals cannot be met: choose a date and time interval with daylight");
+}
 
 // The linear model net of the all-closed values, weighted so that its error is a relative
 // mean-squared error (sum w (p - g)^2 / sum w g^2).
@@ -80,6 +91,8 @@ double exact_fitness(const LinearObjective& o, const ElementGrid& grid, const Sh
 }  // namespace
 
 SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress* progress) {
+  check_contributions_match(scene, c, "solve");
+  refuse_dark_sky(scene);
   const auto start = Clock::now();
   SolveResult out;
   out.goals = resolve_goals(scene, c);
@@ -244,10 +257,12 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
 }
 
 SolveResult solve_openings(const Scene& scene, Progress* progress) {
+  refuse_dark_sky(scene);
   Scene traced = scene;
   if (scene.solver.paths_per_sensor > 0) traced.render.paths_per_sensor = scene.solver.paths_per_sensor;
   const auto t = Clock::now();
-  const Contributions c = compute_contributions(traced, progress);
+  Contributions c = compute_contributions(traced, progress);
+  c.origin = contributions_origin(traced);
   const double seconds = since(t);
   SolveResult out = solve_openings(traced, c, progress);
   out.timings.insert(out.timings.begin(), {"contributions", seconds});

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "trace/contributions_origin.h"
 #include "trace/path_record.h"
 #include "util/progress.h"
 
@@ -28,6 +29,8 @@ struct Contributions {
   std::vector<SensorRecord> records;  // per sensor, per path: events for exact evaluation
   double seconds = 0.0;
   uint64_t events = 0;
+  // The scene it was computed for (set by the callers that hand it on: Python, solve_openings).
+  ContributionsOrigin origin;
 
   size_t sensor_count() const { return records.size(); }
   size_t element_count() const { return static_cast<size_t>(E.cols()); }

@@ -1,0 +1,294 @@
+"""Bad input through the command line and Python (issue 12, items 2 and 6): every number is
+checked after its conversion, and every error names the file and the key or line in words. The
+command line exits with status 1 (2 for usage errors), never on a signal, and writes nothing;
+Python raises ValueError with the same text."""
+
+import json
+import os
+import subprocess
+import warnings
+
+import numpy as np
+import pytest
+
+from conftest import CLI
+
+import fenestra
+
+
+def run(*args, timeout=120):
+    return subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, errors="replace",
+                          timeout=timeout)
+
+
+def edited(small_room, edit, name="bad.json"):
+    """A copy of the small room's scene.json with `edit(scene_dict)` applied."""
+    scene = json.loads(small_room.read_text())
+    edit(scene)
+    path = small_room.parent / name
+    path.write_text(json.dumps(scene))
+    return path
+
+
+def expect_cli_error(scene, fragments, command="contributions", extra=(), status=1):
+    folder = scene.parent
+    before = sorted(os.listdir(folder))
+    out = folder / ("out.npz" if command == "contributions" else "out.json")
+    if command == "evaluate" and "--openings" not in extra:
+        extra = (*extra, "--openings", write_openings(folder, [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1, 0, 2]]))
+        before = sorted(os.listdir(folder))
+    r = run(command, scene, "-o", out, "--quiet", "--paths", 16, *extra)
+    assert r.returncode == status, (r.returncode, r.stderr)  # a signal gives a negative status
+    for fragment in fragments:
+        assert fragment in r.stderr, r.stderr
+    assert "json.exception" not in r.stderr, r.stderr
+    assert sorted(os.listdir(folder)) == before  # no output, not even a partial one
+    return r.stderr
+
+
+def expect_python_error(scene, fragments):
+    with pytest.raises(ValueError) as error:
+        fenestra.load_scene(scene)
+    for fragment in fragments:
+        assert fragment in str(error.value)
+    assert "json.exception" not in str(error.value)
+    return str(error.value)
+
+
+def write_openings(folder, *corners):
+    path = folder / "openings.json"
+    path.write_text(json.dumps({"openings": [{"corners": c} for c in corners]}))
+    return path
+
+
+def set_in(*keys_and_value):
+    *keys, value = keys_and_value
+
+    def edit(scene):
+        d = scene
+        for k in keys[:-1]:
+            d = d.setdefault(k, {})
+        d[keys[-1]] = value
+    return edit
+
+
+ROOM_SENSOR = [1.5, 1.0, 0.8]
+POLAR = {"type": "preetham", "latitude": 78.0, "longitude": 15.0, "utc_offset": 1, "date": "2026-12-21",
+         "resolution": [64, 32]}
+
+# (case, edit of the scene dict, fragments the message must contain besides the file name)
+SCENE_CASES = [
+    # Coordinates: 1e39 is infinite as a float, 2e18 aborted inside Embree.
+    ("sensor 1e39", set_in("sensors", "points", [ROOM_SENSOR, [1e39, 1, 1]]), ["sensors.points[1]", "1e+06 m"]),
+    ("sensor 2e18", set_in("sensors", "points", [[2e18, 1, 1]]), ["sensors.points[0]", "1e+06 m"]),
+    ("normal 1e30", set_in("sensors", "normals", [1e30, 0, 0]), ["sensors.normals[0]"]),
+    ("normal 1e-30", set_in("sensors", "normals", [1e-30, 0, 0]), ["sensors.normals[0]", "zero"]),
+    # Integers: read as int, 4294967297 was 1; the others wrapped.
+    ("version 2^32+1", set_in("fenestra", 4294967297), ["fenestra", "4294967297"]),
+    ("resolution 2^32+128", set_in("sky", {"type": "cie_overcast", "resolution": [4294967424, 64]}),
+     ["sky.resolution[0]", "16384"]),
+    ("paths 2^32", set_in("render", "paths_per_sensor", 4294967296), ["render.paths_per_sensor", "1073741824"]),
+    ("threads 2^31", set_in("render", "threads", 2147483648), ["render.threads", "4096"]),
+    # Radiance and angles as floats: 1e39 cd/m^2 gave all zeros.
+    ("radiance 1e39", set_in("sky", "radiance", 1e39), ["sky.radiance"]),
+    ("radiance 1e13", set_in("sky", "radiance", [1, 1, 1e13]), ["sky.radiance", "1e+12 cd/m^2"]),
+    ("sky without type", set_in("sky", {"radiance": 100}), ["sky.type", "missing"]),
+    ("north offset 1e300", set_in("sky", dict(POLAR, north_offset_deg=1e300)), ["sky.north_offset_deg", "360"]),
+    ("step 1e-300 minutes", set_in("sky", dict(POLAR, step_minutes=1e-300)), ["sky.step_minutes"]),
+    ("overcast 1e300 lux", set_in("sky", {"type": "cie_overcast", "horizontal_illuminance": 1e300}),
+     ["sky.horizontal_illuminance", "lux"]),
+    ("thickness 1e30", set_in("opening_domain", "thickness", 1e30), ["opening_domain.thickness"]),
+    ("lux goal 1e300", lambda s: s["sensors"].update(goals=[1e300, 1, 1], goal_units="lux"), ["goals[0]"]),
+    # Messages name the key in words rather than nlohmann's "[json.exception.type_error.302]".
+    ("sky type 3", set_in("sky", "type", 3), ["sky.type", "expected a string"]),
+    ("material type 3", set_in("materials", "grey", "type", 3), ["materials.grey.type", "expected a string"]),
+]
+
+
+@pytest.mark.parametrize("case, edit, fragments", SCENE_CASES, ids=[c[0] for c in SCENE_CASES])
+def test_bad_numbers_are_refused_by_the_cli(small_room, case, edit, fragments):
+    expect_cli_error(edited(small_room, edit), ["bad.json", *fragments])
+
+
+@pytest.mark.parametrize("case, edit, fragments", SCENE_CASES, ids=[c[0] for c in SCENE_CASES])
+def test_bad_numbers_raise_value_error_in_python(small_room, case, edit, fragments):
+    path = edited(small_room, edit)
+    expect_python_error(path, ["bad.json", *fragments])
+    with pytest.raises(ValueError) as error:
+        fenestra.scene_from_dict(json.loads(path.read_text()), small_room.parent)
+    assert all(f in str(error.value) for f in fragments), str(error.value)
+
+
+def test_json_number_overflow_names_file_line_and_key(small_room):
+    text = json.dumps(json.loads(small_room.read_text()), indent=1).replace("0.8", "1e400", 1)
+    bad = small_room.parent / "bad.json"
+    bad.write_text(text)
+    line = text[:text.index("1e400")].count("\n") + 1
+    fragments = ["bad.json", "line %d" % line, "sensors.points[0][2]", "1e400"]
+    expect_cli_error(bad, fragments)
+    expect_python_error(bad, fragments)
+
+
+def test_obj_indices_and_coordinates_are_checked_with_their_line(small_room):
+    room = (small_room.parent / "room.obj").read_text()
+    lines = room.count("\n")
+    cases = [
+        ("f 1 2 18446744073709551619\n", ["line %d" % (lines + 2), "18446744073709551619"]),  # wrapped past 2^64
+        ("f 1 2 999\n", ["line %d" % (lines + 2), "past the last vertex"]),
+        ("f 1 2 -999\n", ["line %d" % (lines + 2), "-999"]),
+    ]
+    for face, fragments in cases:
+        (small_room.parent / "bad.obj").write_text(room + "usemtl grey\n" + face)
+        scene = edited(small_room, set_in("geometry", "bad.obj"))
+        expect_cli_error(scene, ["bad.obj", *fragments])
+        expect_python_error(scene, ["bad.obj", *fragments])
+    (small_room.parent / "bad.obj").write_text(room.replace("v 0 0 0", "v 0 0 2e+06", 1))
+    scene = edited(small_room, set_in("geometry", "bad.obj"))
+    expect_cli_error(scene, ["bad.obj", "line 3", "out of range"])
+    expect_python_error(scene, ["bad.obj", "line 3", "out of range"])
+
+
+def test_envmap_scale_and_rotation_must_stay_finite(small_room):
+    fenestra.write_image(str(small_room.parent / "sky.exr"), np.full((8, 16, 3), 1000.0, np.float32))
+    envmap = {"type": "envmap", "file": "sky.exr"}
+    for extra, fragments in [({"scale": 1e300}, ["sky.scale"]),
+                             ({"scale": 1e10}, ["sky.file", "brightest pixel"]),  # 1e13 cd/m^2
+                             ({"rotation_deg": 1e300}, ["sky.rotation_deg", "360"])]:
+        scene = edited(small_room, set_in("sky", dict(envmap, **extra)))
+        expect_cli_error(scene, ["bad.json", *fragments])
+        expect_python_error(scene, ["bad.json", *fragments])
+    fenestra.load_scene(edited(small_room, set_in("sky", dict(envmap, scale=2.0, rotation_deg=-90))))
+
+
+def test_openings_out_of_range_are_refused(small_room):
+    openings = write_openings(small_room.parent, [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1e39, 0, 2]])
+    expect_cli_error(small_room, ["openings.json", "opening 0", "corner 3", "1e+06 m"], command="evaluate",
+                     extra=("--openings", openings))
+    scene = fenestra.load_scene(small_room)
+    with pytest.raises(ValueError, match="opening 0, corner 3"):
+        fenestra.evaluate(scene, [[[1, 0, 1], [2, 0, 1], [2, 0, 2], [1e39, 0, 2]]])
+    with pytest.raises(ValueError, match="opening 0, corner 0"):
+        fenestra.evaluate(scene, [[[2e18, 0, 1], [2, 0, 1], [2, 0, 2], [1, 0, 2]]])
+
+
+@pytest.mark.parametrize("flag, value", [("--paths", 4294967296), ("--paths", 4294967297), ("--paths", 0),
+                                         ("--threads", 2147483648), ("--threads", 4097), ("--seed", -1),
+                                         ("--seed", 2 ** 64 + 1)])
+def test_cli_counts_are_bounded_like_the_scene_keys(small_room, flag, value):
+    folder = small_room.parent
+    before = sorted(os.listdir(folder))
+    r = run("contributions", small_room, "-o", folder / "out.npz", "--quiet", flag, value)
+    assert r.returncode == 2, r.stderr
+    assert flag in r.stderr and str(value) in r.stderr and "integer from" in r.stderr
+    assert sorted(os.listdir(folder)) == before
+
+
+@pytest.mark.parametrize("attribute, value", [("paths_per_sensor", 0), ("paths_per_sensor", 2 ** 32),
+                                              ("paths_per_sensor", -1), ("max_bounces", 1001),
+                                              ("threads", 2 ** 31), ("threads", -1), ("seed", 2 ** 64)])
+def test_render_setters_validate_like_the_loader(small_room, attribute, value):
+    scene = fenestra.load_scene(small_room)
+    before = getattr(scene.render, attribute)
+    with pytest.raises(ValueError, match="render.%s" % attribute):
+        setattr(scene.render, attribute, value)
+    assert getattr(scene.render, attribute) == before
+    with pytest.raises(TypeError, match="render.%s" % attribute):
+        setattr(scene.render, attribute, 1.5)
+    setattr(scene.render, attribute, np.int64(1))  # NumPy integers are integers
+    assert getattr(scene.render, attribute) == 1
+
+
+def test_non_regular_input_files_are_refused(small_room):
+    for edit, fragments in [(set_in("geometry", "/dev/zero"), ["geometry", "/dev/zero", "not a regular file"]),
+                            (set_in("sky", {"type": "envmap", "file": "/dev/zero"}),
+                             ["sky.file", "/dev/zero", "not a regular file"]),
+                            (set_in("geometry", "."), ["geometry", "not a regular file"])]:
+        scene = edited(small_room, edit)
+        expect_cli_error(scene, ["bad.json", *fragments])  # /dev/zero was read forever
+        expect_python_error(scene, fragments)
+    r = run("contributions", "/dev/zero", "-o", small_room.parent / "out.npz", "--quiet", timeout=60)
+    assert r.returncode == 1 and "not a regular file" in r.stderr
+
+
+def test_polar_night_is_refused_by_solve_and_warned_by_evaluate(small_room):
+    def polar(scene):
+        scene["sky"] = POLAR
+        scene["sensors"]["goals"] = [0.5, 0.5, 0.5]
+    path = edited(small_room, polar)
+    message = expect_cli_error(path, ["bad.json", "2026-12-21", "78, 15", "below the horizon"], command="solve")
+    assert "cannot be met" in message
+    out = small_room.parent / "eval.json"
+    openings = write_openings(small_room.parent, [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1, 0, 2]])
+    r = run("evaluate", path, "--openings", openings, "-o", out, "--paths", 16, "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert "warning" in r.stderr and "below the horizon" in r.stderr
+    assert all(s["value"] == 0 for s in json.loads(out.read_text())["sensors"])
+
+    scene = fenestra.load_scene(path)
+    scene.render.paths_per_sensor = 16
+    with pytest.raises(ValueError, match="2026-12-21"):
+        fenestra.solve(scene)
+    with pytest.warns(RuntimeWarning, match="below the horizon"):
+        fenestra.evaluate(scene, [])
+    with pytest.warns(RuntimeWarning, match="below the horizon"):
+        fenestra.contributions(scene)
+    daylit = fenestra.load_scene(edited(small_room, set_in("sky", dict(POLAR, latitude=48.0)), "day.json"))
+    daylit.render.paths_per_sensor = 16
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fenestra.evaluate(daylit, [])
+
+
+def test_contributions_of_another_scene_are_refused(small_room, tmp_path):
+    scene = fenestra.load_scene(small_room)
+    scene.render.paths_per_sensor = 32
+    c = fenestra.contributions(scene)
+
+    def with_goals(s):
+        s["sensors"]["goals"] = [0.5] * len(s["sensors"]["points"])
+    more = edited(small_room, lambda s: (s["sensors"]["points"].append([1, 1, 1]), with_goals(s)), "more.json")
+    with pytest.raises(ValueError, match="3 sensors x 30 elements.*4 sensors x 30 elements"):
+        fenestra.solve(fenestra.load_scene(more), contributions=c)
+    # Same counts, other sensors: caught by the fingerprint (it used to solve the wrong scene).
+    moved = edited(small_room, lambda s: (s["sensors"]["points"].__setitem__(0, [1.5, 2.0, 0.8]), with_goals(s)),
+                   "moved.json")
+    with pytest.raises(ValueError, match="moved.json.*sensors or the element grid differ"):
+        fenestra.solve(fenestra.load_scene(moved), contributions=c)
+    other_sky = fenestra.load_scene(edited(small_room, set_in("sky", "radiance", 50), "sky50.json"))
+    with pytest.raises(ValueError, match="different sky"):
+        c.save(other_sky, str(tmp_path / "c"))
+    assert not (tmp_path / "c.npz").exists() and not (tmp_path / "c.json").exists()
+    with pytest.raises(ValueError, match="sensors or the element grid differ"):
+        c.save(fenestra.load_scene(moved), str(tmp_path / "c"))
+    assert not (tmp_path / "c.npz").exists()
+    c.save(fenestra.load_scene(small_room), str(tmp_path / "c"))  # the same scene, loaded again
+    assert (tmp_path / "c.npz").exists()
+
+
+def test_messages_with_bytes_that_are_not_utf8_reach_python(small_room):
+    folder = os.fsencode(small_room.parent)
+    with pytest.raises(ValueError) as error:
+        fenestra.load_scene(os.path.join(folder, b"sc\xffne.json"))  # was an empty ValueError
+    assert "cannot open scene file" in str(error.value) and "\ufffd" in str(error.value)
+    bad = small_room.parent / "bad.json"
+    bad.write_bytes(small_room.read_bytes().replace(b"room.obj", b"ro\xffom.obj"))
+    message = expect_python_error(bad, ["bad.json", "not valid JSON", "line 1"])
+    assert "UTF-8" in message
+    r = run("contributions", bad, "-o", small_room.parent / "out.npz", "--quiet")
+    assert r.returncode == 1 and "not valid JSON" in r.stderr
+
+
+def test_out_of_memory_is_reported_in_words(small_room):
+    """A sky map of 16384 x 8192 under a 1.5 GB address-space limit: refused up front or out of
+    memory, but in words, with status 1 and no signal."""
+    import resource
+
+    scene = edited(small_room, set_in("sky", {"type": "cie_overcast", "resolution": [16384, 8192]}))
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (1500 << 20, 1500 << 20))
+    r = subprocess.run([CLI, "sky", str(scene), "-o", str(small_room.parent / "sky.exr"), "--quiet"],
+                       capture_output=True, text=True, errors="replace", preexec_fn=limit, timeout=300)
+    assert r.returncode == 1, r.stderr
+    assert "memory" in r.stderr and "bad.json" in r.stderr and "std::bad_alloc" not in r.stderr
+    assert not (small_room.parent / "sky.exr").exists()
