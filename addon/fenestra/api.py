@@ -10,21 +10,35 @@ import numpy as np
 
 from ._core import Cancelled, Contributions, Progress, Scene, read_openings, write_image
 from . import _core
+from . import cost as _cost
+from .cost import available_memory, check_cost, estimate_cost
 
 
-def load_scene(path, progress=None, callback=None):
-    """Reads a scene file (JSON + OBJ). Raises ValueError naming the file and the problem. Runs
-    like contributions(): on a worker thread without the GIL, a daylight sky's build reporting to
-    `progress` / `callback` and stopping on cancel (raises Cancelled)."""
+def load_scene(path, progress=None, callback=None, max_memory=None):
+    """Reads a scene file (JSON + OBJ). Raises ValueError naming the file and the problem.
+    max_memory (bytes or "8G"; default what the system has available) bounds the cost checks
+    made while reading (docs/cost.md). Runs like contributions(): on a worker thread without the
+    GIL, a daylight sky's build reporting to `progress` / `callback` and stopping on cancel
+    (raises Cancelled)."""
     path = os.fspath(path)
-    return _run(lambda p: Scene.load(path, p), progress, callback)
+
+    def work(p):
+        with _cost.loading(max_memory):  # on the thread that loads
+            return Scene.load(path, p)
+
+    return _run(work, progress, callback)
 
 
-def scene_from_dict(scene, base_dir=".", progress=None, callback=None):
+def scene_from_dict(scene, base_dir=".", progress=None, callback=None, max_memory=None):
     """Builds a scene from a dict in the scene-file format; relative paths resolve against base_dir.
     progress and callback as for load_scene()."""
     text, base_dir = json.dumps(scene), os.fspath(base_dir)
-    return _run(lambda p: Scene.from_json(text, base_dir, "<dict>", p), progress, callback)
+
+    def work(p):
+        with _cost.loading(max_memory):
+            return Scene.from_json(text, base_dir, "<dict>", p)
+
+    return _run(work, progress, callback)
 
 
 def openings_array(openings):
@@ -99,23 +113,25 @@ def _warn_if_dark(scene):
         warnings.warn(message, RuntimeWarning, stacklevel=3)
 
 
-def contributions(scene, progress=None, callback=None):
+def contributions(scene, progress=None, callback=None, max_memory=None):
     """One pass of paths per sensor: returns a Contributions with E, E_stderr, A, T, closed,
     all_open (and their standard errors) and evaluate(open_mask) for exact values of any set.
     Warns (RuntimeWarning) when the scene's daylight sky gives no light (the sun never up)."""
     _warn_if_dark(scene)
+    _cost.check_cost(scene, "contributions", max_memory)  # before any work (docs/cost.md)
     return _run(lambda p: _core.compute_contributions(scene, p), progress, callback)
 
 
-def evaluate(scene, openings, progress=None, callback=None):
+def evaluate(scene, openings, progress=None, callback=None, max_memory=None):
     """Path-traces the scene with the openings really cut. Returns (value, stderr) arrays.
     Warns (RuntimeWarning) when the scene's daylight sky gives no light (the sun never up)."""
     rects = openings_array(openings)
     _warn_if_dark(scene)
+    _cost.check_cost(scene, "evaluate", max_memory)
     return _run(lambda p: _core.evaluate(scene, rects, p), progress, callback)
 
 
-def sky(scene):
+def sky(scene, max_memory=None):
     """The scene's sky as the tracer sees it: a dict with
     - "map": (height, width, 3) float32 equirectangular map, linear sRGB in cd/m^2, top row the
       zenith, Blender's world convention (a daylight sky's interval mean, sky above the horizon and
@@ -125,21 +141,26 @@ def sky(scene):
       +Y north), "zenith_deg", "azimuth_deg" (clockwise from north), "weight" (share of the
       interval) and "normal_illuminance" (lux at that instant);
     - for daylight skies also "steps", "steps_with_sun", "map" size and "build_seconds"."""
+    _cost.check_cost(scene, "sky", max_memory)
     summary = json.loads(_core.sky_summary(scene))
     summary["map_size"] = summary.pop("map", None)
     summary["map"] = _core.sky_map(scene)
     return summary
 
 
-def write_sky(scene, path):
+def write_sky(scene, path, max_memory=None):
     """Writes the scene's sky map to path (.exr or .hdr, cd/m^2)."""
+    _cost.check_cost(scene, "sky", max_memory)
     _core.write_sky(scene, os.fspath(path))
 
 
-def solve(scene, contributions=None, progress=None, callback=None):
+def solve(scene, contributions=None, progress=None, callback=None, max_memory=None):
     """Solves for the openings that meet the scene's goals (docs/solver.md). Computes the
     contributions first unless given. Returns the result as a dict, the same as `fenestra solve`
     writes: "openings" (rectangles, corners in meters, accepted by evaluate()), "open_elements",
     "sensors" (per sensor "goal" and "predicted" in lux, input order), "error" ("relative_rms", ...),
-    "timings_s" and "genetic" (with the convergence history)."""
+    "timings_s" and "genetic" (with the convergence history). Refused (ValueError) before any work
+    when the cost model (docs/cost.md) says it will not fit in max_memory (bytes or "8G"; default
+    what the system has available) or a stage would exceed its time limit."""
+    _cost.check_cost(scene, "solve" if contributions is None else "solver", max_memory)
     return json.loads(_run(lambda p: _core.solve(scene, contributions, p), progress, callback))

@@ -14,6 +14,8 @@
 
 #include "io/atomic_file.h"
 #include "io/image_writer.h"
+#include "cost/byte_size.h"
+#include "cost/cost_model.h"
 #include "io/results.h"
 #include "io/sky_output.h"
 #include "io/solve_result.h"
@@ -44,6 +46,8 @@ options:
   --paths N     paths per sensor, 1 to 1073741824 (overrides render.paths_per_sensor)
   --seed N      random seed, 0 to 9007199254740992 (overrides render.seed)
   --threads N   worker threads, 0 to 4096, 0 = all (overrides render.threads)
+  --max-memory SIZE  memory the run may use, e.g. 8G, 512M or bytes (default: what the system
+                has available, within ulimit -v); runs that would need more are refused
   --json PATH   (sky) also write the summary as JSON
   --quiet       no progress on stderr
   -h, --help    this text
@@ -58,6 +62,7 @@ struct Args {
   std::string command, scene, output, openings, summary;
   std::map<std::string, long long> overrides;
   bool quiet = false;
+  uint64_t max_memory = 0;  // bytes; 0: detected (cost/memory_limit.h)
 };
 
 [[noreturn]] void usage_error(const std::string& message) {
@@ -105,6 +110,12 @@ Args parse_args(int argc, char** argv) {
                                        arg == "--paths"  ? fenestra::limits::kPathsPerSensor
                                        : arg == "--seed" ? fenestra::limits::kSeed
                                                          : fenestra::limits::kThreads);
+    } else if (arg == "--max-memory") {
+      try {
+        a.max_memory = fenestra::parse_byte_size(value(), "--max-memory");
+      } catch (const std::invalid_argument& e) {
+        usage_error(e.what());
+      }
     } else if (arg == "--quiet") {
       a.quiet = true;
     } else if (!arg.empty() && arg[0] == '-') {
@@ -188,6 +199,7 @@ std::vector<std::string> output_paths(const Args& a) {
 int run(const Args& a) {
   using namespace fenestra;
   g_stage = "loading scene '" + a.scene + "'";
+  set_cost_context({a.max_memory, cost_command(a.command)});  // the loader's cost checks see both
   // Outputs are checked before any work (docs/outputs.md): writable, regular files, not inputs.
   const std::vector<std::string> outputs = output_paths(a);
   std::vector<std::string> inputs = {a.scene};
@@ -209,6 +221,7 @@ int run(const Args& a) {
     if (!dark.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", dark.c_str());
   }
 
+  if (a.command != "solve") check_cost(scene, cost_command(a.command));  // docs/cost.md; solve below
   if (a.command == "sky") {
     const nlohmann::json summary = sky_summary(scene);
     const SkyImage image = sky_image(scene);
@@ -232,6 +245,7 @@ int run(const Args& a) {
   if (a.command == "solve") {
     if (a.overrides.count("--paths")) scene.solver.paths_per_sensor = scene.render.paths_per_sensor;
     if (a.overrides.count("--seed")) scene.solver.seed = scene.render.seed;
+    check_cost(scene, CostCommand::Solve);  // memory and time, before any work (docs/cost.md)
     const SolveResult r = with_progress(progress, a.quiet, [&] { return solve_openings(scene, &progress); });
     write_json(a.output, solve_result_json(scene, r));
     double total = 0.0;

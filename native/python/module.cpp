@@ -27,6 +27,7 @@ using namespace fenestra;
 
 void bind_daylight(py::module_& m);  // bind_daylight.cpp
 void bind_solver(py::module_& m);    // bind_solver.cpp
+void bind_cost(py::module_& m);      // bind_cost.cpp
 
 namespace {
 
@@ -115,6 +116,7 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "Fenestra native core: opening-contribution path tracing on Embree.";
   bind_daylight(m);
   bind_solver(m);
+  bind_cost(m);
   static py::exception<Cancelled> cancelled(m, "Cancelled");
   // Every native exception reaches Python with its text, decoded with replacement (pybind11's
   // default translation gives an empty message when the text is not UTF-8, e.g. a file name).

@@ -236,6 +236,19 @@ class BadSetups(unittest.TestCase):
         bpy.context.scene.fenestra.solve.element_size = 0.001
         self.assert_refused(["too small"])
 
+    def test_refused_by_the_cost_model_memory(self):
+        # docs/cost.md: refused before the worker thread starts, naming the figure and the setting
+        study()
+        solve = bpy.context.scene.fenestra.solve
+        solve.quality, solve.paths = 'CUSTOM', 2 ** 24
+        self.assert_refused(["paths per sensor", "needs", "fewer paths"])
+
+    def test_refused_by_the_cost_model_time(self):
+        study()
+        solve = bpy.context.scene.fenestra.solve
+        solve.quality, solve.generations = 'CUSTOM', 10 ** 7
+        self.assert_refused(["genetic algorithm", "solver.generations"])
+
     def test_bad_setup_after_a_solve_keeps_the_result(self):
         study()
         self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})

@@ -204,6 +204,9 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
             self._study = export.build(context)
             path = self._study.write(export.study_directory(context.scene))
             self._scene = fenestra.load_scene(path)
+            # The cost model (docs/cost.md): refuse here, before the worker thread starts, what
+            # would not fit in memory or take too long (a Blender killed by the OOM killer loses work).
+            fenestra.check_cost(self._scene, "solve")
         except (ValueError, OSError) as exc:
             self.report({'ERROR'}, str(exc))
             return False

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cost/load_checks.h"
 #include "daylight/sky_models.h"
 #include "scene/sky.h"
 
@@ -182,6 +183,7 @@ Daylight make_daylight(const DaylightSettings& s, Progress* progress) {
     check(std::isfinite(s.turbidity) && s.turbidity >= PreethamSky::kMinTurbidity &&
               s.turbidity <= PreethamSky::kMaxTurbidity,
           "turbidity", "must be in [1.7, 10], the range the Preetham model was fitted for");
+  check_daylight_cost(s);  // the map's memory and the steps' time, before building
 
   const auto per_pixel = [](const RadianceOf& radiance) -> RowFiller {
     return [radiance](const Vec3* d, int count, Rgb* out) {

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cost/load_checks.h"
 #include "scene/input_limits.h"
 #include "scene/mesh.h"
 
@@ -28,6 +29,7 @@ namespace {
 
 std::string read_text(const std::string& path) {
   check_input_file(path, "geometry file", limits::kMaxGeometryFileBytes);
+  check_geometry_file_cost(path);  // before reading: about 12x its size in memory
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument("cannot open geometry file '" + path + "'");
   std::ostringstream s;

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "cost/load_checks.h"
+
 namespace fenestra {
 namespace {
 
@@ -122,6 +124,8 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
     components[it->second].push_back(tris[i]);
   }
 
+  // The element count, estimated from the panels' areas, must fit before any grid is allocated.
+  check_domain_cost(estimate_domain(mesh, components, sel.element_size), sel.element_size);
   const float s = sel.element_size;
   for (const auto& comp : components) {
     Panel panel;

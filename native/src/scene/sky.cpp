@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cost/load_checks.h"
 #include "sampling/warp.h"
 #include "scene/input_limits.h"
 
@@ -74,6 +75,7 @@ std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, fl
   const OIIO::ImageSpec& spec = in->spec();
   const int w = spec.width, h = spec.height, channels = spec.nchannels;
   if (w < 2 || h < 1) throw std::invalid_argument("environment map '" + path + "' is empty");
+  check_image_cost(path, w, h, channels);  // from the header, before the pixels are allocated
   std::vector<float> data(static_cast<size_t>(w) * h * channels);
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
     throw std::invalid_argument("cannot read environment map '" + path + "': " + in->geterror());

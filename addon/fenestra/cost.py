@@ -1,0 +1,47 @@
+"""The cost model (docs/cost.md): memory and time a computation will need, estimated from the
+scene's sizes and settings before anything large is allocated, and the `max_memory` argument
+of the API's functions (no bpy here)."""
+
+from . import _core
+
+
+def memory_bytes(max_memory):
+    """0 (the limit the system sets: MemAvailable, ulimit -v / -d, a cgroup's limit) for None,
+    else bytes from an int or a string such as "8G", "512M", "1.5GB" or "2GiB"."""
+    if max_memory is None:
+        return 0
+    if isinstance(max_memory, str):
+        return _core.parse_memory_size(max_memory)
+    if isinstance(max_memory, bool) or not isinstance(max_memory, (int, float)) or not max_memory >= 1:
+        raise ValueError("max_memory expects a number of bytes (at least 1) or a size such as '8G', got %r"
+                         % (max_memory,))
+    return int(max_memory)
+
+
+def available_memory():
+    """What this process may still allocate: {"bytes", "source"} (the smallest of MemAvailable,
+    the headroom under ulimit -v and ulimit -d, and a cgroup's memory limit)."""
+    return _core.available_memory()
+
+
+def estimate_cost(scene, command="solve", max_memory=None):
+    """The cost model's estimate for running `command` ("contributions", "evaluate", "solve",
+    "solver" (solve with contributions given) or "sky") on the scene: a dict with
+    "memory" (bytes per component: "E", "E_stderr", "A", "T", "path_records", ...),
+    "memory_phase" ("" for what the result keeps, else the stage it exists in),
+    "kept_bytes", "total_bytes" (the peak that must fit), "available_bytes" and "available_source",
+    "seconds" (per stage, on the 2-core reference machine) and "seconds_limit",
+    the sizes ("sensors", "elements", "triangles", "paths_per_sensor", "bytes_per_path"),
+    "fits" and "problem" (the refusal message, or None)."""
+    return _core.estimate_cost(scene, command, memory_bytes(max_memory))
+
+
+def check_cost(scene, command="solve", max_memory=None):
+    """Raises ValueError, naming the figure and the setting to change, when `command` on the
+    scene would not fit in memory (or max_memory) or a stage would exceed its time limit."""
+    _core.check_cost(scene, command, memory_bytes(max_memory))
+
+
+def loading(max_memory=None, command="any"):
+    """Context manager: scene loads inside it (on this thread) check against max_memory."""
+    return _core.CostScope(memory_bytes(max_memory), command)

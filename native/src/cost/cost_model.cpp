@@ -1,0 +1,284 @@
+#include "cost/cost_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "cost/byte_size.h"
+#include "daylight/daylight.h"
+#include "scene/scene.h"
+
+namespace fenestra {
+namespace {
+
+// Path records (trace/path_record.h): a PathEvent is 16 bytes, a path adds a 4-byte offset, and
+// events carry 4-byte element conditions; with the vectors' spare capacity, 24-37 bytes per event
+// were measured on the example scenes. Events per path: a few at the sensor (portal samples, the
+// first sky and element samples) and 1-2 per further vertex (next-event estimates, escapes
+// through elements and their parts). Expected vertices: 1 + sum_{k=1..B} rho^k.
+constexpr double kBytesPerEvent = 40.0, kBytesPerPath = 8.0;
+constexpr double kEventsAtSensor = 3.0, kEventsPerVertex = 1.75;
+// While the per-task records are merged into one per sensor, both exist (peak RSS measured at
+// 2.3x the records kept on the paper-scale scene).
+constexpr double kRecordAssembly = 1.5;
+// Embree's BVH, the tracer's triangle data and the mesh copies, per triangle.
+constexpr double kRaySceneBytesPerTriangle = 256.0;
+// Per worker thread while analysing a sensor: 16 replicate sums and A's sum per element.
+constexpr double kAnalysisBytesPerElement = 8.0 * 17.0;
+// The solver's copies of sensors x elements matrices: the weighted objective, the
+// defect-corrected objective, NNLS's weighted matrix and work space, the refinement's prefix sums.
+constexpr double kSolverCopiesOfE = 5.0;
+
+// Reference machine (2 cores, the README's benchmark): measured rates, rounded up.
+constexpr double kTraceSecondsPerVertex = 1e-6;                       // per path vertex, all cores
+// A GA child: 2 us + 5 ns per (element + 4 sensors); a generation: 5 us more (measured 1.7-2.2 us
+// per child at 30 sensors x 112 elements, 57-75 us at 1000 x 10000, about 3 us per generation).
+constexpr double kChildSeconds = 2e-6, kChildSecondsPerUnit = 5e-9, kGenerationSeconds = 5e-6;
+// Per generation of the fine run: its history record (vector) and its entry in the result's JSON.
+constexpr double kHistoryBytesPerGeneration = 64.0, kHistoryJsonBytesPerGeneration = 400.0;
+constexpr double kProposalSeconds = 0.5e-6, kProposalSecondsPerSensor = 10e-9;  // local search
+// Time limits (docs/cost.md): the genetic stages unless solver.time_budget_s bounds the fine-grid
+// runs; the local search, a polish whose default (20 000 proposals) takes milliseconds.
+constexpr double kGeneticLimitSeconds = 600.0, kLocalSearchLimitSeconds = 60.0;
+
+double albedo(const Material& m) {
+  if (m.is_glass()) return std::min(1.0, static_cast<double>(luminance(m.transmittance)) + 0.1);
+  return luminance(m.reflectance);
+}
+
+// 1 + sum_{k=1..B} rho^k: the expected number of path vertices without Russian roulette.
+double expected_vertices(const Scene& scene) {
+  double rho = 0.0;
+  for (const Material& m : scene.materials) rho = std::max(rho, albedo(m));
+  rho = std::clamp(rho, 0.0, 0.99);
+  double sum = 1.0, term = 1.0;
+  for (int k = 1; k <= scene.render.max_bounces && term > 1e-6; ++k) sum += term *= rho;
+  return sum;
+}
+
+int worker_threads(const Scene& scene) {
+  if (scene.render.threads > 0) return scene.render.threads;
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+std::string element_size_text(const Scene& scene) {
+  std::ostringstream s;
+  s << scene.domain.element_size();
+  return s.str();
+}
+
+void add_contributions(const Scene& scene, long long paths, CostEstimate* e) {
+  const double S = static_cast<double>(e->sensors), N = static_cast<double>(e->elements);
+  const std::string fewer_elements = "a larger element_size (opening_domain.element_size or solver.element_size)";
+  const std::string fewer_paths = e->command == CostCommand::Solve ? "fewer paths (solver.paths, render.paths_per_sensor, --paths)"
+                                                                   : "fewer paths (render.paths_per_sensor, --paths)";
+  e->memory.push_back({"E", "the contribution matrix E (sensors x elements)", 8 * S * N, "",
+                       "fewer sensors or " + fewer_elements});
+  e->memory.push_back({"E_stderr", "E's standard errors (sensors x elements)", 8 * S * N, "",
+                       "fewer sensors or " + fewer_elements});
+  e->memory.push_back({"A", "the error-compensation matrix A (sensors x elements)", 8 * S * N, "",
+                       "fewer sensors or " + fewer_elements});
+  e->memory.push_back({"T", "the error-compensation matrix T (elements x elements)", 8 * N * N, "", fewer_elements});
+  const double records = S * static_cast<double>(paths) * e->bytes_per_path;
+  e->memory.push_back({"path_records", "the path records (sensors x paths)", records, "", fewer_paths});
+  e->memory.push_back({"path_records_assembly", "the path records while they are assembled",
+                       kRecordAssembly * records, "tracing", fewer_paths, true});
+  e->memory.push_back({"T_symmetrised", "T while it is symmetrised", 8 * N * N, "tracing", fewer_elements, true});
+  e->memory.push_back({"analysis", "per-thread analysis buffers", kAnalysisBytesPerElement * N * worker_threads(scene),
+                       "tracing", fewer_elements});
+  e->time.push_back({"tracing", "tracing the contribution paths",
+                     S * static_cast<double>(paths) * expected_vertices(scene) * kTraceSecondsPerVertex, 0.0,
+                     fewer_paths});
+}
+
+void add_solver(const Scene& scene, CostEstimate* e) {
+  const SolverSettings& s = scene.solver;
+  const double S = static_cast<double>(e->sensors), N = static_cast<double>(e->elements);
+  const double pop = s.population, gens = s.generations;
+  e->memory.push_back({"solver_copies", "the solver's copies of E", kSolverCopiesOfE * 8 * S * N, "solving",
+                       "fewer sensors or a larger element_size"});
+  if (s.verify)
+    e->memory.push_back({"verification_scene", "the ray-tracing scene of the verification",
+                         kRaySceneBytesPerTriangle * static_cast<double>(e->triangles), "solving", "fewer triangles"});
+  e->memory.push_back({"population", "the genetic algorithm's populations", 3 * pop * (N + 8 * S + 64), "solving",
+                       "a smaller solver.population"});
+  // Children bred: the fine-grid run and its defect-corrected rerun (a quarter as long), and
+  // with coarse_to_fine two coarse levels at half the generations each.
+  const double child = kChildSeconds + kChildSecondsPerUnit * (N + 4 * S);
+  double fine = gens * (pop * child + kGenerationSeconds), second = 0.25 * fine;
+  if (s.time_budget_s > 0.0) fine = std::min(fine, s.time_budget_s), second = std::min(second, s.time_budget_s);
+  const double coarse_child = kChildSeconds + kChildSecondsPerUnit * (N / 4 + 4 * S);
+  const double coarse = s.coarse_to_fine ? gens * (pop * coarse_child + kGenerationSeconds) : 0.0;
+  e->memory.push_back({"genetic_history", "the genetic algorithm's history (one record per generation)",
+                       kHistoryBytesPerGeneration * gens, "solving", "fewer solver.generations"});
+  e->memory.push_back({"result_history", "the result's genetic history (JSON)", kHistoryJsonBytesPerGeneration * gens,
+                       "writing", "fewer solver.generations"});
+  // With a time budget the user chose the fine-grid runs' length; the coarse levels (which the
+  // budget does not bound) are still held to the limit.
+  e->time.push_back({"genetic", "the genetic algorithm", fine + second + coarse,
+                     kGeneticLimitSeconds + (s.time_budget_s > 0.0 ? fine + second : 0.0),
+                     "fewer solver.generations (" + format_count(gens) + ") or a smaller solver.population (" +
+                         format_count(pop) + "), or a solver.time_budget_s"});
+  e->time.push_back({"local_search", "the local search over openings",
+                     s.improve_iterations * (kProposalSeconds + kProposalSecondsPerSensor * S), kLocalSearchLimitSeconds,
+                     "fewer solver.improve_iterations (" + format_count(s.improve_iterations) + ")"});
+}
+
+// Writing OUT.npz: every array once more in the archive's buffers, plus one row-major copy.
+void add_output(CostEstimate* e) {
+  const double S = static_cast<double>(e->sensors), N = static_cast<double>(e->elements);
+  e->memory.push_back({"npz_buffers", "the .npz file's buffers", 8 * (3 * S * N + N * N) + 8 * std::max(S * N, N * N),
+                       "writing", "fewer sensors or a larger element_size", true});
+}
+
+std::string describe_sizes(const Scene& scene, const CostEstimate& e, const MemoryItem& item) {
+  std::ostringstream s;
+  if (item.key == "T" || item.key == "T_symmetrised" || item.key == "analysis")
+    s << "opening_domain.element_size " << element_size_text(scene) << " m gives " << format_count(e.elements)
+      << " elements";
+  else if (item.key.rfind("path_records", 0) == 0)
+    s << format_count(static_cast<double>(e.paths_per_sensor)) << " paths per sensor for " << format_count(e.sensors)
+      << " sensors (about " << std::lround(e.bytes_per_path) << " bytes of records per path)";
+  else if (item.key == "population")
+    s << "solver.population " << format_count(scene.solver.population) << " over " << format_count(e.elements)
+      << " elements";
+  else if (item.key == "sky_image")
+    s << "the sky map";
+  else
+    s << format_count(e.sensors) << " sensors x " << format_count(e.elements) << " elements (element_size "
+      << element_size_text(scene) << " m)";
+  return s.str();
+}
+
+}  // namespace
+
+double path_record_bytes(const Scene& scene) {
+  return kBytesPerPath + kBytesPerEvent * (kEventsAtSensor + kEventsPerVertex * expected_vertices(scene));
+}
+
+double CostEstimate::kept_bytes() const {
+  double sum = 0.0;
+  for (const MemoryItem& m : memory)
+    if (m.phase.empty()) sum += m.bytes;
+  return sum;
+}
+
+double CostEstimate::peak_bytes() const {
+  std::map<std::string, double> stages;
+  for (const MemoryItem& m : memory)
+    if (!m.phase.empty()) stages[m.phase] += m.bytes;
+  double transient = 0.0;
+  for (const auto& stage : stages) transient = std::max(transient, stage.second);
+  return kept_bytes() + transient;
+}
+
+const MemoryItem* CostEstimate::largest_to_name() const {
+  const MemoryItem *kept = nullptr, *transient = nullptr;
+  for (const MemoryItem& m : memory) {
+    if (m.copy) continue;
+    const MemoryItem*& best = m.phase.empty() ? kept : transient;
+    if (!best || m.bytes > best->bytes) best = &m;
+  }
+  // A stage's working copies of kept items (records while assembled, T while symmetrised, the
+  // file's buffers) are named through what is kept; other transient items when they dominate.
+  if (!kept || (transient && transient->bytes > 2.0 * kept->bytes)) return transient;
+  return kept;
+}
+
+CostCommand cost_command(const std::string& name) {
+  static const std::map<std::string, CostCommand> kNames = {
+      {"any", CostCommand::Any},     {"contributions", CostCommand::Contributions}, {"evaluate", CostCommand::Evaluate},
+      {"solve", CostCommand::Solve}, {"solver", CostCommand::Solver},               {"sky", CostCommand::Sky}};
+  const auto it = kNames.find(name);
+  if (it == kNames.end())
+    throw std::invalid_argument("unknown command '" + name + "' (contributions, evaluate, solve, solver, sky or any)");
+  return it->second;
+}
+
+std::string cost_command_name(CostCommand command) {
+  switch (command) {
+    case CostCommand::Contributions: return "contributions";
+    case CostCommand::Evaluate: return "evaluate";
+    case CostCommand::Solve: return "solve";
+    case CostCommand::Solver: return "solver";
+    case CostCommand::Sky: return "sky";
+    default: return "any";
+  }
+}
+
+CostEstimate estimate_cost(const Scene& scene, CostCommand command) {
+  CostEstimate e;
+  e.command = command;
+  e.sensors = scene.sensors.size();
+  e.elements = scene.domain.element_count();
+  e.triangles = scene.mesh.triangle_count();
+  e.paths_per_sensor = scene.render.paths_per_sensor;
+  if ((command == CostCommand::Solve || command == CostCommand::Solver) && scene.solver.paths_per_sensor > 0)
+    e.paths_per_sensor = scene.solver.paths_per_sensor;
+  e.bytes_per_path = path_record_bytes(scene);
+  const double ray_scene = kRaySceneBytesPerTriangle * static_cast<double>(e.triangles);
+  switch (command) {
+    case CostCommand::Any:
+    case CostCommand::Contributions:
+    case CostCommand::Solve:
+      add_contributions(scene, e.paths_per_sensor, &e);
+      e.memory.push_back({"ray_scene", "the ray-tracing scene (BVH)", ray_scene, "tracing", "fewer triangles"});
+      if (command == CostCommand::Solve) add_solver(scene, &e);
+      if (command == CostCommand::Contributions) add_output(&e);
+      break;
+    case CostCommand::Solver:
+      add_solver(scene, &e);
+      break;
+    case CostCommand::Evaluate:
+      e.memory.push_back({"ray_scene", "the ray-tracing scene (BVH)", ray_scene, "tracing", "fewer triangles"});
+      e.time.push_back({"tracing", "tracing the sensors' paths",
+                        static_cast<double>(e.sensors) * static_cast<double>(e.paths_per_sensor) *
+                            expected_vertices(scene) * kTraceSecondsPerVertex,
+                        0.0, "fewer paths (render.paths_per_sensor, --paths)"});
+      break;
+    case CostCommand::Sky: {
+      const double pixels = scene.daylight ? static_cast<double>(scene.daylight->width) * scene.daylight->height
+                                           : 1024.0 * 512.0;
+      e.memory.push_back({"sky_image", "the sky map and its file buffers", 36.0 * pixels, "writing",
+                          "a smaller sky.resolution"});
+      break;
+    }
+  }
+  return e;
+}
+
+std::string memory_refusal(const std::string& what, double bytes, double total_bytes, const MemoryLimit& limit,
+                           const std::string& setting) {
+  std::ostringstream s;
+  s << what << " needs " << format_bytes(bytes);
+  if (total_bytes > 1.05 * bytes) s << " (" << format_bytes(total_bytes) << " in all)";
+  s << ", " << format_bytes(static_cast<double>(limit.bytes)) << " " << limit.source << ": use " << setting
+    << ", or raise the limit with --max-memory (max_memory= in Python)";
+  return s.str();
+}
+
+void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limit) {
+  const CostEstimate e = estimate_cost(scene, command);
+  const std::string prefix = "scene '" + scene.source + "': ";
+  const double peak = e.peak_bytes();
+  if (peak > static_cast<double>(limit.bytes)) {
+    const MemoryItem& big = *e.largest_to_name();
+    throw CostError(prefix + describe_sizes(scene, e, big) + "; " +
+                    memory_refusal(big.description + (peak > 1.05 * big.bytes ? " alone" : ""), big.bytes, peak, limit,
+                                   big.setting));
+  }
+  for (const TimeItem& t : e.time) {
+    if (t.limit_seconds <= 0.0 || t.seconds <= t.limit_seconds) continue;
+    std::ostringstream s;
+    s << prefix << t.description << " would take about " << std::lround(t.seconds / 60.0) << " min ("
+      << format_count(t.seconds) << " s on the 2-core reference machine; at most " << format_count(t.limit_seconds)
+      << " s): use " << t.setting;
+    throw CostError(s.str());
+  }
+}
+
+void check_cost(const Scene& scene, CostCommand command) { check_cost(scene, command, memory_limit()); }
+
+}  // namespace fenestra

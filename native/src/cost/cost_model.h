@@ -1,0 +1,75 @@
+#pragma once
+// The cost model: memory and time a computation will need, estimated from the scene's sizes and
+// settings before anything large is allocated (docs/cost.md). check_cost() refuses what will not
+// fit in the memory limit (cost/memory_limit.h) or exceeds a stage's time limit, naming the
+// figure and the setting to change.
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cost/cost_context.h"
+#include "cost/memory_limit.h"
+
+namespace fenestra {
+
+struct Scene;
+
+// A refusal by the cost model (a std::invalid_argument: Python's ValueError, the CLI's status 1).
+class CostError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+struct MemoryItem {
+  std::string key;          // "E", "T", "path_records", ...
+  std::string description;  // for messages: "the error-compensation matrix T"
+  double bytes = 0.0;
+  std::string phase;        // "": kept in the result; else the stage during which it exists
+                            // ("tracing", "solving", "writing"): stages follow one another
+  std::string setting;      // what to change to make it smaller
+  bool copy = false;        // a stage's working copy of kept items (named through them)
+};
+
+struct TimeItem {
+  std::string key;          // "tracing", "genetic", "local_search"
+  std::string description;
+  double seconds = 0.0;     // on the reference machine (2 cores; docs/cost.md)
+  double limit_seconds = 0.0;  // 0: not limited
+  std::string setting;
+};
+
+struct CostEstimate {
+  CostCommand command = CostCommand::Any;
+  size_t sensors = 0, elements = 0, triangles = 0;
+  long long paths_per_sensor = 0;
+  double bytes_per_path = 0.0;  // path records, per path per sensor
+  std::vector<MemoryItem> memory;
+  std::vector<TimeItem> time;
+
+  double kept_bytes() const;  // what the result holds (compare with Contributions::memory_bytes())
+  double peak_bytes() const;  // kept + the largest stage's transient memory: what must fit
+  const MemoryItem* largest_to_name() const;  // the item a refusal names
+};
+
+// Path-record bytes per path per sensor: 8 + 40 x (3 + 1.75 x (1 + sum_{k=1..B} rho^k)) events,
+// rho the largest albedo of the scene's materials and B render.max_bounces (measured 1.0-3.7x
+// the actual on the example scenes; docs/cost.md).
+double path_record_bytes(const Scene& scene);
+
+CostCommand cost_command(const std::string& name);  // "contributions", "evaluate", "solve", "solver", "sky", "any"
+std::string cost_command_name(CostCommand command);
+
+CostEstimate estimate_cost(const Scene& scene, CostCommand command);
+
+// Throws CostError when the estimate's peak exceeds `limit` or a stage exceeds its time limit.
+void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limit);
+// With the limit in force (memory_limit()).
+void check_cost(const Scene& scene, CostCommand command);
+
+// The message for `bytes` needed by `what` against `limit`: "... needs 11.5 GB, 3.2 GB available
+// (MemAvailable): use a larger element_size, or raise the limit with --max-memory (max_memory=)".
+std::string memory_refusal(const std::string& what, double bytes, double total_bytes, const MemoryLimit& limit,
+                           const std::string& setting);
+
+}  // namespace fenestra

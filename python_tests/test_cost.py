@@ -1,0 +1,222 @@
+"""The cost model (docs/cost.md): work that will not fit in memory, or would take too long, is
+refused before it starts, with a message naming the figure and the setting; --max-memory and
+max_memory override the detected limit; an address-space limit (ulimit -v) is respected."""
+
+import json
+import os
+import re
+import shlex
+import shutil
+import subprocess
+
+import pytest
+
+import fenestra
+from conftest import CLI, EXAMPLES, box_obj
+
+REFERENCE = os.path.join(EXAMPLES, "reference_room", "scene.json")
+SIZE = re.compile(r"\d[\d.]* [kMGTPE]B\b")  # a figure such as "11.5 GB"
+
+
+def run(*args, timeout=120):
+    return subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=timeout)
+
+
+def run_limited(kb, *args, timeout=300):
+    """The CLI under `ulimit -v kb` (an address-space limit, as a memory-capped shell sets)."""
+    command = "ulimit -v %d; exec %s" % (kb, " ".join(shlex.quote(str(a)) for a in [CLI, *args]))
+    return subprocess.run(["bash", "-c", command], capture_output=True, text=True, timeout=timeout)
+
+
+def outputs(directory):
+    return sorted(p.name for p in directory.iterdir() if p.name.startswith("out"))
+
+
+def assert_refused(r, *fragments):
+    assert r.returncode == 1, (r.returncode, r.stderr)
+    assert r.stderr.startswith("fenestra: error: "), r.stderr
+    assert "bad_alloc" not in r.stderr and "out of memory" not in r.stderr, r.stderr
+    for fragment in fragments:
+        assert fragment in r.stderr, (fragment, r.stderr)
+
+
+def write_room(tmp_path, scale=1.0, element_size=0.5, sky=None, solver=None, sensors=4):
+    """A 4 x 3 x 2.6 m room (times `scale`: 1000 is an OBJ exported in millimetres), its south wall
+    the opening domain."""
+    (tmp_path / "room.obj").write_text(
+        box_obj((0, 0, 0), (4 * scale, 3 * scale, 2.6 * scale), lambda f: "facade" if f == "south" else "grey"))
+    scene = {
+        "fenestra": 1, "geometry": "room.obj",
+        "materials": {"grey": {"reflectance": 0.5}, "facade": {"reflectance": 0.5}},
+        "opening_domain": {"materials": ["facade"], "element_size": element_size},
+        "sensors": {"points": [[0.5 + i * 3.0 / max(1, sensors - 1), 1.5, 0.8] for i in range(sensors)]},
+        "goals": {"uniform": [{"level": 0.5}]},
+        "sky": sky or {"type": "uniform", "radiance": 100},
+        "render": {"paths_per_sensor": 256},
+    }
+    if solver:
+        scene["solver"] = solver
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    return path
+
+
+def test_tiny_elements_are_refused_quickly(tmp_path):
+    scene = write_room(tmp_path, element_size=0.001)
+    for command in ("contributions", "solve"):
+        r = run(command, scene, "-o", tmp_path / "out.npz", "--quiet", timeout=60)  # finishes at all: not diced
+        assert_refused(r, "element_size 0.001 m gives about 10 400 000 elements", "matrix T", "larger element_size",
+                       "--max-memory")
+        assert SIZE.search(r.stderr), r.stderr
+    assert outputs(tmp_path) == []
+
+
+def test_huge_path_counts_are_refused(tmp_path):
+    r = run("contributions", REFERENCE, "-o", tmp_path / "out.npz", "--paths", 2 ** 30, "--quiet", timeout=60)
+    assert_refused(r, "1 073 741 824 paths per sensor", "path records", "--paths", "--max-memory")
+    assert re.search(r"\d[\d.]* [TP]B", r.stderr), r.stderr
+    r = run("solve", REFERENCE, "-o", tmp_path / "out.json", "--paths", 2 ** 30, "--quiet", timeout=60)
+    assert_refused(r, "1 073 741 824 paths per sensor")
+    assert outputs(tmp_path) == []
+
+
+def test_lying_hdr_header_is_refused_before_reading_its_pixels(tmp_path):
+    (tmp_path / "sky.hdr").write_bytes(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 15000 +X 30000\n"
+                                       + bytes([2, 2, 0x75, 0x30]) + bytes(range(16)))
+    scene = write_room(tmp_path, sky={"type": "envmap", "file": "sky.hdr"})
+    for command in ("sky", "contributions"):
+        out = tmp_path / ("out.exr" if command == "sky" else "out.npz")
+        r = run(command, scene, "-o", out, "--quiet", timeout=60)
+        assert_refused(r, "sky.file", "30000 x 15000 pixels", "at most 134 217 728")
+        assert SIZE.search(r.stderr), r.stderr
+    assert outputs(tmp_path) == []
+    with pytest.raises(ValueError, match="30000 x 15000"):
+        fenestra.load_scene(scene)
+
+
+def test_millimetre_obj_is_refused(tmp_path):
+    scene = write_room(tmp_path, scale=1000.0, element_size=0.25)
+    for command in ("contributions", "sky"):  # sky does not use the elements; the dicing alone is refused
+        out = tmp_path / ("out.exr" if command == "sky" else "out.npz")
+        r = run(command, scene, "-o", out, "--quiet", timeout=60)
+        assert_refused(r, "millimetres", "element_size")
+    assert outputs(tmp_path) == []
+
+
+def test_max_memory_lowers_the_limit(tmp_path):
+    r = run("contributions", REFERENCE, "-o", tmp_path / "out.npz", "--paths", 4096, "--quiet", "--max-memory", "10M")
+    assert_refused(r, "10.0 MB allowed by --max-memory", "4 096 paths per sensor")
+    assert outputs(tmp_path) == []
+    r = run("contributions", REFERENCE, "-o", tmp_path / "out.npz", "--paths", 256, "--quiet", "--max-memory", "1G")
+    assert r.returncode == 0, r.stderr
+    for bad in ("1X", "-1G", "G", "0"):
+        r = run("contributions", REFERENCE, "-o", tmp_path / "bad.npz", "--max-memory", bad)
+        assert r.returncode == 2 and "--max-memory expects a size" in r.stderr, r.stderr
+
+
+def test_max_memory_overrides_an_address_space_limit(tmp_path):
+    # What is left under `ulimit -v 1000000` (about 1 GB, minus what the program maps at start):
+    # read from the refusal of a run that cannot fit.
+    r = run_limited(1000000, "contributions", REFERENCE, "-o", tmp_path / "out.npz", "--paths", 2 ** 24, "--quiet")
+    assert_refused(r, "left under the address-space limit (ulimit -v)")
+    left = re.search(r"([\d.]+) (MB|GB) left under", r.stderr)
+    left = float(left.group(1)) * (1e6 if left.group(2) == "MB" else 1e9)
+    # A run whose estimate is a quarter above it: refused ...
+    scene = fenestra.load_scene(REFERENCE)
+    scene.render.paths_per_sensor = 1024
+    per_path = fenestra.estimate_cost(scene, "contributions")["total_bytes"] / 1024
+    paths = int(1.25 * left / per_path)
+    r = run_limited(1000000, "contributions", REFERENCE, "-o", tmp_path / "out.npz", "--paths", paths, "--quiet")
+    assert_refused(r, "left under the address-space limit", "%s paths per sensor" % format(paths, ",").replace(",", " "))
+    # ... and with --max-memory the cost model lets it run (the model is conservative: it fits, or
+    # the allocation fails with a clean message, never a signal).
+    r = run_limited(1000000, "contributions", REFERENCE, "-o", tmp_path / "out.npz", "--paths", paths, "--quiet",
+                    "--max-memory", "100G")
+    assert r.returncode in (0, 1), (r.returncode, r.stderr)
+    assert "left under the address-space limit" not in r.stderr, r.stderr
+    if r.returncode == 1:
+        assert "out of memory" in r.stderr, r.stderr
+
+
+def test_memory_cap_gives_a_clear_message_not_a_signal(tmp_path):
+    """Under `ulimit -v 2000000` (2 GB of address space), work that needs more is refused with rc 1."""
+    for command, args in (("contributions", ("--paths", 2 ** 22)), ("solve", ("--paths", 2 ** 22)),
+                          ("evaluate", ("--openings", os.path.join(EXAMPLES, "reference_room", "window.json"),
+                                        "--paths", 64))):
+        r = run_limited(2000000, command, REFERENCE, "-o", tmp_path / "out.json", "--quiet", *args)
+        if command == "evaluate":  # small: runs within the cap
+            assert r.returncode == 0, r.stderr
+            continue
+        assert_refused(r, "left under the address-space limit (ulimit -v)", "4 194 304 paths per sensor")
+        assert SIZE.search(r.stderr)
+    scene = write_room(tmp_path, element_size=0.05)  # 80 x 52 elements: T alone 138 MB
+    r = run_limited(2000000, "contributions", scene, "-o", tmp_path / "t.npz", "--quiet", "--paths", 64)
+    assert r.returncode == 0, r.stderr
+
+
+def test_genetic_and_local_search_budgets_are_bounded(tmp_path):
+    scene = write_room(tmp_path, solver={"generations": 10000000})
+    r = run("solve", scene, "-o", tmp_path / "out.json", "--quiet", timeout=60)
+    assert_refused(r, "genetic algorithm would take about", "solver.generations (10 000 000)", "solver.time_budget_s")
+    scene = write_room(tmp_path, solver={"improve_iterations": 100000000}, sensors=100)
+    r = run("solve", scene, "-o", tmp_path / "out.json", "--quiet", timeout=60)
+    assert_refused(r, "local search", "solver.improve_iterations (100 000 000)")
+    assert outputs(tmp_path) == []
+
+
+def test_long_daylight_interval_is_refused_when_read(tmp_path):
+    sky = {"type": "preetham", "latitude": 48.85, "longitude": 2.35, "utc_offset": 1, "date": "2020-01-01",
+           "date_end": "2024-12-31", "start": "09:00", "end": "17:00", "step_minutes": 15}
+    scene = write_room(tmp_path, sky=sky)
+    r = run("sky", scene, "-o", tmp_path / "out.exr", "--quiet", timeout=120)
+    assert_refused(r, "58 464 time steps", "min", "sky.step_minutes")
+    assert outputs(tmp_path) == []
+    sky["step_minutes"] = 60  # a quarter of the steps: about 2.5 min of build (not run here)
+    with pytest.raises(ValueError, match="58 464 time steps"):
+        fenestra.scene_from_dict(dict(json.loads(scene.read_text()), sky=dict(sky, step_minutes=15)), tmp_path)
+
+
+def test_python_estimate_and_check(tmp_path):
+    scene = fenestra.load_scene(REFERENCE)
+    scene.render.paths_per_sensor = 1024
+    e = fenestra.estimate_cost(scene, "contributions")
+    S, N = 16, 192
+    assert e["sensors"] == S and e["elements"] == N and e["fits"] and e["problem"] is None
+    assert e["memory"]["E"] == e["memory"]["A"] == e["memory"]["E_stderr"] == 8 * S * N
+    assert e["memory"]["T"] == 8 * N * N
+    assert e["total_bytes"] >= e["kept_bytes"] > 0 and e["available_bytes"] > 0
+    c = fenestra.contributions(scene)
+    assert c.memory_bytes <= e["kept_bytes"] <= 2 * c.memory_bytes
+    small = fenestra.estimate_cost(scene, "contributions", max_memory="1M")
+    assert not small["fits"] and "1.0 MB allowed by max_memory" in small["problem"]
+    with pytest.raises(ValueError, match="path records"):
+        fenestra.check_cost(scene, "contributions", max_memory=1_000_000)
+    fenestra.check_cost(scene, "solve", max_memory="64G")
+    for bad in ("lots", -5, 0, True, [1]):
+        with pytest.raises(ValueError):
+            fenestra.check_cost(scene, "solve", max_memory=bad)
+    with pytest.raises(ValueError, match="unknown command"):
+        fenestra.estimate_cost(scene, "render")
+    available = fenestra.available_memory()
+    assert available["bytes"] > 0 and available["source"]
+
+
+def test_python_functions_refuse_before_any_work(tmp_path):
+    scene = fenestra.load_scene(REFERENCE)
+    scene.render.paths_per_sensor = 2 ** 30
+    calls = []
+    for call in (lambda: fenestra.contributions(scene, callback=lambda f, s: calls.append(f)),
+                 lambda: fenestra.solve(scene, callback=lambda f, s: calls.append(f))):
+        with pytest.raises(ValueError, match="1 073 741 824 paths per sensor"):
+            call()
+    assert calls == []  # refused before the worker thread started
+    scene.render.paths_per_sensor = 256
+    with pytest.raises(ValueError, match="allowed by max_memory"):
+        fenestra.contributions(scene, max_memory="100k")
+    assert fenestra.evaluate(scene, [], max_memory="1G")[0].shape == (16,)
+    with pytest.raises(ValueError, match="element_size 0.001 m"):
+        fenestra.load_scene(write_room(tmp_path, element_size=0.001))
+    with pytest.raises(ValueError, match="allowed by --max-memory"):
+        fenestra.load_scene(REFERENCE, max_memory=1000)
+    # The limit applies to that call only.
+    assert fenestra.load_scene(REFERENCE).element_count == 192
