@@ -19,6 +19,7 @@
 #include "io/results.h"
 #include "io/sky_output.h"
 #include "io/solve_result.h"
+#include "solve/prediction_check.h"
 #include "solve/solver.h"
 #include "scene/input_limits.h"
 #include "scene/scene.h"
@@ -255,6 +256,10 @@ int run(const Args& a) {
                 r.openings.size(), static_cast<size_t>(std::count(r.open.begin(), r.open.end(), 1)),
                 100 * r.error.relative_rms, 100 * r.linear_error.relative_rms, 100 * r.compensated_error.relative_rms,
                 100 * r.error.max_relative, total, a.output.c_str());
+    if (r.verified)
+      std::printf("checked with real cutters: relative RMS error %.2f%%, worst sensor %.1f%%\n",
+                  100 * r.verified_error.relative_rms, 100 * r.verified_error.max_relative);
+    for (const std::string& w : r.warnings) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
     return 0;
   }
   if (a.command == "contributions") {
@@ -263,6 +268,8 @@ int run(const Args& a) {
     std::printf("contributions: %zu sensors x %zu elements, %d paths per sensor, %.2f s\n", c.sensor_count(),
                 c.element_count(), c.paths_per_sensor, c.seconds);
     std::printf("wrote %s\nwrote %s\n", paths.first.c_str(), paths.second.c_str());
+    const std::string sparse = sparse_sampling_warning(c.paths_per_sensor, c.element_count());
+    if (!sparse.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", sparse.c_str());
     return 0;
   }
   const auto openings = read_openings(a.openings);

@@ -9,6 +9,7 @@
 #include "solve/compensation.h"
 #include "solve/linear_start.h"
 #include "solve/nnls.h"
+#include "solve/prediction_check.h"
 #include "solve/refine_openings.h"
 #include "io/sky_output.h"
 #include "trace/contributions_origin.h"
@@ -251,6 +252,9 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     out.verified_error = goal_error(out.goals, v.value);
     out.timings.push_back({"verification", since(t)});
   }
+  for (const std::string& w : {sparse_sampling_warning(c.paths_per_sensor, c.element_count()),
+                               prediction_mismatch_warning(out)})
+    if (!w.empty()) out.warnings.push_back(w);
   out.timings.push_back({"total", since(start)});
   if (progress) progress->advance();
   return out;
