@@ -153,6 +153,20 @@ class Solve(unittest.TestCase):
         self.assertEqual(json.load(open(os.path.join(OUT, "study", "scene.json")))["opening_domain"]["groups"],
                          ["Room.domain"])
 
+    def test_too_few_paths_for_the_elements_warns_in_the_results(self):
+        study()
+        solve = bpy.context.scene.fenestra.solve
+        solve.element_size, solve.quality = 0.1, 'CUSTOM'
+        solve.paths, solve.generations, solve.population = 64, 10, 16
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        r = bpy.context.scene.fenestra.results
+        self.assertIn("direct samples for", r.warnings)
+        self.assertGreaterEqual(r.verified_rms, 0.0)
+        # Enough paths for 0.25 m elements: no warning left from the solve before.
+        solve.element_size, solve.paths = 0.25, 2048
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        self.assertNotIn("direct samples for", bpy.context.scene.fenestra.results.warnings)
+
     def test_constraints_reach_the_study_when_set(self):
         from fenestra.blender import native
         study()

@@ -217,6 +217,8 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
             json.dump(result, f, indent=1)
         results.apply(context, self._study, result)
         r = context.scene.fenestra.results
+        for warning in result.get("warnings", []):
+            self.report({'WARNING'}, warning)
         self.report({'INFO'}, "%d openings, relative RMS error %.1f %%, %.1f s (study in %s)"
                     % (r.openings, 100 * r.relative_rms, r.seconds_total, self._study.directory))
         return {'FINISHED'}

@@ -179,6 +179,10 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
         col.label(text="%d of %d elements open" % (r.open_elements, r.elements))
         col.label(text="Error %.1f %% RMS" % (100 * r.relative_rms))
         col.label(text="Worst sensor %.1f %%" % (100 * r.max_relative))
+        if r.verified_rms >= 0:
+            col.label(text="Checked with cutters %.1f %% RMS" % (100 * r.verified_rms))
+        for warning in filter(None, r.warnings.split("\n")):
+            draw_warning(layout, warning)
         col.label(text="Time %.1f s (solver %.1f s)" % (r.seconds_total, r.seconds_solver))
         box = layout.box()
         col = box.column(align=True)

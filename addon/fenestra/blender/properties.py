@@ -154,6 +154,10 @@ class FenestraSensorResult(PropertyGroup):
 class FenestraResults(PropertyGroup):
     valid: BoolProperty(default=False)
     relative_rms: FloatProperty(name="Relative RMS Error")
+    verified_rms: FloatProperty(name="Checked Error", default=-1.0,
+                                description="Relative RMS error path-traced with the openings really cut "
+                                            "(negative: not checked)")
+    warnings: StringProperty(name="Warnings", description="What to know before trusting the result, one per line")
     max_relative: FloatProperty(name="Worst Sensor Error")
     openings: IntProperty(name="Openings")
     open_elements: IntProperty(name="Open Elements")

@@ -109,6 +109,9 @@ def apply(context, study, result):
     timings = result.get("timings_s", {})
     r.relative_rms = result["error"]["relative_rms"]
     r.max_relative = result["error"].get("max_relative", 0.0)
+    verified = result["error"].get("verified")
+    r.verified_rms = verified["relative_rms"] if verified else -1.0
+    r.warnings = "\n".join(result.get("warnings", []))
     r.openings = len(result["openings"])
     r.open_elements = len(result.get("open_elements", []))
     r.elements = result.get("element_count", 0)
