@@ -8,11 +8,15 @@ SHOWN = 12  # sensors listed in the Results panel
 
 
 def draw_warning(layout, text):
-    """A plainly visible warning, wrapped over several lines."""
+    """A plainly visible warning, wrapped over several lines to the sidebar's width."""
     box = layout.box()
+    region = getattr(bpy.context, "region", None)
+    scale = bpy.context.preferences.system.ui_scale if bpy.context.preferences else 1.0
+    # About 7 pixels a character at scale 1, less the icon and the box margins.
+    width = max(20, int(((region.width if region else 320) - 60) / (7 * scale)))
     words, line, first = text.split(), "", True
     for word in words:
-        if len(line) + len(word) > 40:
+        if line and len(line) + len(word) > width:
             box.label(text=line, icon='ERROR' if first else 'BLANK1')
             line, first = "", False
         line = (line + " " + word).strip()
@@ -180,7 +184,7 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
         col.label(text="Error %.1f %% RMS" % (100 * r.relative_rms))
         col.label(text="Worst sensor %.1f %%" % (100 * r.max_relative))
         if r.verified_rms >= 0:
-            col.label(text="Checked with cutters %.1f %% RMS" % (100 * r.verified_rms))
+            col.label(text="Checked: %.1f %% RMS" % (100 * r.verified_rms))
         for warning in filter(None, r.warnings.split("\n")):
             draw_warning(layout, warning)
         col.label(text="Time %.1f s (solver %.1f s)" % (r.seconds_total, r.seconds_solver))

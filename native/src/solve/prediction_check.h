@@ -13,7 +13,8 @@ namespace fenestra {
 std::string sparse_sampling_warning(int paths_per_sensor, size_t elements);
 
 // The verified values disagree with the predicted ones beyond their standard errors (a chi-square
-// test over the sensors at about 4 sigma) by more than 1 % RMS of the prediction.
+// test over the sensors at about 4 sigma, or the sum of their z-scores beyond 3.5 sigma: a shift
+// to one side) by more than 1 % RMS of the prediction.
 std::string prediction_mismatch_warning(const SolveResult& result);
 
 }  // namespace fenestra
