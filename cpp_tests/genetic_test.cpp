@@ -271,6 +271,26 @@ TEST(GeneticSearch, HistoryAndElite) {
               fitness(p.objective, p.grid, settings.shape, r.elite[i]) * (1 + 1e-12));
 }
 
+TEST(GeneticSearch, LongRunsKeepAThinnedHistory) {
+  const Synthetic p = synthetic_problem();
+  GeneticSettings settings;
+  settings.generations = 5000;
+  settings.population = 4;
+  const GeneticResult r = run_genetic(p.objective, p.grid, {flip_fraction(p.truth, 0.2, 5)}, settings);
+  ASSERT_EQ(r.generations, 5000);
+  EXPECT_LE(r.history.size(), kMaxHistory);
+  EXPECT_GE(r.history.size(), kMaxHistory / 2);
+  EXPECT_EQ(r.history.front().generation, 0);
+  EXPECT_EQ(r.history.back().generation, 4999);  // the last generation is always there
+  // Evenly spread: one stride between all records but the last.
+  const int stride = r.history[1].generation - r.history[0].generation;
+  EXPECT_EQ(stride, 4);
+  for (size_t g = 1; g + 1 < r.history.size(); ++g) {
+    EXPECT_EQ(r.history[g].generation - r.history[g - 1].generation, stride) << g;
+    EXPECT_LE(r.history[g].best, r.history[g - 1].best) << g;
+  }
+}
+
 TEST(GeneticSearch, RecoversRectanglesFromNoisySeed) {
   const Synthetic p = synthetic_problem();
   const State seed = flip_fraction(p.truth, 0.15, 11);

@@ -9,6 +9,7 @@
 #include "cost/byte_size.h"
 #include "daylight/daylight.h"
 #include "scene/scene.h"
+#include "solve/genetic.h"
 
 namespace fenestra {
 namespace {
@@ -111,9 +112,10 @@ void add_solver(const Scene& scene, CostEstimate* e) {
   if (s.time_budget_s > 0.0) fine = std::min(fine, s.time_budget_s), second = std::min(second, s.time_budget_s);
   const double coarse_child = kChildSeconds + kChildSecondsPerUnit * (N / 4 + 4 * S);
   const double coarse = s.coarse_to_fine ? gens * (pop * coarse_child + kGenerationSeconds) : 0.0;
-  e->memory.push_back({"genetic_history", "the genetic algorithm's history (one record per generation)",
-                       kHistoryBytesPerGeneration * gens, "solving", "fewer solver.generations"});
-  e->memory.push_back({"result_history", "the result's genetic history (JSON)", kHistoryJsonBytesPerGeneration * gens,
+  const double records = std::min<double>(gens, kMaxHistory);  // the history is thinned beyond
+  e->memory.push_back({"genetic_history", "the genetic algorithm's history (a record per generation, thinned)",
+                       kHistoryBytesPerGeneration * records, "solving", "fewer solver.generations"});
+  e->memory.push_back({"result_history", "the result's genetic history (JSON)", kHistoryJsonBytesPerGeneration * records,
                        "writing", "fewer solver.generations"});
   // With a time budget the user chose the fine-grid runs' length; the coarse levels (which the
   // budget does not bound) are still held to the limit.

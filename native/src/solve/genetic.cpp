@@ -657,6 +657,19 @@ double fitness(const LinearObjective& objective, const ElementGrid& grid, const 
   return objective_error(objective, open) + shape_penalty(shape, shape_counts(grid, open));
 }
 
+// A long run keeps at most kMaxHistory records, evenly spread: when full, every other record goes
+// and the stride between recorded generations doubles (a 10^7-generation run would otherwise
+// write gigabytes of history).
+namespace {
+void thin_history(std::vector<GenerationRecord>* history, int* stride) {
+  if (history->size() < kMaxHistory) return;
+  size_t kept = 0;
+  for (size_t i = 0; i < history->size(); i += 2) (*history)[kept++] = (*history)[i];
+  history->resize(kept);
+  *stride *= 2;
+}
+}  // namespace
+
 GeneticResult run_genetic(const LinearObjective& objective, const ElementGrid& grid,
                           const std::vector<std::vector<uint8_t>>& seeds, const GeneticSettings& settings,
                           Progress* progress) {
@@ -684,6 +697,7 @@ GeneticResult run_genetic(const LinearObjective& objective, const ElementGrid& g
   for (const Individual& x : population) best.offer(x);
 
   GeneticResult result;
+  int history_stride = 1;
   if (progress) progress->start("genetic algorithm", static_cast<uint64_t>(settings.generations));
   for (int g = 0; g < settings.generations; ++g) {
     if (progress) progress->throw_if_cancelled();
@@ -699,7 +713,10 @@ GeneticResult run_genetic(const LinearObjective& objective, const ElementGrid& g
     });
     population = survivors(std::move(population), std::move(children), size);
     for (const Individual& x : population) best.offer(x);
-    result.history.push_back(record(g, population, seconds()));
+    if (g % history_stride == 0 || g + 1 == settings.generations) {
+      result.history.push_back(record(g, population, seconds()));
+      thin_history(&result.history, &history_stride);
+    }
     result.generations = g + 1;
     if (progress) progress->advance();
   }

@@ -59,11 +59,15 @@ struct GenerationRecord {
   double seconds = 0.0;           // since the start
 };
 
+constexpr size_t kMaxHistory = 2048;  // records kept of a genetic run's history
+
 struct GeneticResult {
   std::vector<uint8_t> best;
   double best_fitness = 0.0;
   std::vector<std::vector<uint8_t>> elite;  // best first, distinct, includes `best`
-  std::vector<GenerationRecord> history;    // one per generation, best fitness non-increasing
+  // One per generation up to kMaxHistory generations, then evenly thinned (every 2nd, 4th, ...
+  // generation, and the last); best fitness non-increasing.
+  std::vector<GenerationRecord> history;
   int generations = 0;                      // run (fewer than asked when the budget ran out)
 };
 
