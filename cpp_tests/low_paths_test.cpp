@@ -2,6 +2,7 @@
 // independent seeds matches the closed form, and the reported standard errors describe the spread.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -37,18 +38,22 @@ Scene black_room(const TempDir& dir, double element_size, int paths, int seed) {
   return load_scene(dir.file("scene.json"));
 }
 
-// The whole wall's light at each sensor: pi L times the view factor of the part in front of it.
-double expected_all_open(size_t sensor) {
-  const float lift = test::kSensorLift;
-  if (sensor == 0)
-    return M_PI * kRadiance *
-           test::polygon_view_factor(Vec3(1.5f, 1.0f - lift, 1.25f), Vec3(0, -1, 0),
-                                     {Vec3(0, 0, 0), Vec3(3, 0, 0), Vec3(3, 0, 2.5f), Vec3(0, 0, 2.5f)});
-  const float z = 0.8f + lift;
+// The sensors of black_room, as its scene file places them.
+struct SensorPlacement {
+  Vec3 point, normal;
+};
+const SensorPlacement kSensors[2] = {{Vec3(1.5f, 1.0f, 1.25f), Vec3(0, -1, 0)}, {Vec3(1.0f, 1.5f, 0.8f), Vec3(0, 0, 1)}};
+
+// pi L times the view factor from sensor i of the wall rectangle x in [x0, x1], z in [z0, z1]
+// (y = 0), cut at an upward sensor's horizon: the light through that opening.
+double closed_form(size_t i, float x0, float x1, float z0, float z1) {
+  const Vec3 p = kSensors[i].point + test::kSensorLift * kSensors[i].normal;
+  if (kSensors[i].normal.z() > 0.0f) z0 = std::max(z0, p.z());
   return M_PI * kRadiance *
-         test::polygon_view_factor(Vec3(1.0f, 1.5f, z), Vec3(0, 0, 1),
-                                   {Vec3(0, 0, z), Vec3(3, 0, z), Vec3(3, 0, 2.5f), Vec3(0, 0, 2.5f)});
+         test::polygon_view_factor(p, kSensors[i].normal, {Vec3(x0, 0, z0), Vec3(x1, 0, z0), Vec3(x1, 0, z1), Vec3(x0, 0, z1)});
 }
+
+double expected_all_open(size_t sensor) { return closed_form(sensor, 0, 3, 0, 2.5f); }
 
 struct SeedStatistics {
   double mean = 0.0;            // of the per-seed estimates
@@ -96,13 +101,7 @@ void window_of(const Scene& scene, const Contributions& c, size_t i, double* v, 
   *se = values.standard_error[i];
 }
 
-double expected_window(size_t sensor) {
-  const float lift = test::kSensorLift;
-  const std::vector<Vec3> window = {Vec3(1, 0, 1), Vec3(2, 0, 1), Vec3(2, 0, 2), Vec3(1, 0, 2)};
-  return M_PI * kRadiance *
-         (sensor == 0 ? test::polygon_view_factor(Vec3(1.5f, 1.0f - lift, 1.25f), Vec3(0, -1, 0), window)
-                      : test::polygon_view_factor(Vec3(1.0f, 1.5f, 0.8f + lift), Vec3(0, 0, 1), window));
-}
+double expected_window(size_t sensor) { return closed_form(sensor, 1, 2, 1, 2); }
 
 // The mean over seeds is within 3 standard errors of the closed form, and the spread of the
 // per-seed estimates matches the reported standard errors (the ratio of variances of 40 seeds

@@ -238,7 +238,8 @@ void PathTracer::sensor_portals(size_t sensor, size_t path, SensorPortal* out) c
   const uint64_t key = mix_seed(mix_seed(scene_.render.seed, sensor), 0x9047A1 + group);
   const size_t start = Rng(key, 0).next_u32() % no;
   const size_t first = start + (path / kReplicates) * kSensorPortals;
-  const size_t end = start + group_paths * kSensorPortals;  // the group's samples: [start, end)
+  const size_t group_samples = group_paths * kSensorPortals;
+  const size_t end = start + group_samples;  // the group's samples: [start, end)
   for (size_t j = 0; j < kSensorPortals; ++j) {
     const size_t t = first + j;
     const size_t k = t % no;
@@ -249,7 +250,6 @@ void PathTracer::sensor_portals(size_t sensor, size_t path, SensorPortal* out) c
     const float a = radical_inverse(visit, 2) + shift.uniform(), b = radical_inverse(visit, 3) + shift.uniform();
     out[j].element = static_cast<int>(k);
     out[j].uv = Vec2(std::min(a - std::floor(a), 0.99999994f), std::min(b - std::floor(b), 0.99999994f));
-    const size_t group_samples = group_paths * kSensorPortals;
     out[j].samples_per_path = group_samples >= no
                                   ? static_cast<float>(visits) / static_cast<float>(group_paths)
                                   : static_cast<float>(static_cast<double>(kSensorPortals) / static_cast<double>(no));
