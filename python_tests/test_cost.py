@@ -192,7 +192,7 @@ def test_python_estimate_and_check(tmp_path):
     with pytest.raises(ValueError, match="path records"):
         fenestra.check_cost(scene, "contributions", max_memory=1_000_000)
     fenestra.check_cost(scene, "solve", max_memory="64G")
-    for bad in ("lots", -5, 0, True, [1]):
+    for bad in ("lots", -5, 0, True, [1], float("nan"), 1e39, 2 ** 70):
         with pytest.raises(ValueError):
             fenestra.check_cost(scene, "solve", max_memory=bad)
     with pytest.raises(ValueError, match="unknown command"):

@@ -4,6 +4,8 @@ of the API's functions (no bpy here)."""
 
 from . import _core
 
+MAX_MEMORY_BYTES = 2 ** 63  # the native side counts bytes in 64 bits
+
 
 def memory_bytes(max_memory):
     """0 (the limit the system sets: MemAvailable, ulimit -v / -d, a cgroup's limit) for None,
@@ -12,8 +14,9 @@ def memory_bytes(max_memory):
         return 0
     if isinstance(max_memory, str):
         return _core.parse_memory_size(max_memory)
-    if isinstance(max_memory, bool) or not isinstance(max_memory, (int, float)) or not max_memory >= 1:
-        raise ValueError("max_memory expects a number of bytes (at least 1) or a size such as '8G', got %r"
+    if (isinstance(max_memory, bool) or not isinstance(max_memory, (int, float))
+            or not 1 <= max_memory < MAX_MEMORY_BYTES):
+        raise ValueError("max_memory expects a number of bytes from 1 to 2**63 - 1 or a size such as '8G', got %r"
                          % (max_memory,))
     return int(max_memory)
 
