@@ -136,14 +136,10 @@ PYBIND11_MODULE(_core, m) {
       raise(PyExc_MemoryError, e.what());
     } catch (const std::bad_alloc&) {
       raise(PyExc_MemoryError, "out of memory");
-    } catch (const std::invalid_argument& e) {
-      raise(PyExc_ValueError, e.what());
-    } catch (const std::domain_error& e) {
-      raise(PyExc_ValueError, e.what());
-    } catch (const std::length_error& e) {
-      raise(PyExc_ValueError, e.what());
     } catch (const std::out_of_range& e) {
       raise(PyExc_IndexError, e.what());
+    } catch (const std::logic_error& e) {  // invalid_argument, domain_error, length_error: bad input
+      raise(PyExc_ValueError, e.what());
     } catch (const std::range_error& e) {
       raise(PyExc_ValueError, e.what());
     } catch (const std::overflow_error& e) {
