@@ -40,11 +40,12 @@ std::string prediction_mismatch_warning(const SolveResult& r) {
   const bool beyond_errors = n > 0 && (chi2 / n > 1.0 + 4.0 * std::sqrt(2.0 / n) ||
                              std::abs(z_sum) / std::sqrt(static_cast<double>(n)) > 3.5);
   if (!beyond_errors || !(rms > 0.01)) return "";
-  char text[400];
+  char text[520];
   std::snprintf(text, sizeof text,
                 "the openings checked with real cutters give %.1f%% relative RMS error against the goals, the "
                 "prediction %.1f%%; the values differ by %.1f%% RMS, beyond their standard errors: trust the checked "
-                "figure, and raise paths_per_sensor for a prediction that holds",
+                "figure. More paths per sensor help when they are few for the elements; otherwise the building "
+                "differs from what the estimate models (e.g. the reveals of thick walls)",
                 100.0 * r.verified_error.relative_rms, 100.0 * r.error.relative_rms, 100.0 * rms);
   return text;
 }
