@@ -25,6 +25,7 @@ json openings_json(const std::vector<OpeningRectangle>& openings) {
                     {"width", o.width},
                     {"height", o.height},
                     {"normal", point(o.outward)},
+                    {"depth", o.depth},
                     {"panel", o.panel},
                     {"rows", {o.row0, o.row1}},
                     {"columns", {o.col0, o.col1}},

@@ -68,7 +68,7 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
                                    const OpeningDomainSelection& sel) {
   if (!(sel.element_size > 0.0f) || !std::isfinite(sel.element_size))
     throw std::invalid_argument("opening_domain.element_size must be a positive number of meters");
-  if (!(sel.thickness >= 0.0f) || !std::isfinite(sel.thickness))
+  if (sel.thickness && (!(*sel.thickness >= 0.0f) || !std::isfinite(*sel.thickness)))
     throw std::invalid_argument("opening_domain.thickness must be a non-negative number of meters");
   for (const auto& name : sel.materials)
     if (std::find(material_names.begin(), material_names.end(), name) == material_names.end())
@@ -86,7 +86,7 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
 
   OpeningDomain domain;
   domain.element_size_ = sel.element_size;
-  domain.thickness_ = sel.thickness;
+  domain.given_thickness_ = sel.thickness;
   domain.triangle_panel_.assign(mesh.triangle_count(), -1);
 
   std::vector<uint32_t> tris;
@@ -225,6 +225,10 @@ CutterBox through_wall(const Vec3& origin, const Vec3& u, const Vec3& v, float w
 }
 }  // namespace
 
+bool OpeningDomain::has_thick_walls() const {
+  return std::any_of(panels_.begin(), panels_.end(), [](const Panel& p) { return p.thickness > 0.0f; });
+}
+
 int OpeningDomain::element_at(int panel_index, const Vec3& p) const {
   const Panel& panel = panels_[panel_index];
   const Vec3 d = p - panel.origin;
@@ -240,7 +244,7 @@ CutterBox OpeningDomain::element_cutter(int element) const {
   const Element& e = elements_[element];
   const Panel& panel = panels_[e.panel];
   return through_wall(e.corners[0], panel.u_axis, panel.v_axis, element_size_, element_size_, panel.outward,
-                      thickness_);
+                      panel.thickness);
 }
 
 CutterBox OpeningDomain::rectangle_cutter(const std::array<Vec3, 4>& c, int* panel_out) const {
@@ -265,7 +269,7 @@ CutterBox OpeningDomain::rectangle_cutter(const std::array<Vec3, 4>& c, int* pan
     const Vec3 u = e1 / w;
     Vec3 v = panel.normal.cross(u);
     if (v.dot(e2) < 0.0f) v = -v;
-    const CutterBox box = through_wall(c[0], u, v, w, std::abs(e2.dot(v)), panel.outward, thickness_);
+    const CutterBox box = through_wall(c[0], u, v, w, std::abs(e2.dot(v)), panel.outward, panel.thickness);
     if (panel_out) *panel_out = static_cast<int>(i);
     return box;
   }

@@ -2,6 +2,7 @@
 // The opening domain: faces allowed to host openings, grouped into planar panels, each
 // diced virtually into a grid of square elements. No geometry is modified.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,17 @@ struct Panel {
   int material = -1;            // material of the panel's faces (reveals use it)
   std::string label;            // material and group names, for messages
   double area = 0.0;            // m^2
+  float thickness = 0.0f;       // meters of wall behind the panel, along `outward` (measured or given)
+  bool solid_modelled = false;  // the model has the wall's outer face (else it is added: wall_body.cpp)
+};
+
+// A side face of an element's tube through a thick wall, on a grid line of its panel: between
+// the cells `lower` and `upper` (elements, or -1 for the panel's margin), `normal` from lower to upper.
+// Light meets one only where exactly one side is open: it is then the reveal of that opening.
+struct RevealGridFace {
+  int panel = 0;
+  int lower = -1, upper = -1;
+  Vec3 normal;
 };
 
 struct Element {
@@ -32,7 +44,9 @@ struct Element {
 struct OpeningDomainSelection {
   std::vector<std::string> materials, groups;
   float element_size = 0.25f;  // meters
-  float thickness = 0.0f;      // meters of wall behind the domain faces, on the side away from the sensors
+  // Meters of wall behind the domain faces, on the side away from the sensors. Unset: measured per
+  // panel from the model (the outer face of a wall modelled as a solid), 0 where there is none.
+  std::optional<float> thickness;
 };
 
 class OpeningDomain {
@@ -43,15 +57,24 @@ class OpeningDomain {
 
   // Points each panel's `outward` away from the sensors (the wall body lies on the far side).
   void orient(const std::vector<Vec3>& sensor_points);
+  // After orient(): each panel's wall thickness, measured where the model has the wall's outer
+  // face, else the selection's; for a thickness the model lacks, appends the wall's outer face and
+  // edge strips to `mesh`, so that the wall is the solid it will be built as (wall_body.cpp).
+  // Throws std::invalid_argument when a given thickness disagrees with the modelled one.
+  void build_walls(Mesh* mesh);
+  // Side faces of the elements' tubes through thick walls, as triangles (two per face, in order).
+  Mesh reveal_grid(std::vector<RevealGridFace>* faces) const;
 
   const std::vector<Panel>& panels() const { return panels_; }
   const std::vector<Element>& elements() const { return elements_; }
   size_t element_count() const { return elements_.size(); }
   float element_size() const { return element_size_; }
-  float thickness() const { return thickness_; }
+  bool has_thick_walls() const;
 
   // Panel of a scene triangle, or -1 when the triangle is not in the domain.
   int panel_of_triangle(size_t tri) const { return tri < triangle_panel_.size() ? triangle_panel_[tri] : -1; }
+  // Panel whose wall's outer face the scene triangle is, or -1.
+  int outer_panel_of_triangle(size_t tri) const { return tri < outer_panel_.size() ? outer_panel_[tri] : -1; }
   // Element containing point p of panel `panel`, or -1 (the panel's margin).
   int element_at(int panel, const Vec3& p) const;
   // The cutter that opens one element: its square, through the wall thickness.
@@ -63,8 +86,9 @@ class OpeningDomain {
   std::vector<Panel> panels_;
   std::vector<Element> elements_;
   std::vector<int> triangle_panel_;
+  std::vector<int> outer_panel_;
   float element_size_ = 0.25f;
-  float thickness_ = 0.0f;
+  std::optional<float> given_thickness_;
 };
 
 }  // namespace fenestra

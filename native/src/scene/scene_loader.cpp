@@ -611,8 +611,9 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     // The solver's element size, when given, is the one the domain is diced with.
     if (j.contains("solver") && j.at("solver").is_object() && j.at("solver").contains("element_size"))
       sel.element_size = static_cast<float>(number(sp, j.at("solver").at("element_size"), "solver.element_size"));
-    sel.thickness =
-        static_cast<float>(number_in(sp, od, "thickness", "opening_domain", 0.0, 0.0, limits::kMaxThickness, " m"));
+    if (od.contains("thickness"))
+      sel.thickness =
+          static_cast<float>(number_in(sp, od, "thickness", "opening_domain", 0.0, 0.0, limits::kMaxThickness, " m"));
     try {
       scene.domain = OpeningDomain::build(scene.mesh, scene.material_names(), sel);
     } catch (const std::invalid_argument& e) {
@@ -622,6 +623,11 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     if (!j.contains("sensors")) sp.fail("sensors", "the scene has no sensors");
     scene.sensors = parse_sensors(sp, j.at("sensors"));
     scene.domain.orient(scene.sensors.points);
+    try {
+      scene.domain.build_walls(&scene.mesh);
+    } catch (const std::invalid_argument& e) {
+      sp.fail("opening_domain", e.what());
+    }
     parse_goals(sp, j.value("goals", json()), &scene.sensors);
     check_goals(sp, scene.sensors);
     // No "sky" at all: the default uniform sky; a "sky" must name its type.

@@ -24,6 +24,7 @@ OpeningRectangle to_world(const OpeningDomain& domain, const GridRectangle& rect
   r.corners = {base, base + u, base + u + v, base + v};
   r.centre = base + 0.5f * (u + v);
   r.outward = panel.outward;
+  r.depth = panel.thickness;
   return r;
 }
 

@@ -14,6 +14,7 @@ struct OpeningRectangle {
   Vec3 centre;
   double width = 0.0, height = 0.0;  // along the panel's u axis (horizontal on walls) and v axis
   Vec3 outward;                 // panel normal pointing away from the sensors (through the wall)
+  double depth = 0.0;           // meters the opening cuts through along `outward`: its panel's wall thickness
   int panel = 0;
   int row0 = 0, row1 = 0, col0 = 0, col1 = 0;  // inclusive element ranges
   std::vector<int> elements;

@@ -29,7 +29,6 @@ void add_quad(Mesh* mesh, const Vec3& a, const Vec3& b, const Vec3& c, const Vec
 
 OpeningsGeometry build_openings(const Scene& scene, const std::vector<Rectangle>& openings) {
   OpeningsGeometry g;
-  const float t = scene.domain.thickness();
   for (size_t i = 0; i < openings.size(); ++i) {
     int panel = -1;
     CutterBox box;
@@ -39,6 +38,7 @@ OpeningsGeometry build_openings(const Scene& scene, const std::vector<Rectangle>
       throw std::invalid_argument("opening " + std::to_string(i) + " " + e.what());
     }
     g.cutters.push_back(box);
+    const float t = scene.domain.panels()[panel].thickness;
     if (t > 0.0f) {
       const int material = scene.domain.panels()[panel].material;
       const Vec3 back = t * box.normal;  // cutter normals point out through the wall

@@ -55,6 +55,9 @@ struct PathTracer::PathState {
   float portal_pdf = 0.0f;     // portal density of this direction, once known (at an escape)
   int sky_samples = 1;         // sky samples the vertex that chose this direction took
   bool beyond_element = false;  // followed through an element: the next vertex is the first outside
+  // Depth at which a segment through a thick wall follows both ways at each tube side it meets (open
+  // neighbour: on; closed: its reveal); deeper, one way at random (meet_element_outside).
+  int branch_both_depth = -1;
   float must_reach = 0.0f;      // the first segment counts only if nothing is met before this distance
   bool by_portal = false;      // this direction was chosen by portal sampling (else by the BSDF)
   // At the sensor, portal samples alone carry the light that comes through elements: they are
@@ -66,7 +69,10 @@ struct PathTracer::PathState {
 struct PathTracer::Surface {
   Vec3 normal;  // unit geometric normal as modelled
   int material = 0;
-  int panel = -1;  // opening-domain panel (scene faces only)
+  int panel = -1;      // opening-domain panel whose inner (domain) or outer face this is
+  bool outer = false;  // the outer face of the panel's wall
+  int reveal_grid_face = -1;  // a side of an element's tube through a thick wall (RevealGridFace)
+  bool inner_face() const { return panel >= 0 && !outer; }
 };
 
 struct PathTracer::Shadow {
@@ -93,8 +99,11 @@ struct PathTracer::Vertex {
 // through other elements holds only if they are open, after reflecting off them only if closed.
 class PathTracer::Sink {
  public:
-  static constexpr int kMaxConditions = 8;
-  static constexpr int kMaxPassed = 3;  // elements a sub-path may go on through, beyond its own
+  // Conditions of one part: an oblique segment through a thick wall crosses several elements' tubes.
+  static constexpr int kMaxConditions = 16;
+  // Element faces (inner or outer) a sub-path may go on through, beyond its own; crossings from one
+  // element's tube into its neighbour's inside the wall are limited by kMaxConditions only.
+  static constexpr int kMaxPassed = 3;
 
   static Sink sum() { return Sink(nullptr, false); }
   static Sink record(SensorRecord* record) { return Sink(record, false); }
@@ -123,12 +132,15 @@ class PathTracer::Sink {
   }
   // Outside: a sub-path that went on through element j (its light needs j open), if the
   // conditions leave room; the caller traces into it and absorb()s it.
-  bool can_pass() const { return parts_[current_].open_count < kMaxPassed && condition_count() < kMaxConditions; }
-  Sink passing(int j) const {
+  bool can_pass(bool through_face) const {
+    return condition_count() < kMaxConditions && (!through_face || parts_[current_].passes < kMaxPassed);
+  }
+  Sink passing(int j, bool through_face) const {
     Sink child = Sink::outside();
     Part& part = child.parts_[0];
     part = parts_[current_];
     part.value = 0.0;
+    if (through_face) ++part.passes;
     auto closed = part.conditions.begin() + part.open_count;  // open conditions stay first
     std::copy_backward(closed, closed + part.closed_count, closed + part.closed_count + 1);
     part.conditions[part.open_count++] = j;
@@ -180,6 +192,7 @@ class PathTracer::Sink {
   struct Part {
     double value = 0.0;
     uint8_t open_count = 0, closed_count = 0;
+    uint8_t passes = 0;  // element faces gone through
     std::array<int32_t, kMaxConditions> conditions{};  // open ones first
   };
 
@@ -204,7 +217,8 @@ PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals)
     : scene_(scene), openings_(std::move(openings)), reveals_(std::move(reveals)) {
   scene_normals_ = unit_normals(scene_.mesh);
   reveal_normals_ = unit_normals(reveals_);
-  rays_ = std::make_unique<RayScene>(scene_.mesh, reveals_);
+  const Mesh reveal_grid = scene_.domain.reveal_grid(&reveal_grid_faces_);
+  rays_ = std::make_unique<RayScene>(scene_.mesh, reveals_, reveal_grid);
   const float a = scene_.domain.element_size();
   element_area_ = a * a;
   for (const Element& e : scene_.domain.elements()) {
@@ -295,6 +309,7 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   through_state.vertex_normal = n;
   through_state.beyond_element = true;
   through_state.must_reach = dist;  // portals only reach what lies beyond the element met first
+  through_state.branch_both_depth = st.depth;
   const CutterSet through{scene_.domain.element_cutter(k)};
   Sink outside = Sink::outside();
   trace(x, dir, through_state, &through, rng, outside);
@@ -306,12 +321,29 @@ PathTracer::Surface PathTracer::surface(const Hit& hit) const {
   if (hit.geometry == RayScene::kRevealGeometry) {
     s.normal = reveal_normals_[hit.primitive];
     s.material = reveals_.triangle_material[hit.primitive];
+  } else if (hit.geometry == RayScene::kRevealGridGeometry) {
+    s.reveal_grid_face = static_cast<int>(hit.primitive / 2);  // two triangles per face
+    const RevealGridFace& f = reveal_grid_faces_[s.reveal_grid_face];
+    s.normal = f.normal;
+    s.material = scene_.domain.panels()[f.panel].material;
   } else {
     s.normal = scene_normals_[hit.primitive];
     s.material = scene_.mesh.triangle_material[hit.primitive];
     s.panel = scene_.domain.panel_of_triangle(hit.primitive);
+    if (s.panel < 0) {
+      s.panel = scene_.domain.outer_panel_of_triangle(hit.primitive);
+      s.outer = s.panel >= 0;
+    }
   }
   return s;
+}
+
+int PathTracer::element_met(const Surface& s, const Vec3& p, const Vec3& dir) const {
+  if (s.reveal_grid_face >= 0) {  // the cell the ray would go on into
+    const RevealGridFace& f = reveal_grid_faces_[s.reveal_grid_face];
+    return dir.dot(f.normal) > 0.0f ? f.upper : f.lower;
+  }
+  return s.panel >= 0 ? scene_.domain.element_at(s.panel, p) : -1;
 }
 
 void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutters, bool collect, Shadow* out) const {
@@ -332,10 +364,10 @@ void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutte
     }
     const Surface s = surface(h);
     tnear = h.t + kRayEpsilon;
-    if (collect && s.panel >= 0) {
-      const int k = scene_.domain.element_at(s.panel, org + h.t * dir);
+    if (collect && (s.panel >= 0 || s.reveal_grid_face >= 0)) {
+      const int k = element_met(s, org + h.t * dir, dir);
       if (k < 0 || out->crossed_count == kMaxCrossed) return;  // the panel's margin is always wall
-      if (i == 0) out->first_is_element = true;
+      if (i == 0 && s.inner_face()) out->first_is_element = true;
       out->crossed_distance[out->crossed_count] = h.t;
       out->crossed[out->crossed_count++] = k;
       if (active != &with_crossed) {
@@ -358,14 +390,15 @@ float PathTracer::strategy_weight(const PathState& st, float sky_pdf) {
                       : power_heuristic(st.prev_pdf, sky_pdf, st.portal_pdf);
 }
 
-void PathTracer::record_escape(int k, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
-                               Sink& sink) const {
+void PathTracer::record_escape(int k, bool inner_face, const Vec3& org, const Vec3& dir, float t, const PathState& st,
+                               Rng& rng, Sink& sink) const {
   Sink outside = Sink::outside();
-  // From the sensor, portal samples alone carry the light arriving through elements.
-  if (!(st.portals && st.from_sensor)) {
+  // From the sensor, portal samples alone carry the light arriving through elements' inner faces.
+  if (!(st.portals && st.from_sensor && inner_face)) {
     PathState outside_state = st;
     outside_state.beyond_element = true;
-    if (st.portals) {
+    outside_state.branch_both_depth = st.depth;
+    if (st.portals && inner_face) {
       const float distance = (org + t * dir - st.vertex).norm();
       outside_state.portal_pdf = portal_pdf(&k, &distance, 1, dir);
     }
@@ -432,16 +465,29 @@ void PathTracer::sample_interior_portal(const Vertex& v, const PathState& st, Rn
                 sink);
 }
 
-bool PathTracer::meet_element_outside(int j, const Vec3& org, const Vec3& dir, const PathState& st,
+bool PathTracer::meet_element_outside(int j, bool through_face, const Vec3& org, const Vec3& dir, PathState& st,
                                       const CutterSet* cutters, Rng& rng, Sink& sink) const {
-  // Were j open, the sub-path would go on through it: follow that too (once per sub-path).
-  if (sink.can_pass()) {
-    Sink passing = sink.passing(j);
+  if (!sink.can_pass(through_face)) return sink.reflect_off(j);
+  auto pass = [&](const PathState& state) {
+    Sink passing = sink.passing(j, through_face);
     CutterSet through = cutters ? *cutters : CutterSet{};
     through.push_back(scene_.domain.element_cutter(j));
-    trace(org, dir, st, &through, rng, passing);
+    trace(org, dir, state, &through, rng, passing);
     sink.absorb(passing);
+  };
+  // Inside a thick wall, after the first vertex beyond the element, both ways would multiply at every
+  // tube side: one is followed, chosen at random and weighted by the inverse of its probability, so
+  // that the records stay unbiased for every set of open elements.
+  if (!through_face && st.depth != st.branch_both_depth) {
+    st.beta *= 2.0f;
+    if (rng.uniform() < 0.5f) {
+      pass(st);
+      return false;
+    }
+    return sink.reflect_off(j);
   }
+  // Were j open, the sub-path would go on through it: follow that too.
+  pass(st);
   // Closed, it is wall: what follows needs it closed.
   return sink.reflect_off(j);
 }
@@ -461,10 +507,14 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
     const Surface s = surface(h);
     Vertex v;
     v.p = org + h.t * dir;
-    if (s.panel >= 0 && (sink.recording() || sink.outside_element())) {
-      const int k = scene_.domain.element_at(s.panel, v.p);
-      if (k >= 0 && sink.recording()) record_escape(k, org, dir, h.t, st, rng, sink);
-      if (k >= 0 && sink.outside_element() && !meet_element_outside(k, org, dir, st, cutters, rng, sink)) return;
+    if (sink.recording() || sink.outside_element()) {
+      // An element's face (inner or outer), or the side of an open element's tube through a thick
+      // wall, which is the reveal of a closed neighbour or the way on into an open one.
+      const int k = element_met(s, v.p, dir);
+      if (k >= 0 && sink.recording()) record_escape(k, s.inner_face(), org, dir, h.t, st, rng, sink);
+      const bool through_face = s.reveal_grid_face < 0;
+      if (k >= 0 && sink.outside_element() && !meet_element_outside(k, through_face, org, dir, st, cutters, rng, sink))
+        return;
     }
     if (st.portal_pdf > 0.0f) {
       // First surface beyond an element: reached by BSDF and portal sampling alike.
@@ -482,7 +532,8 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
     v.wo = v.frame.to_local(-dir);
     // The first vertex outside an element carries the light of the outdoors into the room for
     // many paths: it takes several sky samples.
-    const int sky_samples = st.beyond_element ? kOutdoorSkySamples : 1;
+    // (Not a reveal inside a thick wall: it is met by many branches of one path, and lights little.)
+    const int sky_samples = st.beyond_element && s.reveal_grid_face < 0 ? kOutdoorSkySamples : 1;
     st.beyond_element = false;
     if (!v.material->is_glass()) {
       sample_sky(v, st, cutters, sky_samples, rng, sink);
@@ -604,7 +655,7 @@ void PathTracer::check_sensors() const {
         break;
       }
       const Surface s = surface(h);
-      inside = s.panel < 0 && d.dot(s.normal) > 0.0f;
+      inside = !s.inner_face() && d.dot(s.normal) > 0.0f;
     }
     if (inside) {
       std::ostringstream m;

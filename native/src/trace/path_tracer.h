@@ -69,13 +69,17 @@ class PathTracer {
   void trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutters, Rng& rng, Sink& sink) const;
   // MIS weight of light found along the current direction (sky_pdf 0 for an outdoor surface).
   static float strategy_weight(const PathState& st, float sky_pdf);
-  // A sub-path beyond an element meets element j: branches for j open; returns false when the
-  // sub-path must stop (too many conditions).
-  bool meet_element_outside(int j, const Vec3& org, const Vec3& dir, const PathState& st, const CutterSet* cutters,
-                            Rng& rng, Sink& sink) const;
-  // Records what arrives through element k, met at distance t along (org, dir).
-  void record_escape(int k, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
+  // A sub-path beyond an element meets element j (its face, or its tube's side from an open
+  // neighbour inside a thick wall): branches for j open; returns false when the sub-path must stop
+  // (too many conditions).
+  bool meet_element_outside(int j, bool through_face, const Vec3& org, const Vec3& dir, PathState& st,
+                            const CutterSet* cutters, Rng& rng, Sink& sink) const;
+  // Records what arrives through element k, met at distance t along (org, dir) on its inner face
+  // (portals aim there) or its wall's outer face.
+  void record_escape(int k, bool inner_face, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
                      Sink& sink) const;
+  // The element a ray along dir meets at surface s (point p), or -1 (no element: the panel's margin).
+  int element_met(const Surface& s, const Vec3& p, const Vec3& dir) const;
   // Next-event estimation toward the sky from a vertex, with `count` samples.
   void sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
                   Sink& sink) const;
@@ -93,6 +97,7 @@ class PathTracer {
   CutterSet openings_;
   Mesh reveals_;
   std::vector<Vec3> scene_normals_, reveal_normals_;
+  std::vector<RevealGridFace> reveal_grid_faces_;
   std::unique_ptr<RayScene> rays_;
   std::vector<Portal> portals_;
   float element_area_ = 0.0f;

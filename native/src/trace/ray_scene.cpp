@@ -40,6 +40,37 @@ void cutter_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// Which sides of a face at the hit are inside a cutter: bit 0 along the face normal, bit 1 against it.
+int cut_sides(const RTCFilterFunctionNArguments* args, unsigned i, const CutterSet& cutters) {
+  constexpr float kSide = 2e-4f;  // meters: the points tested either side of the face
+  const float t = RTCRayN_tfar(args->ray, args->N, i);
+  const Vec3 p(RTCRayN_org_x(args->ray, args->N, i) + t * RTCRayN_dir_x(args->ray, args->N, i),
+               RTCRayN_org_y(args->ray, args->N, i) + t * RTCRayN_dir_y(args->ray, args->N, i),
+               RTCRayN_org_z(args->ray, args->N, i) + t * RTCRayN_dir_z(args->ray, args->N, i));
+  const Vec3 n = Vec3(RTCHitN_Ng_x(args->hit, args->N, i), RTCHitN_Ng_y(args->hit, args->N, i),
+                      RTCHitN_Ng_z(args->hit, args->N, i))
+                     .normalized();
+  return (any_contains(cutters, p + kSide * n) ? 1 : 0) | (any_contains(cutters, p - kSide * n) ? 2 : 0);
+}
+
+// A cutter's reveal is no wall where another cutter continues the opening beyond it.
+void reveal_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* ctx = reinterpret_cast<const CutterContext*>(args->context);
+  if (!ctx->cutters || ctx->cutters->empty()) return;
+  for (unsigned i = 0; i < args->N; ++i)
+    if (args->valid[i] != 0 && cut_sides(args, i, *ctx->cutters) == 3) args->valid[i] = 0;
+}
+
+// An element tube's side is a wall only between an open cell and a closed one.
+void reveal_grid_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* ctx = reinterpret_cast<const CutterContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const int sides = ctx->cutters ? cut_sides(args, i, *ctx->cutters) : 0;
+    if (sides != 1 && sides != 2) args->valid[i] = 0;
+  }
+}
+
 RTCGeometry make_triangles(const Mesh& mesh) {
   RTCGeometry g = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -76,7 +107,7 @@ RTCDevice embree_device() {
   return device;
 }
 
-RayScene::RayScene(const Mesh& mesh, const Mesh& reveals) {
+RayScene::RayScene(const Mesh& mesh, const Mesh& reveals, const Mesh& reveal_grid) {
   scene_ = rtcNewScene(embree_device());
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   RTCGeometry g = make_triangles(mesh);
@@ -86,8 +117,16 @@ RayScene::RayScene(const Mesh& mesh, const Mesh& reveals) {
   rtcReleaseGeometry(g);
   if (!reveals.triangles.empty()) {
     RTCGeometry r = make_triangles(reveals);
+    rtcSetGeometryIntersectFilterFunction(r, reveal_filter);
     rtcCommitGeometry(r);
     rtcAttachGeometryByID(scene_, r, kRevealGeometry);
+    rtcReleaseGeometry(r);
+  }
+  if (!reveal_grid.triangles.empty()) {
+    RTCGeometry r = make_triangles(reveal_grid);
+    rtcSetGeometryIntersectFilterFunction(r, reveal_grid_filter);
+    rtcCommitGeometry(r);
+    rtcAttachGeometryByID(scene_, r, kRevealGridGeometry);
     rtcReleaseGeometry(r);
   }
   rtcCommitScene(scene_);

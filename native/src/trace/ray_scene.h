@@ -30,14 +30,18 @@ class RayScene {
  public:
   static constexpr uint32_t kSceneGeometry = 0;
   static constexpr uint32_t kRevealGeometry = 1;
+  static constexpr uint32_t kRevealGridGeometry = 2;
 
-  // `reveals` are faces added by cutters (never cut themselves); may be empty.
-  RayScene(const Mesh& mesh, const Mesh& reveals);
+  // `reveals` are faces added by cutters, met unless both their sides are cut (adjacent openings
+  // share no reveal); `reveal_grid` lines the elements' tubes through thick walls, met only where
+  // one side is cut and the other is not. Either may be empty.
+  RayScene(const Mesh& mesh, const Mesh& reveals, const Mesh& reveal_grid = Mesh());
   ~RayScene();
   RayScene(const RayScene&) = delete;
   RayScene& operator=(const RayScene&) = delete;
 
-  // Closest hit with t in (tnear, tfar); surfaces of geometry 0 inside any of `cutters` are skipped.
+  // Closest hit with t in (tnear, tfar); surfaces of geometry 0 inside any of `cutters` are skipped,
+  // reveals as said above.
   Hit intersect(const Vec3& org, const Vec3& dir, float tnear, float tfar, const CutterSet* cutters) const;
 
  private:

@@ -1,0 +1,224 @@
+// The wall behind each opening-domain panel: its thickness (measured from the model's outer face,
+// or given), the outer face and edge strips a given thickness adds, and the grid of faces that
+// line the elements' tubes through it.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "scene/opening_domain.h"
+
+namespace fenestra {
+namespace {
+
+// Parallel faces farther behind a panel than this are other buildings, not its wall's outer face.
+constexpr float kMaxMeasuredThickness = 2.0f;  // meters
+// Outer faces this close to one offset are one face; a given thickness this close to the measured one agrees.
+constexpr float kThicknessTolerance = 2e-3f;  // meters (or 1 % of the thickness, whichever is larger)
+constexpr float kParallel = 0.9999f;           // |cos| between a panel's normal and its outer face's
+// Fractions of a panel's elements whose centres must have an outer face behind them: at least
+// kModelled makes the panel a modelled solid; between kIgnored and kModelled the model is ambiguous.
+constexpr double kModelled = 0.5, kIgnored = 0.25;
+constexpr size_t kMaxSamples = 4096;  // element centres probed per panel
+
+float tolerance(float thickness) { return std::max(kThicknessTolerance, 0.01f * thickness); }
+
+struct Flat {
+  Vec2 a, b, c;
+  float lo_u, hi_u, lo_v, hi_v;
+  bool contains(const Vec2& p) const {
+    if (p.x() < lo_u || p.x() > hi_u || p.y() < lo_v || p.y() > hi_v) return false;
+    auto edge = [](const Vec2& p0, const Vec2& p1, const Vec2& q) {
+      return (p1.x() - p0.x()) * (q.y() - p0.y()) - (p1.y() - p0.y()) * (q.x() - p0.x());
+    };
+    const float e0 = edge(a, b, p), e1 = edge(b, c, p), e2 = edge(c, a, p);
+    return (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
+  }
+};
+
+// A scene triangle parallel to a panel, behind it: where it lies in the panel's (u, v) frame.
+struct Candidate {
+  uint32_t triangle;
+  float offset;  // meters along the panel's outward direction
+  Flat flat;
+};
+
+std::vector<Candidate> parallel_faces_behind(const Mesh& mesh, const Panel& panel,
+                                             const std::vector<int>& triangle_panel, float grid_w, float grid_h) {
+  std::vector<Candidate> out;
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    if (t < triangle_panel.size() && triangle_panel[t] >= 0) continue;
+    const Vec3 n = mesh.area_normal(t);
+    const float len = n.norm();
+    if (!(len > 0.0f) || std::abs(n.dot(panel.normal)) < kParallel * len) continue;
+    const float offset = (mesh.vertex(t, 0) - panel.origin).dot(panel.outward);
+    if (!(offset > 1e-3f && offset <= kMaxMeasuredThickness)) continue;
+    Candidate c{static_cast<uint32_t>(t), offset, {}};
+    Vec2 q[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 d = mesh.vertex(t, k) - panel.origin;
+      q[k] = Vec2(d.dot(panel.u_axis), d.dot(panel.v_axis));
+    }
+    c.flat = {q[0], q[1], q[2], std::min({q[0].x(), q[1].x(), q[2].x()}), std::max({q[0].x(), q[1].x(), q[2].x()}),
+              std::min({q[0].y(), q[1].y(), q[2].y()}), std::max({q[0].y(), q[1].y(), q[2].y()})};
+    if (c.flat.hi_u < 0.0f || c.flat.lo_u > grid_w || c.flat.hi_v < 0.0f || c.flat.lo_v > grid_h) continue;
+    out.push_back(c);
+  }
+  return out;
+}
+
+struct Measured {
+  double coverage = 0.0;      // fraction of probed element centres with an outer face behind
+  float thickness = 0.0f;     // median offset of those faces
+  float spread = 0.0f;        // max - min offset
+};
+
+Measured measure(const Panel& panel, const std::vector<Element>& elements, const std::vector<Candidate>& faces,
+                 float element_size) {
+  Measured m;
+  std::vector<int> cells;
+  for (int e : panel.grid)
+    if (e >= 0) cells.push_back(e);
+  const size_t stride = std::max<size_t>(1, cells.size() / kMaxSamples);
+  std::vector<float> offsets;
+  size_t probed = 0;
+  for (size_t i = 0; i < cells.size(); i += stride, ++probed) {
+    const Element& e = elements[cells[i]];
+    const Vec2 p((e.col + 0.5f) * element_size, (e.row + 0.5f) * element_size);
+    float nearest = std::numeric_limits<float>::infinity();
+    for (const Candidate& c : faces)
+      if (c.offset < nearest && c.flat.contains(p)) nearest = c.offset;
+    if (std::isfinite(nearest)) offsets.push_back(nearest);
+  }
+  if (probed == 0 || offsets.empty()) return m;
+  std::sort(offsets.begin(), offsets.end());
+  m.coverage = static_cast<double>(offsets.size()) / static_cast<double>(probed);
+  m.thickness = offsets[offsets.size() / 2];
+  m.spread = offsets.back() - offsets.front();
+  return m;
+}
+
+std::string meters(float v) {
+  std::ostringstream s;
+  s << v << " m";
+  return s.str();
+}
+
+void add_triangle(Mesh* mesh, const Vec3& a, const Vec3& b, const Vec3& c, int material) {
+  const uint32_t base = static_cast<uint32_t>(mesh->positions.size());
+  mesh->positions.insert(mesh->positions.end(), {a, b, c});
+  mesh->triangles.push_back({base, base + 1, base + 2});
+  mesh->triangle_material.push_back(material);
+  mesh->triangle_group.push_back(-1);
+}
+
+void add_quad(Mesh* mesh, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int material) {
+  add_triangle(mesh, a, b, c, material);
+  add_triangle(mesh, a, c, d, material);
+}
+
+// The panel's faces moved to the wall's outer side, and strips closing the wall along the panel's
+// outline (edges used by one of its triangles).
+void add_wall_body(const Panel& panel, Mesh* mesh) {
+  const Vec3 back = panel.thickness * panel.outward;
+  std::map<std::pair<uint32_t, uint32_t>, int> edge_use;
+  const Mesh& m = *mesh;
+  std::vector<std::array<Vec3, 3>> corners;
+  for (uint32_t t : panel.triangles) {
+    corners.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2)});
+    for (int k = 0; k < 3; ++k) {
+      uint32_t a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+      if (a > b) std::swap(a, b);
+      ++edge_use[{a, b}];
+    }
+  }
+  // Edges shared through duplicated vertices (same position, different index) are inner edges too.
+  std::map<std::pair<std::array<float, 3>, std::array<float, 3>>, int> by_position;
+  auto key = [](const Vec3& p) { return std::array<float, 3>{p.x(), p.y(), p.z()}; };
+  for (const auto& [edge, uses] : edge_use) {
+    auto a = key(m.positions[edge.first]), b = key(m.positions[edge.second]);
+    if (b < a) std::swap(a, b);
+    by_position[{a, b}] += uses;
+  }
+  for (const auto& c : corners) add_triangle(mesh, c[0] + back, c[2] + back, c[1] + back, panel.material);
+  for (const auto& [edge, uses] : by_position) {
+    if (uses != 1) continue;
+    const Vec3 a(edge.first[0], edge.first[1], edge.first[2]), b(edge.second[0], edge.second[1], edge.second[2]);
+    add_quad(mesh, a, b, b + back, a + back, panel.material);
+  }
+}
+
+}  // namespace
+
+void OpeningDomain::build_walls(Mesh* mesh) {
+  outer_panel_.assign(mesh->triangle_count(), -1);
+  for (size_t p = 0; p < panels_.size(); ++p) {
+    Panel& panel = panels_[p];
+    const std::vector<Candidate> faces = parallel_faces_behind(*mesh, panel, triangle_panel_, panel.cols * element_size_,
+                                                               panel.rows * element_size_);
+    const Measured m = measure(panel, elements_, faces, element_size_);
+    if (m.coverage >= kIgnored && m.coverage < kModelled) {
+      std::ostringstream msg;
+      msg << "the wall behind the opening-domain panel of " << panel.label << " is modelled in part only: "
+          << std::lround(100.0 * m.coverage) << " % of its elements have its outer face "
+          << meters(m.thickness) << " behind them; model the whole wall as a solid, or none of it";
+      throw std::invalid_argument(msg.str());
+    }
+    panel.solid_modelled = m.coverage >= kModelled;
+    if (panel.solid_modelled && m.spread > tolerance(m.thickness)) {
+      std::ostringstream msg;
+      msg << "the wall behind the opening-domain panel of " << panel.label << " is not of one thickness: its outer "
+          << "faces lie " << meters(m.thickness - m.spread) << " to " << meters(m.thickness) << " or more behind it; "
+          << "mark each part of a different thickness as its own panel";
+      throw std::invalid_argument(msg.str());
+    }
+    if (panel.solid_modelled && given_thickness_ && std::abs(*given_thickness_ - m.thickness) > tolerance(m.thickness)) {
+      std::ostringstream msg;
+      msg << "opening_domain.thickness " << meters(*given_thickness_) << " disagrees with the wall modelled behind "
+          << "the opening-domain panel of " << panel.label << ": its outer face is " << meters(m.thickness)
+          << " behind the marked face (leave thickness out to use the model's)";
+      throw std::invalid_argument(msg.str());
+    }
+    panel.thickness = panel.solid_modelled ? m.thickness : given_thickness_.value_or(0.0f);
+    if (panel.solid_modelled) {
+      for (const Candidate& c : faces)
+        if (std::abs(c.offset - m.thickness) <= tolerance(m.thickness) && outer_panel_[c.triangle] < 0)
+          outer_panel_[c.triangle] = static_cast<int>(p);
+    } else if (panel.thickness > 0.0f) {
+      const size_t first = mesh->triangle_count();
+      add_wall_body(panel, mesh);
+      outer_panel_.resize(mesh->triangle_count(), -1);
+      for (size_t t = first; t < first + panel.triangles.size(); ++t) outer_panel_[t] = static_cast<int>(p);
+    }
+  }
+}
+
+Mesh OpeningDomain::reveal_grid(std::vector<RevealGridFace>* faces) const {
+  Mesh mesh;
+  faces->clear();
+  const float s = element_size_;
+  for (size_t p = 0; p < panels_.size(); ++p) {
+    const Panel& panel = panels_[p];
+    if (!(panel.thickness > 0.0f)) continue;
+    const Vec3 back = panel.thickness * panel.outward;
+    auto cell = [&](int r, int c) {
+      return r < 0 || c < 0 || r >= panel.rows || c >= panel.cols ? -1 : panel.grid[static_cast<size_t>(r) * panel.cols + c];
+    };
+    auto corner = [&](int r, int c) { return panel.origin + (c * s) * panel.u_axis + (r * s) * panel.v_axis; };
+    auto add = [&](int lower, int upper, const Vec3& normal, const Vec3& a, const Vec3& b) {
+      if (lower < 0 && upper < 0) return;
+      add_quad(&mesh, a, b, b + back, a + back, panel.material);
+      faces->push_back({static_cast<int>(p), lower, upper, normal});
+    };
+    for (int r = 0; r < panel.rows; ++r)
+      for (int c = 0; c <= panel.cols; ++c) add(cell(r, c - 1), cell(r, c), panel.u_axis, corner(r, c), corner(r + 1, c));
+    for (int r = 0; r <= panel.rows; ++r)
+      for (int c = 0; c < panel.cols; ++c) add(cell(r - 1, c), cell(r, c), panel.v_axis, corner(r, c), corner(r, c + 1));
+  }
+  return mesh;
+}
+
+}  // namespace fenestra
