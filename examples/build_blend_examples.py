@@ -415,37 +415,17 @@ def add_suns(study_dir):
     return len(summary.get("suns", []))
 
 
-def open_through(obj, cutters, eps=1e-4):
-    """Removes the faces a Boolean difference leaves inside the cutters: a room modelled with
-    zero-thickness walls is a solid to the Boolean, which caps each hole at the cutter's room side."""
-    bm = bmesh.new()
-    bm.from_mesh(obj.data)
-    inside = []
-    for cutter in cutters:
-        to_local = cutter.matrix_world.inverted() @ obj.matrix_world
-        co = np.array([v.co[:] for v in cutter.data.vertices])
-        lo, hi = co.min(axis=0) - eps, co.max(axis=0) + eps
-        for face in bm.faces:
-            c = np.array((to_local @ face.calc_center_median())[:])
-            if np.all(c >= lo) and np.all(c <= hi):
-                inside.append(face)
-    bmesh.ops.delete(bm, geom=list(set(inside)), context='FACES')
-    bm.to_mesh(obj.data)
-    bm.free()
-    obj.data.update()
-
-
 def render(path, cutaway, samples=128, resolution=(640, 360), exposure=-3.0):
     scene = bpy.context.scene
     for name in cutaway:  # lit by, but not seen through, the camera
         bpy.data.objects[name].visible_camera = False
-    # The openings cut for good: the cutters are hidden from renders, so Booleans are applied.
-    cutters = [o for o in scene.objects if o.fenestra.is_opening]
+    # The openings cut for good: the cutters are hidden from renders, so the result's modifiers
+    # (the Boolean, then the one that opens the holes) are applied.
+    from fenestra.blender import export
     for obj in list(scene.objects):
-        for m in [m for m in obj.modifiers if m.type == 'BOOLEAN']:
+        for name in [m.name for m in obj.modifiers if export.is_result_modifier(m)]:
             select_only(obj)
-            bpy.ops.object.modifier_apply(modifier=m.name)
-            open_through(obj, cutters)
+            bpy.ops.object.modifier_apply(modifier=name)
     scene.render.engine = 'CYCLES'
     scene.cycles.device = 'CPU'
     scene.cycles.samples = samples

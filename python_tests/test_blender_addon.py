@@ -1,5 +1,6 @@
 """The Blender add-on, headless: registration, a solved study, save/reload, bad setups
-(python_tests/blender/addon_study.py, run inside Blender with the add-on on its add-on path)."""
+(python_tests/blender/addon_study.py), and the openings cut through zero-thickness and solid walls
+(python_tests/blender/addon_holes.py), run inside Blender with the add-on on its add-on path."""
 
 import os
 import shutil
@@ -26,6 +27,15 @@ def test_addon_study(tmp_path):
     r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_study.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
     assert "Ran 14 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+
+
+@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+def test_openings_cut_through_the_walls(tmp_path):
+    """Rays through the result's openings reach the sky, in a closed box room, an open mesh and a
+    room with a 0.3 m solid south wall; rays beside them hit the wall."""
+    r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_holes.py"), str(tmp_path / "out"))
+    assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
+    assert "Ran 7 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 
 
 @pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")

@@ -15,7 +15,8 @@ from . import materials, sky
 
 DOMAIN_ATTRIBUTE = "fenestra_domain"
 GOAL_ATTRIBUTE = "fenestra_goal"
-BOOLEAN_NAME = "Fenestra Openings"
+BOOLEAN_NAME = "Fenestra Openings"         # the Boolean Difference with the cutters
+OPEN_THROUGH_NAME = "Fenestra Open Through"  # the Geometry Nodes modifier after it
 GEOMETRY_TYPES = {'MESH', 'CURVE', 'SURFACE', 'META', 'FONT'}
 MAX_ELEMENTS = 50000
 
@@ -140,24 +141,29 @@ def _evaluated(obj, depsgraph):
     return obj_eval, mesh
 
 
-def _fenestra_booleans(scene):
-    return [m for obj in scene.objects for m in obj.modifiers
-            if m.type == 'BOOLEAN' and m.name == BOOLEAN_NAME]
+def is_result_modifier(m):
+    """A modifier made by a solve: the Boolean with the cutters or the one opening its holes."""
+    return ((m.type == 'BOOLEAN' and m.name == BOOLEAN_NAME)
+            or (m.type == 'NODES' and m.name == OPEN_THROUGH_NAME))
+
+
+def _result_modifiers(scene):
+    return [m for obj in scene.objects for m in obj.modifiers if is_result_modifier(m)]
 
 
 def build(context):
     """Converts the scene into a Study. Raises StudyError for a setup that cannot be solved.
 
-    The Boolean modifiers of a previous result are switched off while reading the meshes, so the
-    domain is read uncut."""
+    The modifiers of a previous result are switched off while reading the meshes, so the
+    domain and the walls are read uncut."""
     scene = context.scene
-    booleans = [m for m in _fenestra_booleans(scene) if m.show_viewport]
-    for m in booleans:
+    modifiers = [m for m in _result_modifiers(scene) if m.show_viewport]
+    for m in modifiers:
         m.show_viewport = False
     try:
         return _build(context, context.evaluated_depsgraph_get())
     finally:
-        for m in booleans:
+        for m in modifiers:
             m.show_viewport = True
 
 
@@ -263,14 +269,15 @@ def _build(context, depsgraph):
         "fenestra": 1,
         "geometry": "scene.obj",
         "materials": material_defs,
-        "opening_domain": {"groups": domain_groups, "element_size": solve.element_size,
-                           "thickness": solve.wall_thickness},
+        "opening_domain": {"groups": domain_groups, "element_size": solve.element_size},
         "sensors": sensors,
         "sky": sky.sky_dict(scene),
         "render": {"paths_per_sensor": paths, "seed": solve.seed},
         "solver": {"paths": paths, "generations": generations, "population": population,
                    "seed": solve.seed},
     }
+    if solve.wall_thickness > 0:  # else the native core measures each panel's wall
+        scene_dict["opening_domain"]["thickness"] = solve.wall_thickness
     units = settings.goals.units.lower()
     if settings.goals.source == 'ATTRIBUTE':
         sensors["goals"] = np.round(np.concatenate(goals), 6).tolist()

@@ -118,8 +118,10 @@ QUALITY = {'PREVIEW': (2048, 150, 32), 'FINAL': (16384, 500, 64)}  # paths, gene
 class FenestraSolveSettings(PropertyGroup):
     element_size: FloatProperty(name="Element Size", min=0.001, soft_min=0.05, soft_max=2.0, default=0.25,
                                 unit='LENGTH', description="Side of the square opening elements")
-    wall_thickness: FloatProperty(name="Wall Thickness", min=0.0, default=0.0, unit='LENGTH',
-                                  description="Depth the openings cut through, away from the sensors")
+    wall_thickness: FloatProperty(
+        name="Wall Thickness", min=0.0, default=0.0, unit='LENGTH',
+        description="Depth the openings cut through, away from the sensors, in meters. 0: measured "
+                    "from the model at each wall (0 where the wall is a single face)")
     quality: EnumProperty(
         name="Quality", default='PREVIEW',
         items=(('PREVIEW', "Preview", "%d paths per sensor, %d generations" % QUALITY['PREVIEW'][:2]),
@@ -131,7 +133,9 @@ class FenestraSolveSettings(PropertyGroup):
     seed: IntProperty(name="Seed", min=0, default=1)
     constraints: PointerProperty(type=FenestraConstraints)
     use_booleans: BoolProperty(name="Cut Domain Objects", default=True,
-                               description="Add a Boolean Difference with the openings to the domain objects")
+                               description="Cut the openings through the walls: a Boolean Difference with "
+                                           "the openings on the domain objects and on every object the "
+                                           "openings reach")
     cutter_margin: FloatProperty(name="Cutter Margin", min=0.0, default=0.02, unit='LENGTH',
                                  description="The cutters reach this far beyond the wall on both sides")
     study_directory: StringProperty(

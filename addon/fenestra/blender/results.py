@@ -1,20 +1,27 @@
-"""A solve's result in the model: cutter boxes, Boolean modifiers, achieved lux on the sensors."""
+"""A solve's result in the model: cutter boxes, Boolean modifiers that cut through the walls,
+achieved lux on the sensors."""
 
 import bmesh
 import bpy
 import numpy as np
 
-from .export import BOOLEAN_NAME
+from .export import BOOLEAN_NAME, OPEN_THROUGH_NAME, is_result_modifier
 
 COLLECTION = "Fenestra Openings"
 ACHIEVED_ATTRIBUTE = "fenestra_achieved"
+ROOM_SIDE_ATTRIBUTE = "fenestra_room_side"  # on a cutter's faces on the room side of the wall
+MIN_MARGIN = 0.001     # m: a cutter reaches at least this far beyond the wall on both sides
+TOUCH_TOLERANCE = 0.001  # m: geometry this close to a cutter's edge only touches it
 
 
 def clear(scene):
-    """Removes the cutters and Boolean modifiers of a previous result."""
+    """Removes the cutters and the modifiers of a previous result."""
     for obj in list(scene.objects):
-        for m in [m for m in obj.modifiers if m.type == 'BOOLEAN' and m.name == BOOLEAN_NAME]:
+        for m in [m for m in obj.modifiers if is_result_modifier(m)]:
             obj.modifiers.remove(m)
+    group = bpy.data.node_groups.get(OPEN_THROUGH_NAME)
+    if group is not None and group.users == 0:
+        bpy.data.node_groups.remove(group)
     for obj in [o for o in bpy.data.objects if o.fenestra.is_opening]:
         mesh = obj.data
         bpy.data.objects.remove(obj)
@@ -33,25 +40,140 @@ def _collection(scene):
     return coll
 
 
-def _cutter_mesh(name, corners, toward_sensors, depth, margin):
-    """The rectangle extruded `depth + margin` away from the sensors and `margin` toward them,
-    in coordinates about its centre; returns (mesh, centre)."""
-    c = np.asarray(corners, np.float64)
-    centre = c.mean(axis=0)
-    n = np.cross(c[1] - c[0], c[3] - c[0])
-    n /= np.linalg.norm(n)
-    if np.dot(toward_sensors - centre, n) < 0:
-        n = -n
-    near, far = c + n * margin - centre, c - n * (depth + margin) - centre
+def _open_through_group():
+    """The node group of the "Fenestra Open Through" modifier: deletes the faces that carry
+    ROOM_SIDE_ATTRIBUTE (what the Boolean keeps of the cutters' room-side part) and drops the
+    attribute."""
+    group = bpy.data.node_groups.get(OPEN_THROUGH_NAME)
+    if group is not None and group.bl_idname == 'GeometryNodeTree':
+        return group
+    group = bpy.data.node_groups.new(OPEN_THROUGH_NAME, 'GeometryNodeTree')
+    group.inputs.new('NodeSocketGeometry', "Geometry")
+    group.outputs.new('NodeSocketGeometry', "Geometry")
+    nodes, links = group.nodes, group.links
+    given, out = nodes.new('NodeGroupInput'), nodes.new('NodeGroupOutput')
+    flag = nodes.new('GeometryNodeInputNamedAttribute')
+    flag.data_type = 'BOOLEAN'
+    flag.inputs["Name"].default_value = ROOM_SIDE_ATTRIBUTE
+    delete = nodes.new('GeometryNodeDeleteGeometry')
+    delete.domain = 'FACE'
+    drop = nodes.new('GeometryNodeRemoveAttribute')
+    drop.inputs["Name"].default_value = ROOM_SIDE_ATTRIBUTE
+    links.new(given.outputs[0], delete.inputs["Geometry"])
+    links.new(next(o for o in flag.outputs if o.enabled), delete.inputs["Selection"])
+    links.new(delete.outputs[0], drop.inputs[0])
+    links.new(drop.outputs[0], out.inputs[0])
+    for i, node in enumerate((given, flag, delete, drop, out)):
+        node.location = (200 * i, 0)
+    return group
+
+
+class _Box:
+    """A cutter as a box in world space: the opening rectangle (corner, unit edges u and v, their
+    lengths), n the unit normal toward the sensors, spanning -(depth + margin) to +margin along n."""
+
+    def __init__(self, corners, toward_sensors, depth, margin):
+        c = np.asarray(corners, np.float64)
+        self.corner = c[0]
+        self.u, self.v = c[1] - c[0], c[3] - c[0]
+        self.lu, self.lv = np.linalg.norm(self.u), np.linalg.norm(self.v)
+        self.u, self.v = self.u / self.lu, self.v / self.lv
+        n = np.cross(self.u, self.v)
+        n /= np.linalg.norm(n)
+        if np.dot(toward_sensors, n) < 0:
+            n = -n
+        self.n = n
+        self.near, self.far = margin, -(depth + margin)
+
+    def vertices(self, shrink=0.0):
+        """The 12 vertices: the room-side end, the rectangle itself, the far end (rings of 4);
+        with shrink, the rectangle shrunk by that much on each side."""
+        a0, a1, b0, b1 = shrink, self.lu - shrink, shrink, self.lv - shrink
+        ring = np.array([self.corner + a * self.u + b * self.v for a, b in ((a0, b0), (a1, b0), (a1, b1), (a0, b1))])
+        return np.concatenate([ring + self.n * self.near, ring, ring + self.n * self.far])
+
+    def contains(self, points, shrink):
+        d = points - self.corner
+        a, b, h = d @ self.u, d @ self.v, d @ self.n
+        return ((a > shrink) & (a < self.lu - shrink) & (b > shrink) & (b < self.lv - shrink)
+                & (h > self.far) & (h < self.near))
+
+
+# Faces of the 12 vertices of _Box.vertices: the room-side end and sides first (tagged), then the
+# sides through the wall and the far end.
+_CUTTER_FACES = ([(0, 1, 2, 3)] + [(i, (i + 1) % 4, 4 + (i + 1) % 4, 4 + i) for i in range(4)]
+                 + [(4 + i, 4 + (i + 1) % 4, 8 + (i + 1) % 4, 8 + i) for i in range(4)] + [(8, 9, 10, 11)])
+_ROOM_SIDE_FACES = 5
+
+
+def _cutter_mesh(name, box):
+    """The opening's rectangle extruded `depth + margin` away from the sensors and `margin` toward
+    them, in coordinates about its centre, split at the rectangle: the faces on the room side carry
+    ROOM_SIDE_ATTRIBUTE. Returns (mesh, centre)."""
+    verts = box.vertices()
+    centre = verts[4:8].mean(axis=0)
     mesh = bpy.data.meshes.new(name)
-    faces = [(0, 1, 2, 3), (7, 6, 5, 4), (0, 4, 5, 1), (1, 5, 6, 2), (2, 6, 7, 3), (3, 7, 4, 0)]
-    mesh.from_pydata([tuple(v) for v in np.concatenate([near, far])], [], faces)
+    mesh.from_pydata([tuple(v) for v in verts - centre], [], _CUTTER_FACES)
     bm = bmesh.new()
     bm.from_mesh(mesh)
     bmesh.ops.recalc_face_normals(bm, faces=bm.faces)
     bm.to_mesh(mesh)
     bm.free()
+    flags = [i < _ROOM_SIDE_FACES for i in range(len(_CUTTER_FACES))]
+    mesh.attributes.new(ROOM_SIDE_ATTRIBUTE, 'BOOLEAN', 'FACE').data.foreach_set("value", flags)
+    mesh.update()
     return mesh, centre
+
+
+def _toward_sensors(opening, study, centre):
+    """The direction from the opening into the room: against its outward normal when the result
+    gives one, else toward the sensors' centroid."""
+    normal = opening.get("normal")
+    if normal is not None and np.linalg.norm(normal) > 0:
+        return -np.asarray(normal, np.float64)
+    return study.sensor_centroid - centre
+
+
+def _objects_reached(context, boxes, exclude):
+    """The visible mesh objects with faces inside or across a cutter (its rectangle shrunk by
+    TOUCH_TOLERANCE, so that a floor or wall meeting the opening's edge does not count): the
+    domain's own objects, and the wall's outer faces and reveals wherever they are modelled."""
+    from mathutils.bvhtree import BVHTree
+    depsgraph = context.evaluated_depsgraph_get()
+    cutter_trees = []
+    for box in boxes:
+        verts = box.vertices(TOUCH_TOLERANCE)
+        cutter_trees.append((verts.min(axis=0), verts.max(axis=0),
+                             BVHTree.FromPolygons([tuple(v) for v in verts], _CUTTER_FACES)))
+    reached = []
+    for obj in context.scene.objects:
+        if (obj.type != 'MESH' or obj.name in exclude or obj.fenestra.is_sensor or obj.fenestra.is_opening
+                or not obj.visible_get()):
+            continue
+        obj_eval = obj.evaluated_get(depsgraph)
+        mesh = obj_eval.to_mesh()
+        try:
+            if mesh is None or len(mesh.polygons) == 0:
+                continue
+            co = np.empty(len(mesh.vertices) * 3, np.float64)
+            mesh.vertices.foreach_get("co", co)
+            m = np.array(obj_eval.matrix_world, np.float64)
+            co = co.reshape(-1, 3) @ m[:3, :3].T + m[:3, 3]
+            lo, hi = co.min(axis=0), co.max(axis=0)
+            near = [(box, tree) for box, (blo, bhi, tree) in zip(boxes, cutter_trees)
+                    if np.all(lo <= bhi) and np.all(blo <= hi)]
+            if not near:
+                continue
+            if any(box.contains(co, TOUCH_TOLERANCE).any() for box, _ in near):
+                reached.append(obj)
+                continue
+            polygons = [tuple(p.vertices) for p in mesh.polygons]
+            tree = BVHTree.FromPolygons([tuple(v) for v in co], polygons)
+            if any(tree.overlap(cutter) for _, cutter in near):
+                reached.append(obj)
+        finally:
+            obj_eval.to_mesh_clear()
+    return reached
 
 
 def apply(context, study, result):
@@ -61,26 +183,38 @@ def apply(context, study, result):
     clear(scene)
     coll = _collection(scene)
     solve = settings.solve
+    margin = max(solve.cutter_margin, MIN_MARGIN)
+    boxes = []
     for i, opening in enumerate(result["openings"]):
         name = "Fenestra Opening %03d" % (i + 1)
-        mesh, centre = _cutter_mesh(name, opening["corners"], study.sensor_centroid,
-                                    solve.wall_thickness, solve.cutter_margin)
+        centre = np.asarray(opening["corners"], np.float64).mean(axis=0)
+        box = _Box(opening["corners"], _toward_sensors(opening, study, centre),
+                   opening.get("depth", solve.wall_thickness), margin)
+        boxes.append(box)
+        mesh, centre = _cutter_mesh(name, box)
         obj = bpy.data.objects.new(name, mesh)
         obj.location = centre
         obj.display_type = 'WIRE'
         obj.hide_render = True
         obj.fenestra.is_opening = True
         coll.objects.link(obj)
-    if solve.use_booleans and result["openings"]:
-        for name in study.domain_objects:
-            obj = bpy.data.objects.get(name)
-            if obj is None or obj.type != 'MESH':
-                continue
+    if solve.use_booleans and boxes:
+        # The domain objects, and every other object the cutters reach (a solid wall's outer
+        # faces and edges, modelled in the same object or in another one).
+        domain = [bpy.data.objects.get(name) for name in study.domain_objects]
+        domain = [o for o in domain if o is not None and o.type == 'MESH']
+        group = _open_through_group()
+        for obj in domain + _objects_reached(context, boxes, {o.name for o in domain}):
             m = obj.modifiers.new(BOOLEAN_NAME, 'BOOLEAN')
             m.operation = 'DIFFERENCE'
             m.operand_type = 'COLLECTION'
             m.collection = coll
             m.solver = 'EXACT'
+            m.use_hole_tolerant = True
+            # A closed mesh is a solid to the Boolean: a room with zero-thickness walls keeps a
+            # face across the hole at the cutter's room side; this modifier removes it.
+            m = obj.modifiers.new(OPEN_THROUGH_NAME, 'NODES')
+            m.node_group = group
 
     # Per sensor: goal and achieved lux, on the results and as a vertex attribute for false colour.
     achieved = np.array([s["predicted"] for s in result["sensors"]], np.float64)
