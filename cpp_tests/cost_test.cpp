@@ -120,6 +120,16 @@ TEST(CostModel, EstimateWithinAFactorOfTwoOfMeasuredMemory) {
   EXPECT_LE(estimate, 2.0 * measured);
 }
 
+TEST(CostModel, ThickWallRecordsWithinAFactorOfTwo) {
+  // 0.3 m walls: paths branch at the elements' tubes, and the records grow with them.
+  Scene scene = load_scene(std::string(FENESTRA_EXAMPLES) + "/thick_walls_study/scene.json");
+  scene.render.paths_per_sensor = 512;
+  const double estimate = estimate_cost(scene, CostCommand::Contributions).kept_bytes();
+  const double measured = static_cast<double>(compute_contributions(scene).memory_bytes());
+  EXPECT_GE(estimate, measured);
+  EXPECT_LE(estimate, 2.0 * measured);
+}
+
 TEST(CostModel, RecordsGrowWithBouncesAndReflectance) {
   TempDir dir;
   Scene scene = load_room(dir, 0.5, 1);

@@ -14,12 +14,16 @@
 namespace fenestra {
 namespace {
 
-// Path records (trace/path_record.h): a PathEvent is 16 bytes, a path adds a 4-byte offset, and
-// events carry 4-byte element conditions; with the vectors' spare capacity, 24-37 bytes per event
-// were measured on the example scenes. Events per path: a few at the sensor (portal samples, the
+// Path records (trace/path_record.h): a PathEvent is 16 bytes and its point 8, a path adds a 4-byte
+// offset, and events carry element conditions of 4 bytes and a point of 8; with the vectors' spare
+// capacity, 33-52 bytes per event were measured on the example scenes. Events per path: a few at the sensor (portal samples, the
 // first sky and element samples) and 1-2 per further vertex (next-event estimates, escapes
 // through elements and their parts). Expected vertices: 1 + sum_{k=1..B} rho^k.
-constexpr double kBytesPerEvent = 40.0, kBytesPerPath = 8.0;
+constexpr double kBytesPerEvent = 56.0, kBytesPerPath = 8.0;
+// Thick walls: paths branch where they meet the elements' tubes (reveals or open neighbours); on
+// thick_walls_study (0.3 m walls, 0.25 m elements) records were 3.1x and tracing 5.7x the
+// zero-thickness wall's for the same paths.
+constexpr double kThickWallRecordFactor = 3.5, kThickWallTraceFactor = 6.0;
 constexpr double kEventsAtSensor = 3.0, kEventsPerVertex = 1.75;
 // While the per-task records are merged into one per sensor, both exist (peak RSS measured at
 // 2.3x the records kept on the paper-scale scene).
@@ -90,7 +94,9 @@ void add_contributions(const Scene& scene, long long paths, CostEstimate* e) {
   e->memory.push_back({"analysis", "per-thread analysis buffers", kAnalysisBytesPerElement * N * worker_threads(scene),
                        "tracing", fewer_elements});
   e->time.push_back({"tracing", "tracing the contribution paths",
-                     S * static_cast<double>(paths) * expected_vertices(scene) * kTraceSecondsPerVertex, 0.0,
+                     S * static_cast<double>(paths) * expected_vertices(scene) * kTraceSecondsPerVertex *
+                         (scene.domain.has_thick_walls() ? kThickWallTraceFactor : 1.0),
+                     0.0,
                      fewer_paths});
 }
 
@@ -157,7 +163,8 @@ std::string describe_sizes(const Scene& scene, const CostEstimate& e, const Memo
 }  // namespace
 
 double path_record_bytes(const Scene& scene) {
-  return kBytesPerPath + kBytesPerEvent * (kEventsAtSensor + kEventsPerVertex * expected_vertices(scene));
+  const double thin = kBytesPerPath + kBytesPerEvent * (kEventsAtSensor + kEventsPerVertex * expected_vertices(scene));
+  return scene.domain.has_thick_walls() ? kThickWallRecordFactor * thin : thin;
 }
 
 double CostEstimate::kept_bytes() const {

@@ -35,6 +35,11 @@ struct RevealGridFace {
   Vec3 normal;
 };
 
+// A point of a panel: meters along its u and v axes from its grid corner (Panel::origin).
+struct PanelPoint {
+  float u = 0.0f, v = 0.0f;
+};
+
 struct Element {
   int panel = 0, row = 0, col = 0;
   std::array<Vec3, 4> corners;  // counter-clockwise about the panel normal
@@ -77,6 +82,11 @@ class OpeningDomain {
   int outer_panel_of_triangle(size_t tri) const { return tri < outer_panel_.size() ? outer_panel_[tri] : -1; }
   // Element containing point p of panel `panel`, or -1 (the panel's margin).
   int element_at(int panel, const Vec3& p) const;
+  // Point p in panel coordinates: meters along its u and v axes from its grid corner.
+  PanelPoint panel_point(int panel, const Vec3& p) const {
+    const Vec3 d = p - panels_[panel].origin;
+    return {d.dot(panels_[panel].u_axis), d.dot(panels_[panel].v_axis)};
+  }
   // The cutter that opens one element: its square, through the wall thickness.
   CutterBox element_cutter(int element) const;
   // Cutter of an arbitrary rectangle (corners in order) on the domain; throws if it lies on no panel.

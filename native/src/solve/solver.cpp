@@ -255,15 +255,19 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.refined_error = goal_error(out.goals, chosen.value);
   if (settings.improve_iterations > 0) {
     if (progress) progress->start("solving: local search over openings", 1);
-    const std::vector<GridRectangle> improved =
-        improve_rectangles(scene.domain, rects, about_chosen, constraints, settings.seed, settings.improve_iterations,
-                           progress);
-    SensorValues improved_values;
-    const double f = exact_of(improved, &improved_values);
-    if (f < best) {
+    // Each round searches the exact linear model about the current openings, and is kept only if
+    // the exact evaluation agrees; the next round linearises about its answer.
+    LinearObjective about = about_chosen;
+    for (int round = 0; round < kLinearisationRounds; ++round) {
+      const std::vector<GridRectangle> improved = improve_rectangles(
+          scene.domain, rects, about, constraints, settings.seed + round, settings.improve_iterations, progress);
+      SensorValues improved_values;
+      const double f = exact_of(improved, &improved_values);
+      if (!(f < best * (1.0 - 1e-6))) break;
       best = f;
       rects = improved;
       chosen = improved_values;
+      about = linearised_objective(objective, c, rectangles_mask(scene.domain, rects), chosen.value, progress);
     }
   }
   out.open = rectangles_mask(scene.domain, rects);

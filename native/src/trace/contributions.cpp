@@ -137,6 +137,26 @@ SensorValues Contributions::evaluate(const std::vector<uint8_t>& open, const Pro
   return out;
 }
 
+SensorValues Contributions::evaluate(const OpenRegion& region, const Progress* progress) const {
+  if (region.element_count() != element_count())
+    throw std::invalid_argument("open region of a domain with " + std::to_string(region.element_count()) +
+                                " elements, expected " + std::to_string(element_count()));
+  SensorValues out;
+  out.value.resize(records.size());
+  out.standard_error.resize(records.size());
+  tbb::parallel_for(size_t(0), records.size(), [&](size_t i) {
+    ReplicateSums sums;
+    const auto is_open = [&](int32_t k, const PanelPoint& p) { return region.is_open(k, p); };
+    for (size_t p = 0; p < records[i].path_count(); ++p) {
+      if (progress && p % kPollPaths == 0 && progress->cancelled()) return;
+      sums.add(p, path_value_in_region(records[i], p, is_open));
+    }
+    sums.estimate(records[i].path_count(), &out.value[i], &out.standard_error[i]);
+  });
+  if (progress) progress->throw_if_cancelled();
+  return out;
+}
+
 size_t Contributions::memory_bytes() const {
   size_t bytes = sizeof(double) * (E.size() * 3 + T.size());
   for (const auto& r : records) bytes += r.memory_bytes();
@@ -179,7 +199,7 @@ Contributions compute_contributions(const Scene& scene, Progress* progress) {
     for (size_t t = 0; t < tasks_per_sensor; ++t) {
       if (progress && t % 64 == 0) progress->throw_if_cancelled();  // a sensor's paths may be many chunks
       rec.append(chunks[i * tasks_per_sensor + t]);
-      SensorRecord().events.swap(chunks[i * tasks_per_sensor + t].events);
+      chunks[i * tasks_per_sensor + t] = SensorRecord();  // frees the chunk
     }
     analyse_sensor(rec, i, elements, &c, progress);
   });

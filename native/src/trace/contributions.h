@@ -5,6 +5,7 @@
 
 #include "scene/scene.h"
 #include "trace/contributions_origin.h"
+#include "trace/open_region.h"
 #include "trace/path_record.h"
 #include "util/progress.h"
 
@@ -37,6 +38,9 @@ struct Contributions {
   // Exact value of every sensor with the elements where open[k] != 0 open, from the same paths.
   // With `progress`, polls cancellation every few thousand paths (throws Cancelled).
   SensorValues evaluate(const std::vector<uint8_t>& open, const Progress* progress = nullptr) const;
+  // The same for any open region: rectangles whose edges need not lie on the element grid (exact
+  // on zero-thickness panels; in thick walls the tubes follow the element grid).
+  SensorValues evaluate(const OpenRegion& region, const Progress* progress = nullptr) const;
   size_t memory_bytes() const;
 };
 

@@ -11,6 +11,8 @@ void SensorRecord::append(const SensorRecord& other) {
     events.push_back(e);
   }
   conditions.insert(conditions.end(), other.conditions.begin(), other.conditions.end());
+  event_points.insert(event_points.end(), other.event_points.begin(), other.event_points.end());
+  condition_points.insert(condition_points.end(), other.condition_points.begin(), other.condition_points.end());
 }
 
 bool SensorRecord::holds(const PathEvent& e, const std::vector<uint8_t>& open) const {

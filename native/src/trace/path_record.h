@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "scene/opening_domain.h"  // PanelPoint
+
 namespace fenestra {
 
 // An event counts when every element of its `open` list is open and every element of its
@@ -32,6 +34,11 @@ struct SensorRecord {
   std::vector<uint32_t> path_begin{0};  // events of path p: [path_begin[p], path_begin[p + 1])
   std::vector<PathEvent> events;
   std::vector<int32_t> conditions;
+  // Parallel to `events` (escapes and their parts: where the path met the element) and to
+  // `conditions` (where the element was crossed or met): any open region of the domain, not only
+  // whole elements, can be evaluated (path_value_in_region).
+  std::vector<PanelPoint> event_points;
+  std::vector<PanelPoint> condition_points;
 
   size_t path_count() const { return path_begin.size() - 1; }
   void end_path() { path_begin.push_back(static_cast<uint32_t>(events.size())); }
@@ -39,12 +46,39 @@ struct SensorRecord {
   // Whether event e's conditions hold for the open mask.
   bool holds(const PathEvent& e, const std::vector<uint8_t>& open) const;
   size_t memory_bytes() const {
-    return path_begin.capacity() * sizeof(uint32_t) + events.capacity() * sizeof(PathEvent) +
-           conditions.capacity() * sizeof(int32_t);
+    return path_begin.capacity() * sizeof(uint32_t) + events.capacity() * (sizeof(PathEvent) + sizeof(PanelPoint)) +
+           conditions.capacity() * (sizeof(int32_t) + sizeof(PanelPoint));
   }
 };
 
 // Value of path p of `record` when exactly the elements with open[k] != 0 are open.
 double path_value(const SensorRecord& record, size_t p, const std::vector<uint8_t>& open);
+
+// Value of path p when the domain is open where is_open(element, point) holds: the point is
+// where the path met the element. With is_open(k, point) = open[k], this is path_value.
+template <typename IsOpen>
+double path_value_in_region(const SensorRecord& r, size_t p, IsOpen is_open) {
+  auto holds = [&](const PathEvent& e) {
+    for (uint32_t i = e.conditions_begin; i < e.conditions_begin + e.open_count; ++i)
+      if (!is_open(r.conditions[i], r.condition_points[i])) return false;
+    for (uint32_t i = e.conditions_begin + e.open_count; i < e.conditions_begin + e.open_count + e.closed_count; ++i)
+      if (is_open(r.conditions[i], r.condition_points[i])) return false;
+    return true;
+  };
+  double sum = 0.0;
+  const uint32_t end = r.path_begin[p + 1];
+  for (uint32_t i = r.path_begin[p]; i < end; ++i) {
+    const PathEvent& e = r.events[i];
+    if (e.is_light()) {
+      if (holds(e)) sum += e.value;
+    } else if (e.is_escape() && is_open(e.element, r.event_points[i])) {
+      sum += e.value;
+      for (uint32_t j = i + 1; j < end && r.events[j].is_escape_part(); ++j)
+        if (holds(r.events[j])) sum += r.events[j].value;
+      return sum;
+    }
+  }
+  return sum;
+}
 
 }  // namespace fenestra

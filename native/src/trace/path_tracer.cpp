@@ -78,7 +78,7 @@ struct PathTracer::Surface {
 struct PathTracer::Shadow {
   bool visible = false;
   Rgb attenuation = Rgb::Ones();
-  std::array<int32_t, kMaxCrossed> crossed;
+  std::array<Crossing, kMaxCrossed> crossed;
   std::array<float, kMaxCrossed> crossed_distance;
   int crossed_count = 0;
   bool first_is_element = false;  // the ray met an element before anything else (portals reach it)
@@ -112,11 +112,11 @@ class PathTracer::Sink {
   bool recording() const { return record_ != nullptr; }
   bool outside_element() const { return outside_; }
 
-  void light(const Rgb& c, const int32_t* crossed, int count) { light(luminance(c), crossed, count); }
-  void light(float v, const int32_t* crossed, int count) {
+  void light(const Rgb& c, const Crossing* crossed, int count) { light(luminance(c), crossed, count); }
+  void light(float v, const Crossing* crossed, int count) {
     if (!(v > 0.0f) || !std::isfinite(v)) return;
     if (record_) {
-      push(v, -1, 0, crossed, count, nullptr, 0);
+      push(v, -1, {}, 0, crossed, count, nullptr, 0);
     } else if (count == 0) {
       parts_[current_].value += v;
     } else if (condition_count() + count <= kMaxConditions) {
@@ -135,7 +135,7 @@ class PathTracer::Sink {
   bool can_pass(bool through_face) const {
     return condition_count() < kMaxConditions && (!through_face || parts_[current_].passes < kMaxPassed);
   }
-  Sink passing(int j, bool through_face) const {
+  Sink passing(const Crossing& j, bool through_face) const {
     Sink child = Sink::outside();
     Part& part = child.parts_[0];
     part = parts_[current_];
@@ -152,7 +152,7 @@ class PathTracer::Sink {
   }
   // Outside: from now on, the light found needs element j closed. Returns false when the
   // conditions are full (the caller stops: what follows is not recorded).
-  bool reflect_off(int j) {
+  bool reflect_off(const Crossing& j) {
     if (condition_count() >= kMaxConditions) return false;
     Part next = parts_[current_];
     next.value = 0.0;
@@ -162,23 +162,23 @@ class PathTracer::Sink {
     return true;
   }
   // Recording: what `outside` found beyond element k, reached by the path (an escape) ...
-  void escape(int k, const Sink& outside) {
-    push(finite(outside.parts_[0].value), k, 0, nullptr, 0, nullptr, 0);
+  void escape(const Crossing& k, const Sink& outside) {
+    push(finite(outside.parts_[0].value), k.element, k.point, 0, nullptr, 0, nullptr, 0);
     for (size_t n = 1; n < outside.parts_.size(); ++n) {
       const Part& part = outside.parts_[n];
       if (part.value == 0.0) continue;
-      push(finite(part.value), k, PathEvent::kEscapePart, part.conditions.data(), part.open_count,
+      push(finite(part.value), k.element, k.point, PathEvent::kEscapePart, part.conditions.data(), part.open_count,
            part.conditions.data() + part.open_count, part.closed_count);
     }
   }
   // ... or reached by a portal sample (light that needs k open).
-  void light_through(int k, const Sink& outside) {
+  void light_through(const Crossing& k, const Sink& outside) {
     for (const Part& part : outside.parts_) {
       if (!(part.value > 0.0) || !std::isfinite(part.value)) continue;
-      std::array<int32_t, kMaxConditions + 1> open;
+      std::array<Crossing, kMaxConditions + 1> open;
       open[0] = k;
       std::copy(part.conditions.begin(), part.conditions.begin() + part.open_count, open.begin() + 1);
-      push(static_cast<float>(part.value), -1, 0, open.data(), part.open_count + 1,
+      push(static_cast<float>(part.value), -1, {}, 0, open.data(), part.open_count + 1,
            part.conditions.data() + part.open_count, part.closed_count);
     }
   }
@@ -193,18 +193,25 @@ class PathTracer::Sink {
     double value = 0.0;
     uint8_t open_count = 0, closed_count = 0;
     uint8_t passes = 0;  // element faces gone through
-    std::array<int32_t, kMaxConditions> conditions{};  // open ones first
+    std::array<Crossing, kMaxConditions> conditions{};  // open ones first
   };
 
   Sink(SensorRecord* record, bool outside) : record_(record), outside_(outside), parts_(1) {}
   int condition_count() const { return parts_[current_].open_count + parts_[current_].closed_count; }
   static float finite(double v) { return std::isfinite(v) ? static_cast<float>(v) : 0.0f; }
-  void push(float v, int element, uint8_t flags, const int32_t* open, size_t open_count, const int32_t* closed,
-            size_t closed_count) {
+  void push(float v, int element, const PanelPoint& at, uint8_t flags, const Crossing* open, size_t open_count,
+            const Crossing* closed, size_t closed_count) {
     record_->events.push_back({v, element, static_cast<uint32_t>(record_->conditions.size()),
                                static_cast<uint16_t>(open_count), static_cast<uint8_t>(closed_count), flags});
-    record_->conditions.insert(record_->conditions.end(), open, open + open_count);
-    record_->conditions.insert(record_->conditions.end(), closed, closed + closed_count);
+    record_->event_points.push_back(at);
+    append_conditions(open, open_count);
+    append_conditions(closed, closed_count);
+  }
+  void append_conditions(const Crossing* c, size_t count) {
+    for (size_t i = 0; i < count; ++i) {
+      record_->conditions.push_back(c[i].element);
+      record_->condition_points.push_back(c[i].point);
+    }
   }
 
   SensorRecord* record_;
@@ -271,14 +278,11 @@ void PathTracer::sensor_portals(size_t sensor, size_t path, SensorPortal* out) c
 }
 
 
-float PathTracer::portal_pdf(const int32_t* crossed, const float* distance, int count, const Vec3& dir) const {
+float PathTracer::portal_pdf(int k, float distance, const Vec3& dir) const {
   // Element chosen with probability 1/No, then a uniform point on it, converted to solid angle.
-  float pdf = 0.0f;
-  for (int i = 0; i < count; ++i) {
-    const float cos = std::abs(dir.dot(portals_[crossed[i]].normal));
-    if (cos > 1e-6f) pdf += distance[i] * distance[i] / (element_area_ * cos);
-  }
-  return pdf / static_cast<float>(portals_.size());
+  const float cos = std::abs(dir.dot(portals_[k].normal));
+  if (!(cos > 1e-6f)) return 0.0f;
+  return distance * distance / (element_area_ * cos) / static_cast<float>(portals_.size());
 }
 
 template <typename BsdfOfDirection>
@@ -313,7 +317,7 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   const CutterSet through{scene_.domain.element_cutter(k)};
   Sink outside = Sink::outside();
   trace(x, dir, through_state, &through, rng, outside);
-  sink.light_through(k, outside);
+  sink.light_through({k, scene_.domain.panel_point(scene_.domain.elements()[k].panel, y)}, outside);
 }
 
 PathTracer::Surface PathTracer::surface(const Hit& hit) const {
@@ -338,12 +342,13 @@ PathTracer::Surface PathTracer::surface(const Hit& hit) const {
   return s;
 }
 
-int PathTracer::element_met(const Surface& s, const Vec3& p, const Vec3& dir) const {
+PathTracer::Crossing PathTracer::crossing_met(const Surface& s, const Vec3& p, const Vec3& dir) const {
   if (s.reveal_grid_face >= 0) {  // the cell the ray would go on into
     const RevealGridFace& f = reveal_grid_faces_[s.reveal_grid_face];
-    return dir.dot(f.normal) > 0.0f ? f.upper : f.lower;
+    return {dir.dot(f.normal) > 0.0f ? f.upper : f.lower, scene_.domain.panel_point(f.panel, p)};
   }
-  return s.panel >= 0 ? scene_.domain.element_at(s.panel, p) : -1;
+  if (s.panel < 0) return {};
+  return {scene_.domain.element_at(s.panel, p), scene_.domain.panel_point(s.panel, p)};
 }
 
 void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutters, bool collect, Shadow* out) const {
@@ -365,11 +370,12 @@ void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutte
     const Surface s = surface(h);
     tnear = h.t + kRayEpsilon;
     if (collect && (s.panel >= 0 || s.reveal_grid_face >= 0)) {
-      const int k = element_met(s, org + h.t * dir, dir);
+      const Crossing crossing = crossing_met(s, org + h.t * dir, dir);
+      const int k = crossing.element;
       if (k < 0 || out->crossed_count == kMaxCrossed) return;  // the panel's margin is always wall
       if (i == 0 && s.inner_face()) out->first_is_element = true;
       out->crossed_distance[out->crossed_count] = h.t;
-      out->crossed[out->crossed_count++] = k;
+      out->crossed[out->crossed_count++] = crossing;
       if (active != &with_crossed) {
         if (cutters) with_crossed = *cutters;
         active = &with_crossed;
@@ -390,7 +396,7 @@ float PathTracer::strategy_weight(const PathState& st, float sky_pdf) {
                       : power_heuristic(st.prev_pdf, sky_pdf, st.portal_pdf);
 }
 
-void PathTracer::record_escape(int k, bool inner_face, const Vec3& org, const Vec3& dir, float t, const PathState& st,
+void PathTracer::record_escape(const Crossing& met, bool inner_face, const Vec3& org, const Vec3& dir, float t, const PathState& st,
                                Rng& rng, Sink& sink) const {
   Sink outside = Sink::outside();
   // From the sensor, portal samples alone carry the light arriving through elements' inner faces.
@@ -400,13 +406,13 @@ void PathTracer::record_escape(int k, bool inner_face, const Vec3& org, const Ve
     outside_state.branch_both_depth = st.depth;
     if (st.portals && inner_face) {
       const float distance = (org + t * dir - st.vertex).norm();
-      outside_state.portal_pdf = portal_pdf(&k, &distance, 1, dir);
+      outside_state.portal_pdf = portal_pdf(met.element, distance, dir);
     }
     // What would arrive through k if it were open: the same ray, continued with k cut.
-    const CutterSet through{scene_.domain.element_cutter(k)};
+    const CutterSet through{scene_.domain.element_cutter(met.element)};
     trace(org, dir, outside_state, &through, rng, outside);
   }
-  sink.escape(k, outside);
+  sink.escape(met, outside);
 }
 
 void PathTracer::sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
@@ -427,7 +433,7 @@ void PathTracer::sample_sky_once(const Vertex& v, const PathState& st, const Cut
   shadow(offset_origin(v.p, v.ng, wl), wl, cutters, sink.recording() || sink.outside_element(), &sh);
   if (!sh.visible) return;
   const float portal = sink.recording() && sh.first_is_element
-                           ? portal_pdf(sh.crossed.data(), sh.crossed_distance.data(), 1, wl)
+                           ? portal_pdf(sh.crossed[0].element, sh.crossed_distance[0], wl)
                            : 0.0f;
   const float w = power_heuristic(count * light_pdf, bsdf_pdf(*v.material, v.wo, wl_local), portal);
   sink.light(st.beta * f * sky.radiance(wl) * sh.attenuation * (w / (count * light_pdf)), sh.crossed.data(),
@@ -465,13 +471,13 @@ void PathTracer::sample_interior_portal(const Vertex& v, const PathState& st, Rn
                 sink);
 }
 
-bool PathTracer::meet_element_outside(int j, bool through_face, const Vec3& org, const Vec3& dir, PathState& st,
+bool PathTracer::meet_element_outside(const Crossing& j, bool through_face, const Vec3& org, const Vec3& dir, PathState& st,
                                       const CutterSet* cutters, Rng& rng, Sink& sink) const {
   if (!sink.can_pass(through_face)) return sink.reflect_off(j);
   auto pass = [&](const PathState& state) {
     Sink passing = sink.passing(j, through_face);
     CutterSet through = cutters ? *cutters : CutterSet{};
-    through.push_back(scene_.domain.element_cutter(j));
+    through.push_back(scene_.domain.element_cutter(j.element));
     trace(org, dir, state, &through, rng, passing);
     sink.absorb(passing);
   };
@@ -510,10 +516,11 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
     if (sink.recording() || sink.outside_element()) {
       // An element's face (inner or outer), or the side of an open element's tube through a thick
       // wall, which is the reveal of a closed neighbour or the way on into an open one.
-      const int k = element_met(s, v.p, dir);
-      if (k >= 0 && sink.recording()) record_escape(k, s.inner_face(), org, dir, h.t, st, rng, sink);
+      const Crossing met = crossing_met(s, v.p, dir);
+      if (met.element >= 0 && sink.recording()) record_escape(met, s.inner_face(), org, dir, h.t, st, rng, sink);
       const bool through_face = s.reveal_grid_face < 0;
-      if (k >= 0 && sink.outside_element() && !meet_element_outside(k, through_face, org, dir, st, cutters, rng, sink))
+      if (met.element >= 0 && sink.outside_element() &&
+          !meet_element_outside(met, through_face, org, dir, st, cutters, rng, sink))
         return;
     }
     if (st.portal_pdf > 0.0f) {

@@ -40,6 +40,11 @@ class PathTracer {
  private:
   struct PathState;
   struct Surface;
+  // An element met by a ray, and where on its panel.
+  struct Crossing {
+    int32_t element = -1;
+    PanelPoint point;
+  };
   struct Shadow;
   struct Vertex;
   class Sink;
@@ -49,9 +54,9 @@ class PathTracer {
   };
 
   void trace_sensor(size_t sensor, size_t path, Rng& rng, const CutterSet* cutters, Sink& sink) const;
-  // Solid-angle density with which portal sampling at a vertex yields `dir`, which crosses the
-  // listed elements at the listed distances.
-  float portal_pdf(const int32_t* crossed, const float* distance, int count, const Vec3& dir) const;
+  // Solid-angle density with which portal sampling at a vertex yields `dir`, which meets element k
+  // first, at `distance`.
+  float portal_pdf(int k, float distance, const Vec3& dir) const;
   // Portal sample through point uv of element k from vertex x (normal n, path state st): a direction through a
   // random point of k, followed outside with k cut; recorded as light that needs k open.
   // f_and_pdf(dir, &pdf) gives the vertex's BSDF times cosine and BSDF density toward dir.
@@ -72,14 +77,14 @@ class PathTracer {
   // A sub-path beyond an element meets element j (its face, or its tube's side from an open
   // neighbour inside a thick wall): branches for j open; returns false when the sub-path must stop
   // (too many conditions).
-  bool meet_element_outside(int j, bool through_face, const Vec3& org, const Vec3& dir, PathState& st,
+  bool meet_element_outside(const Crossing& j, bool through_face, const Vec3& org, const Vec3& dir, PathState& st,
                             const CutterSet* cutters, Rng& rng, Sink& sink) const;
   // Records what arrives through element k, met at distance t along (org, dir) on its inner face
   // (portals aim there) or its wall's outer face.
-  void record_escape(int k, bool inner_face, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
+  void record_escape(const Crossing& met, bool inner_face, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
                      Sink& sink) const;
   // The element a ray along dir meets at surface s (point p), or -1 (no element: the panel's margin).
-  int element_met(const Surface& s, const Vec3& p, const Vec3& dir) const;
+  Crossing crossing_met(const Surface& s, const Vec3& p, const Vec3& dir) const;
   // Next-event estimation toward the sky from a vertex, with `count` samples.
   void sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
                   Sink& sink) const;

@@ -1,0 +1,105 @@
+// Openings whose edges lie between grid lines: the path records evaluate them from where each
+// path met the domain, against `evaluate` with the rectangles really cut.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "test_scenes.h"
+#include "trace/contributions.h"
+#include "trace/evaluate.h"
+
+namespace fenestra {
+namespace {
+
+using test::ObjBuilder;
+using test::TempDir;
+using test::within_sigma;
+
+Scene room_with_neighbour(const TempDir& dir, int paths) {
+  ObjBuilder obj;
+  obj.box({0, 0, 0}, {4, 3, 2.5f}, [](const std::string& f) { return f == "south" || f == "ceiling" ? "domain" : "grey"; });
+  obj.quad("ground", "ground", {-30, -30, -0.01f}, {30, -30, -0.01f}, {30, 30, -0.01f}, {-30, 30, -0.01f});
+  obj.quad("neighbour", "grey", {-5, -4, 0}, {-5, -4, 6}, {8, -4, 6}, {8, -4, 0});
+  dir.write("scene.obj", obj.str());
+  std::ostringstream s;
+  s << R"({"fenestra": 1, "geometry": "scene.obj",
+      "materials": {"grey": {"reflectance": 0.6}, "domain": {"reflectance": 0.5}, "ground": {"reflectance": 0.2}},
+      "opening_domain": {"materials": ["domain"], "element_size": 0.5},
+      "sensors": {"points": [[1, 1, 0.8], [3, 2, 0.8], [2, 2.5, 1.2], [0.5, 0.5, 2]], "normals": [0, 0, 1]},
+      "sky": {"type": "preetham", "latitude": 48.85, "longitude": 2.35, "utc_offset": 1, "date": "2026-03-21",
+              "time": "11:00", "resolution": [128, 64]},
+      "render": {"paths_per_sensor": )"
+    << paths << R"(, "max_bounces": 6, "seed": 5}})";
+  dir.write("scene.json", s.str());
+  return load_scene(dir.file("scene.json"));
+}
+
+// The rectangle [u0, u1] x [v0, v1] of panel p in world corners (for evaluate).
+Rectangle world_corners(const OpeningDomain& domain, const PanelRectangle& r) {
+  const Panel& p = domain.panels()[r.panel];
+  auto at = [&](double u, double v) {
+    return Vec3(p.origin + static_cast<float>(u) * p.u_axis + static_cast<float>(v) * p.v_axis);
+  };
+  return {at(r.u0, r.v0), at(r.u1, r.v0), at(r.u1, r.v1), at(r.u0, r.v1)};
+}
+
+int wall_panel(const Scene& scene) {
+  for (size_t p = 0; p < scene.domain.panels().size(); ++p)
+    if (std::abs(scene.domain.panels()[p].normal.z()) < 0.5f) return static_cast<int>(p);
+  return -1;
+}
+
+TEST(OpenRegion, GridAlignedRegionEqualsTheElementMask) {
+  TempDir dir;
+  const Scene scene = room_with_neighbour(dir, 1 << 10);
+  const Contributions c = compute_contributions(scene);
+  const int wall = wall_panel(scene);
+  const PanelRectangle r{wall, 0.5, 2.0, 0.5, 2.0};
+  std::vector<uint8_t> mask(scene.domain.element_count(), 0);
+  for (size_t k = 0; k < mask.size(); ++k) {
+    const Element& e = scene.domain.elements()[k];
+    const PanelPoint q = scene.domain.panel_point(e.panel, e.center);
+    mask[k] = e.panel == wall && q.u > r.u0 && q.u < r.u1 && q.v > r.v0 && q.v < r.v1;
+  }
+  ASSERT_EQ(std::count(mask.begin(), mask.end(), 1), 9);
+  const SensorValues a = c.evaluate(mask), b = c.evaluate(OpenRegion(scene.domain, {r}));
+  for (Eigen::Index i = 0; i < a.value.size(); ++i) {
+    EXPECT_NEAR(a.value[i], b.value[i], 1e-9 * (1.0 + a.value[i])) << "sensor " << i;
+    EXPECT_NEAR(a.standard_error[i], b.standard_error[i], 1e-9 * (1.0 + a.standard_error[i])) << "sensor " << i;
+  }
+}
+
+TEST(OpenRegion, RectanglesOffTheGridMatchEvaluate) {
+  TempDir dir;
+  const Scene scene = room_with_neighbour(dir, 1 << 13);
+  const Contributions c = compute_contributions(scene);
+  const int wall = wall_panel(scene);
+  const int roof = 1 - wall;
+  // A window with every edge between grid lines, a narrow one, and a skylight (0.37 m off the grid).
+  const std::vector<PanelRectangle> rects = {{wall, 0.33, 1.61, 0.71, 1.93}, {wall, 2.6, 2.85, 0.2, 2.3},
+                                             {roof, 1.37, 2.12, 0.87, 1.49}};
+  std::vector<Rectangle> cuts;
+  for (const auto& r : rects) cuts.push_back(world_corners(scene.domain, r));
+  const SensorValues exact = c.evaluate(OpenRegion(scene.domain, rects));
+  const SensorValues truth = evaluate_openings(scene, cuts);
+  for (Eigen::Index i = 0; i < exact.value.size(); ++i) {
+    EXPECT_GT(truth.value[i], 0.0);
+    EXPECT_TRUE(within_sigma(exact.value[i], exact.standard_error[i], truth.value[i], truth.standard_error[i]))
+        << "sensor " << i;
+  }
+  // And the test can tell: the nearest whole-element window differs.
+  std::vector<uint8_t> mask(scene.domain.element_count(), 0);
+  for (size_t k = 0; k < mask.size(); ++k) {
+    const Element& e = scene.domain.elements()[k];
+    mask[k] = OpenRegion(scene.domain, rects).is_open(static_cast<int32_t>(k), scene.domain.panel_point(e.panel, e.center));
+  }
+  const SensorValues snapped = c.evaluate(mask);
+  int distinct = 0;
+  for (Eigen::Index i = 0; i < exact.value.size(); ++i)
+    distinct += !within_sigma(snapped.value[i], snapped.standard_error[i], truth.value[i], truth.standard_error[i]);
+  EXPECT_GT(distinct, 0);
+}
+
+}  // namespace
+}  // namespace fenestra

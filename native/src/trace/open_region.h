@@ -1,0 +1,35 @@
+#pragma once
+// Open parts of the opening domain as rectangles in panel coordinates, not only whole elements:
+// what the path records evaluate when openings' edges lie between grid lines.
+#include <cstdint>
+#include <vector>
+
+#include "scene/opening_domain.h"
+
+namespace fenestra {
+
+// [u0, u1] x [v0, v1] on a panel, meters from its grid corner (Panel::origin along u_axis, v_axis).
+struct PanelRectangle {
+  int panel = 0;
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  double width() const { return u1 - u0; }
+  double height() const { return v1 - v0; }
+};
+
+class OpenRegion {
+ public:
+  OpenRegion(const OpeningDomain& domain, const std::vector<PanelRectangle>& rectangles);
+  // Whether the point where a path met element k lies in an open rectangle of k's panel.
+  bool is_open(int32_t element, const PanelPoint& p) const {
+    for (const PanelRectangle& r : by_panel_[element_panel_[element]])
+      if (p.u > r.u0 && p.u < r.u1 && p.v > r.v0 && p.v < r.v1) return true;
+    return false;
+  }
+  size_t element_count() const { return element_panel_.size(); }
+
+ private:
+  std::vector<int> element_panel_;
+  std::vector<std::vector<PanelRectangle>> by_panel_;
+};
+
+}  // namespace fenestra
