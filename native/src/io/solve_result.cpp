@@ -41,7 +41,7 @@ json constraints_json(const OpeningConstraints& c) {
       {"max_aspect", c.max_aspect}, {"min_width", c.min_width},   {"max_width", c.max_width},
       {"min_height", c.min_height}, {"max_height", c.max_height}, {"min_gap", c.min_gap},
       {"margin", c.margin},         {"sill_min", c.sill_min},     {"sill_max", c.sill_max},
-      {"head_min", c.head_min},     {"head_max", c.head_max}};
+      {"head_min", c.head_min},     {"head_max", c.head_max},     {"module", c.module}};
   for (const auto& [name, value] : values)
     if (std::isfinite(value) && value > 0.0) j[name] = value;  // only what constrains
   if (c.max_openings > 0) j["max_openings"] = c.max_openings;
@@ -110,6 +110,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                          {"error", error_json(r.unconstrained_error)}}},
       {"timings_s", timings},
       {"genetic", {{"generations", r.generations}, {"coarse_factors", r.coarse_factors}, {"history", history}}},
+      {"edge_moves", r.edge_moves},
       {"settings", {{"paths_per_sensor", s.paths_per_sensor > 0 ? s.paths_per_sensor : scene.render.paths_per_sensor},
                     {"population", s.population},
                     {"generations", s.generations},
@@ -127,6 +128,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                        return per_panel;
                      }()},
                     {"improve_iterations", s.improve_iterations},
+                    {"refine_edges", s.refine_edges},
                     {"verify", s.verify}}}};
 }
 

@@ -425,14 +425,14 @@ OpeningConstraints parse_constraints(const ScenePath& sp, const json& j) {
   check_known_keys(sp, j, key,
                    {"min_area", "max_area", "min_aspect", "max_aspect", "min_width", "max_width", "min_height",
                     "max_height", "max_openings", "min_gap", "margin", "sill_min", "sill_max", "head_min",
-                    "head_max"});
+                    "head_max", "module"});
   OpeningConstraints c;
   const std::pair<const char*, double*> values[] = {
       {"min_area", &c.min_area},     {"max_area", &c.max_area},     {"min_aspect", &c.min_aspect},
       {"max_aspect", &c.max_aspect}, {"min_width", &c.min_width},   {"max_width", &c.max_width},
       {"min_height", &c.min_height}, {"max_height", &c.max_height}, {"min_gap", &c.min_gap},
       {"margin", &c.margin},         {"sill_min", &c.sill_min},     {"sill_max", &c.sill_max},
-      {"head_min", &c.head_min},     {"head_max", &c.head_max}};
+      {"head_min", &c.head_min},     {"head_max", &c.head_max},     {"module", &c.module}};
   for (const auto& [name, value] : values) {
     *value = number_or(sp, j, name, key, *value);
     if (*value < 0.0) sp.fail(key + "." + name, "must not be negative");
@@ -495,7 +495,7 @@ SolverSettings parse_solver(const ScenePath& sp, const json& j) {
   check_known_keys(sp, j, "solver",
                    {"element_size", "paths", "population", "generations", "seed", "time_budget_s", "shape_weights",
                     "bound_weight", "coarse_to_fine", "elite", "constraints", "panel_constraints", "improve_iterations",
-                    "verify"});
+                    "verify", "refine_edges"});
   auto integer = [&](const char* name, int lo, int hi, int fallback) {
     if (!j.contains(name)) return fallback;
     const double v = number(sp, j.at(name), std::string("solver.") + name);
@@ -518,6 +518,10 @@ SolverSettings parse_solver(const ScenePath& sp, const json& j) {
     s.coarse_to_fine = j.at("coarse_to_fine").get<bool>();
   }
   s.improve_iterations = integer("improve_iterations", 0, 100000000, s.improve_iterations);
+  if (j.contains("refine_edges")) {
+    if (!j.at("refine_edges").is_boolean()) sp.fail("solver.refine_edges", "expected true or false");
+    s.refine_edges = j.at("refine_edges").get<bool>();
+  }
   if (j.contains("verify")) {
     if (!j.at("verify").is_boolean()) sp.fail("solver.verify", "expected true or false");
     s.verify = j.at("verify").get<bool>();

@@ -147,6 +147,7 @@ std::string OpeningConstraints::to_string() const {
   item("max_openings", max_openings, 0, "");
   item("min_gap", min_gap, 0.0, " m");
   item("margin", margin, 0.0, " m");
+  item("module", module, 0.0, " m");
   item("sill_min", sill_min, 0.0, " m");
   item("sill_max", sill_max, kInfinity, " m");
   item("head_min", head_min, 0.0, " m");
@@ -200,6 +201,7 @@ void check_feasible(const OpeningConstraints& c, double a) {
   check_value("max_height", c.max_height, true);
   check_value("min_gap", c.min_gap, false);
   check_value("margin", c.margin, false);
+  check_value("module", c.module, false);
   check_value("sill_min", c.sill_min, false);
   check_value("sill_max", c.sill_max, true);
   check_value("head_min", c.head_min, false);

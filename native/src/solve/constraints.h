@@ -26,6 +26,9 @@ struct OpeningConstraints {
   int max_openings = 0;  // over the whole domain; 0: unlimited
   double min_gap = 0.0;  // clear distance between the edges of two openings of one panel
   double margin = 0.0;   // clear distance from the panel's edges and holes, in whole elements of its grid
+  // Openings' edges off the element grid land on multiples of this from the panel's grid corner
+  // (meters); 0: anywhere (found to 1 cm). Not a limit: openings on the grid always qualify.
+  double module = 0.0;
   // On walls only (normal within 30 degrees of horizontal), above the panel's base height.
   double sill_min = 0.0, sill_max = kUnlimited;
   double head_min = 0.0, head_max = kUnlimited;

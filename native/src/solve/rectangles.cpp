@@ -1,5 +1,7 @@
 #include "solve/rectangles.h"
 
+#include <cmath>
+
 #include <map>
 #include <tuple>
 
@@ -28,6 +30,39 @@ OpeningRectangle to_world(const OpeningDomain& domain, const GridRectangle& rect
   return r;
 }
 
+OpeningRectangle to_world(const OpeningDomain& domain, const PanelRectangle& rect) {
+  const Panel& panel = domain.panels()[rect.panel];
+  const double a = domain.element_size();
+  OpeningRectangle r;
+  r.panel = rect.panel;
+  r.col0 = static_cast<int>(std::floor(rect.u0 / a + 1e-6));
+  r.col1 = static_cast<int>(std::ceil(rect.u1 / a - 1e-6)) - 1;
+  r.row0 = static_cast<int>(std::floor(rect.v0 / a + 1e-6));
+  r.row1 = static_cast<int>(std::ceil(rect.v1 / a - 1e-6)) - 1;
+  for (int row = std::max(0, r.row0); row <= std::min(panel.rows - 1, r.row1); ++row)
+    for (int col = std::max(0, r.col0); col <= std::min(panel.cols - 1, r.col1); ++col) {
+      const int k = panel.grid[static_cast<size_t>(row) * panel.cols + col];
+      const double cu = (col + 0.5) * a, cv = (row + 0.5) * a;
+      if (k >= 0 && cu > rect.u0 && cu < rect.u1 && cv > rect.v0 && cv < rect.v1) r.elements.push_back(k);
+    }
+  const Vec3 base = panel.origin + static_cast<float>(rect.u0) * panel.u_axis + static_cast<float>(rect.v0) * panel.v_axis;
+  r.width = rect.width();
+  r.height = rect.height();
+  const Vec3 u = static_cast<float>(r.width) * panel.u_axis, v = static_cast<float>(r.height) * panel.v_axis;
+  r.corners = {base, base + u, base + u + v, base + v};
+  r.centre = base + 0.5f * (u + v);
+  r.outward = panel.outward;
+  r.depth = panel.thickness;
+  return r;
+}
+
+std::vector<uint8_t> open_elements(const OpeningDomain& domain, const std::vector<PanelRectangle>& openings) {
+  std::vector<uint8_t> open(domain.element_count(), 0);
+  for (const PanelRectangle& r : openings)
+    for (int k : to_world(domain, r).elements) open[k] = 1;
+  return open;
+}
+
 std::vector<OpeningRectangle> merge_into_rectangles(const OpeningDomain& domain, const std::vector<uint8_t>& open) {
   const auto& elements = domain.elements();
   std::map<std::tuple<int, int, int>, int> index;  // (panel, row, col) -> element
@@ -52,7 +87,7 @@ std::vector<OpeningRectangle> merge_into_rectangles(const OpeningDomain& domain,
     }
     for (int rr = row0; rr <= row1; ++rr)
       for (int c = col0; c <= col1; ++c) index.erase({panel, rr, c});
-    out.push_back(to_world(domain, {panel, row0, row1, col0, col1}));
+    out.push_back(to_world(domain, GridRectangle{panel, row0, row1, col0, col1}));
   }
   return out;
 }

@@ -6,6 +6,7 @@
 
 #include "scene/opening_domain.h"
 #include "solve/constraints.h"
+#include "trace/open_region.h"
 
 namespace fenestra {
 
@@ -22,6 +23,12 @@ struct OpeningRectangle {
 
 // A grid rectangle of whole elements, in world coordinates.
 OpeningRectangle to_world(const OpeningDomain& domain, const GridRectangle& rect);
+
+// An opening off the grid (edges anywhere on its panel), in world coordinates; rows and columns
+// span the element squares it overlaps, `elements` those whose centre it contains.
+OpeningRectangle to_world(const OpeningDomain& domain, const PanelRectangle& rect);
+// Elements whose centre lies in one of the openings.
+std::vector<uint8_t> open_elements(const OpeningDomain& domain, const std::vector<PanelRectangle>& openings);
 
 std::vector<OpeningRectangle> merge_into_rectangles(const OpeningDomain& domain, const std::vector<uint8_t>& open);
 

@@ -15,6 +15,7 @@
 #include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
 #include "trace/flip_effects.h"
+#include "solve/edge_refinement.h"
 
 namespace fenestra {
 namespace {
@@ -257,7 +258,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     if (progress) progress->start("solving: local search over openings", 1);
     // Each round searches the exact linear model about the current openings, and is kept only if
     // the exact evaluation agrees; the next round linearises about its answer.
-    LinearObjective about = about_chosen;
+    LinearObjective about = linearised_objective(objective, c, rectangles_mask(scene.domain, rects), chosen.value, progress);
     for (int round = 0; round < kLinearisationRounds; ++round) {
       const std::vector<GridRectangle> improved = improve_rectangles(
           scene.domain, rects, about, constraints, settings.seed + round, settings.improve_iterations, progress);
@@ -274,6 +275,26 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.openings.clear();
   for (const GridRectangle& r : rects) out.openings.push_back(to_world(scene.domain, r));
   out.fitness = best;
+  // Edges below the element size, where the exact error says so (zero-thickness panels).
+  if (settings.refine_edges && !rects.empty()) {
+    if (progress) progress->start("solving: edges off the element grid", 1);
+    std::vector<PanelRectangle> on_grid;
+    for (const GridRectangle& r : rects) on_grid.push_back(panel_rectangle(r, scene.domain.element_size()));
+    const EdgeRefinement edges = refine_edges(scene.domain, c, objective, constraints, on_grid, progress);
+    out.edge_moves = edges.moves;
+    if (edges.moves > 0) {
+      const SensorValues v = c.evaluate(OpenRegion(scene.domain, edges.openings), progress);
+      const double grid_error = prediction_error(objective, chosen.value - c.closed.value);
+      const double error = prediction_error(objective, v.value - c.closed.value);
+      if (error < grid_error) {
+        chosen = v;
+        out.fitness = best - grid_error + error;
+        out.openings.clear();
+        for (const PanelRectangle& r : edges.openings) out.openings.push_back(to_world(scene.domain, r));
+        out.open = open_elements(scene.domain, edges.openings);
+      }
+    }
+  }
   out.predicted = chosen.value;
   out.predicted_stderr = chosen.standard_error;
   out.linear = linear_prediction(c, out.open);

@@ -38,6 +38,7 @@ struct SolveResult {
   int nnls_iterations = 0;
   std::vector<GenerationRecord> history;     // the fine-grid genetic stage
   int generations = 0;
+  int edge_moves = 0;  // edges moved off the element grid (refine_edges)
   double fitness = 0.0;                      // the chosen state's fitness with exact predictions
   std::vector<int> coarse_factors;           // coarse grids solved first (e.g. 4, 2)
   struct Timing {

@@ -9,22 +9,6 @@
 #include "util/progress.h"
 
 namespace fenestra {
-namespace {
-
-// Elements a path's value can depend on: those its escapes reach and those its events' conditions name.
-void elements_of_path(const SensorRecord& r, size_t p, std::vector<int32_t>* out) {
-  out->clear();
-  for (uint32_t i = r.path_begin[p]; i < r.path_begin[p + 1]; ++i) {
-    const PathEvent& e = r.events[i];
-    if (e.element >= 0) out->push_back(e.element);
-    const int32_t* c = r.conditions.data() + e.conditions_begin;
-    out->insert(out->end(), c, c + e.open_count + e.closed_count);
-  }
-  std::sort(out->begin(), out->end());
-  out->erase(std::unique(out->begin(), out->end()), out->end());
-}
-
-}  // namespace
 
 Eigen::MatrixXd flip_effects(const Contributions& c, const std::vector<uint8_t>& open, const Progress* progress) {
   if (open.size() != c.element_count())
@@ -37,7 +21,7 @@ Eigen::MatrixXd flip_effects(const Contributions& c, const std::vector<uint8_t>&
     std::vector<int32_t> touched;
     for (size_t p = 0; p < r.path_count(); ++p) {
       if (progress && p % 4096 == 0 && progress->cancelled()) return;
-      elements_of_path(r, p, &touched);
+      path_elements(r, p, &touched);
       if (touched.empty()) continue;
       const double base = path_value(r, p, state);
       for (int32_t k : touched) {

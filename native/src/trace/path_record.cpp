@@ -1,5 +1,7 @@
 #include "trace/path_record.h"
 
+#include <algorithm>
+
 namespace fenestra {
 
 void SensorRecord::append(const SensorRecord& other) {
@@ -22,6 +24,18 @@ bool SensorRecord::holds(const PathEvent& e, const std::vector<uint8_t>& open) c
   for (uint16_t i = 0; i < e.closed_count; ++i)
     if (open[c[e.open_count + i]]) return false;
   return true;
+}
+
+void path_elements(const SensorRecord& r, size_t p, std::vector<int32_t>* out) {
+  out->clear();
+  for (uint32_t i = r.path_begin[p]; i < r.path_begin[p + 1]; ++i) {
+    const PathEvent& e = r.events[i];
+    if (e.element >= 0) out->push_back(e.element);
+    const int32_t* c = r.conditions.data() + e.conditions_begin;
+    out->insert(out->end(), c, c + e.open_count + e.closed_count);
+  }
+  std::sort(out->begin(), out->end());
+  out->erase(std::unique(out->begin(), out->end()), out->end());
 }
 
 double path_value(const SensorRecord& record, size_t p, const std::vector<uint8_t>& open) {

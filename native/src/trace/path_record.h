@@ -51,6 +51,9 @@ struct SensorRecord {
   }
 };
 
+// Elements path p's value can depend on (its escapes' and its conditions'), sorted, without repeats.
+void path_elements(const SensorRecord& record, size_t p, std::vector<int32_t>* out);
+
 // Value of path p of `record` when exactly the elements with open[k] != 0 are open.
 double path_value(const SensorRecord& record, size_t p, const std::vector<uint8_t>& open);
 
