@@ -46,6 +46,16 @@ def test_cli_solve_writes_openings_that_evaluate_reads(small_room, tmp_path):
     assert len(json.loads(evaluated.read_text())["sensors"]) == 3
 
 
+def scene_without_edge_refinement(scene, small_room):
+    data = json.loads(with_goals(small_room, [400.0, 150.0, 250.0]).read_text())
+    data.setdefault("solver", {})["refine_edges"] = False
+    path = small_room.parent / "grid_only.json"
+    path.write_text(json.dumps(data))
+    grid = fenestra.load_scene(str(path))
+    grid.render.paths_per_sensor = scene.render.paths_per_sensor
+    return grid
+
+
 def test_python_solve_reuses_contributions_and_is_reproducible(small_room):
     scene = fenestra.load_scene(with_goals(small_room, [400.0, 150.0, 250.0]))
     scene.render.paths_per_sensor = 512
@@ -54,11 +64,15 @@ def test_python_solve_reuses_contributions_and_is_reproducible(small_room):
     b = fenestra.solve(scene, contributions=c)
     assert a["open_elements"] == b["open_elements"]
     assert a["error"] == b["error"]
-    # What the user sees is the exact evaluation of the chosen elements from the same paths.
-    mask = np.zeros(scene.element_count, dtype=np.uint8)
-    mask[a["open_elements"]] = 1
-    exact, _ = c.evaluate(mask)
+    # What the user sees is the exact evaluation of the chosen openings from the same paths.
+    exact, _ = c.evaluate_openings(scene, fenestra.openings_array(a["openings"]))
     assert [s["predicted"] for s in a["sensors"]] == pytest.approx(exact.tolist(), rel=1e-9)
+    # On the element grid, that is the evaluation of the open elements.
+    grid = fenestra.solve(scene_without_edge_refinement(scene, small_room), contributions=c)
+    mask = np.zeros(scene.element_count, dtype=np.uint8)
+    mask[grid["open_elements"]] = 1
+    exact, _ = c.evaluate(mask)
+    assert [s["predicted"] for s in grid["sensors"]] == pytest.approx(exact.tolist(), rel=1e-9)
     assert [s["goal"] for s in a["sensors"]] == pytest.approx([400.0, 150.0, 250.0])
 
 

@@ -20,6 +20,7 @@
 #include "scene/input_limits.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
+#include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
 
 namespace py = pybind11;
@@ -284,6 +285,31 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("open"), py::arg("progress") = nullptr,
           "Exact (value, stderr) per sensor with the elements where open is true open, from the recorded paths.")
+      .def(
+          "evaluate_openings",
+          [](const Contributions& c, const Scene& scene,
+             py::array_t<double, py::array::c_style | py::array::forcecast> openings, std::shared_ptr<Progress> progress) {
+            check_contributions_match(scene, c, "evaluate_openings");
+            std::vector<PanelRectangle> rects;
+            const auto corners = rectangles_from(openings);
+            for (size_t i = 0; i < corners.size(); ++i) {
+              try {
+                rects.push_back(to_panel_rectangle(scene.domain, corners[i]));
+              } catch (const std::invalid_argument& e) {
+                throw std::invalid_argument("opening " + std::to_string(i) + " " + e.what());
+              }
+            }
+            const OpenRegion region(scene.domain, rects);
+            SensorValues v;
+            {
+              py::gil_scoped_release release;
+              v = while_doing("evaluating the contributions", [&] { return c.evaluate(region, progress.get()); });
+            }
+            return values_tuple(std::move(v));
+          },
+          py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
+          "Exact (value, stderr) per sensor with rectangles (n, 4, 3) open, their edges anywhere on their panels "
+          "(exact on zero-thickness panels), from the recorded paths.")
       .def("save", [](const Contributions& c, const Scene& s, const std::string& out) { return write_contributions(s, c, out); },
            py::arg("scene"), py::arg("path"), "Writes PATH.npz and PATH.json; returns both paths.")
       .def("__repr__", [](const Contributions& c) {

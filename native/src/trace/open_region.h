@@ -1,6 +1,7 @@
 #pragma once
 // Open parts of the opening domain as rectangles in panel coordinates, not only whole elements:
 // what the path records evaluate when openings' edges lie between grid lines.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -15,6 +16,10 @@ struct PanelRectangle {
   double width() const { return u1 - u0; }
   double height() const { return v1 - v0; }
 };
+
+// An opening given by its world corners (in order around it), on the panel it lies on; throws
+// std::invalid_argument when it is not a rectangle or lies on no panel.
+PanelRectangle to_panel_rectangle(const OpeningDomain& domain, const std::array<Vec3, 4>& corners);
 
 class OpenRegion {
  public:
