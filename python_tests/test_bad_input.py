@@ -98,6 +98,9 @@ SCENE_CASES = [
     ("overcast 1e300 lux", set_in("sky", {"type": "cie_overcast", "horizontal_illuminance": 1e300}),
      ["sky.horizontal_illuminance", "lux"]),
     ("thickness 1e30", set_in("opening_domain", "thickness", 1e30), ["opening_domain.thickness"]),
+    ("module -0.05", set_in("solver", "constraints", "module", -0.05), ["solver.constraints.module"]),
+    ("module 1e300", set_in("solver", "constraints", "module", 1e300), ["module"]),
+    ("refine_edges 1", set_in("solver", "refine_edges", 1), ["solver.refine_edges", "true or false"]),
     ("lux goal 1e300", lambda s: s["sensors"].update(goals=[1e300, 1, 1], goal_units="lux"), ["goals[0]"]),
     # Messages name the key in words rather than nlohmann's "[json.exception.type_error.302]".
     ("sky type 3", set_in("sky", "type", 3), ["sky.type", "expected a string"]),

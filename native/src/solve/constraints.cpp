@@ -15,6 +15,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kRelative = 1e-6;
 // Heights come from single-precision world coordinates.
 constexpr double kHeightTolerance = 1e-5;  // meters
+constexpr double kMaxModule = 10.0;         // meters: a module for openings' edges
 constexpr int kMaxCount = 1 << 30;         // "unlimited" rows or columns
 constexpr int64_t kMaxElements = int64_t{1} << 60;
 // Feasibility is searched over widths up to this many elements; no domain comes close.
@@ -202,6 +203,7 @@ void check_feasible(const OpeningConstraints& c, double a) {
   check_value("min_gap", c.min_gap, false);
   check_value("margin", c.margin, false);
   check_value("module", c.module, false);
+  if (c.module > kMaxModule) refuse("module " + meters(c.module) + " is larger than " + meters(kMaxModule));
   check_value("sill_min", c.sill_min, false);
   check_value("sill_max", c.sill_max, true);
   check_value("head_min", c.head_min, false);
