@@ -20,8 +20,10 @@ PanelRectangle to_panel_rectangle(const OpeningDomain& domain, const std::array<
 
 OpenRegion::OpenRegion(const OpeningDomain& domain, const std::vector<PanelRectangle>& rectangles)
     : by_panel_(domain.panels().size()) {
-  element_panel_.reserve(domain.element_count());
-  for (const Element& e : domain.elements()) element_panel_.push_back(e.panel);
+  size_ = domain.element_size();
+  inset_ = 1e-5 * size_;  // far above float rounding of panel coordinates, far below any edge step
+  cells_.reserve(domain.element_count());
+  for (const Element& e : domain.elements()) cells_.push_back({e.panel, e.col * size_, e.row * size_});
   for (const PanelRectangle& r : rectangles) {
     if (r.panel < 0 || static_cast<size_t>(r.panel) >= by_panel_.size())
       throw std::invalid_argument("open rectangle on panel " + std::to_string(r.panel) + ", which does not exist");

@@ -1,6 +1,7 @@
 #pragma once
 // Open parts of the opening domain as rectangles in panel coordinates, not only whole elements:
 // what the path records evaluate when openings' edges lie between grid lines.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -24,16 +25,27 @@ PanelRectangle to_panel_rectangle(const OpeningDomain& domain, const std::array<
 class OpenRegion {
  public:
   OpenRegion(const OpeningDomain& domain, const std::vector<PanelRectangle>& rectangles);
-  // Whether the point where a path met element k lies in an open rectangle of k's panel.
+  // Whether the point where a path met element k lies in an open rectangle of k's panel. The point
+  // is taken inside k's square: crossings on its edges (stratified portal samples start at a
+  // corner; tubes are crossed on grid lines) belong to k, so that rectangles on the grid open
+  // exactly the elements they cover.
   bool is_open(int32_t element, const PanelPoint& p) const {
-    for (const PanelRectangle& r : by_panel_[element_panel_[element]])
-      if (p.u > r.u0 && p.u < r.u1 && p.v > r.v0 && p.v < r.v1) return true;
+    const Cell& cell = cells_[element];
+    const double u = std::clamp<double>(p.u, cell.u0 + inset_, cell.u0 + size_ - inset_);
+    const double v = std::clamp<double>(p.v, cell.v0 + inset_, cell.v0 + size_ - inset_);
+    for (const PanelRectangle& r : by_panel_[cell.panel])
+      if (u > r.u0 && u < r.u1 && v > r.v0 && v < r.v1) return true;
     return false;
   }
-  size_t element_count() const { return element_panel_.size(); }
+  size_t element_count() const { return cells_.size(); }
 
  private:
-  std::vector<int> element_panel_;
+  struct Cell {
+    int panel;
+    double u0, v0;  // the element's square: [u0, u0 + size] x [v0, v0 + size]
+  };
+  std::vector<Cell> cells_;
+  double size_ = 0.0, inset_ = 0.0;
   std::vector<std::vector<PanelRectangle>> by_panel_;
 };
 

@@ -345,7 +345,11 @@ PathTracer::Surface PathTracer::surface(const Hit& hit) const {
 PathTracer::Crossing PathTracer::crossing_met(const Surface& s, const Vec3& p, const Vec3& dir) const {
   if (s.reveal_grid_face >= 0) {  // the cell the ray would go on into
     const RevealGridFace& f = reveal_grid_faces_[s.reveal_grid_face];
-    return {dir.dot(f.normal) > 0.0f ? f.upper : f.lower, scene_.domain.panel_point(f.panel, p)};
+    const int k = dir.dot(f.normal) > 0.0f ? f.upper : f.lower;
+    // The hit lies on the grid line between two cells, where "inside an opening" is a matter of
+    // rounding: the cell's centre stands for it (tubes follow the grid).
+    if (k < 0) return {};
+    return {k, scene_.domain.panel_point(f.panel, scene_.domain.elements()[k].center)};
   }
   if (s.panel < 0) return {};
   return {scene_.domain.element_at(s.panel, p), scene_.domain.panel_point(s.panel, p)};
