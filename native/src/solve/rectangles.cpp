@@ -6,6 +6,21 @@
 #include <tuple>
 
 namespace fenestra {
+namespace {
+
+// The rectangle [u0, u0 + width] x [v0, v0 + height] of a panel in world coordinates.
+void place(const Panel& panel, double u0, double v0, double width, double height, OpeningRectangle* r) {
+  const Vec3 base = panel.origin + static_cast<float>(u0) * panel.u_axis + static_cast<float>(v0) * panel.v_axis;
+  r->width = width;
+  r->height = height;
+  const Vec3 u = static_cast<float>(width) * panel.u_axis, v = static_cast<float>(height) * panel.v_axis;
+  r->corners = {base, base + u, base + u + v, base + v};
+  r->centre = base + 0.5f * (u + v);
+  r->outward = panel.outward;
+  r->depth = panel.thickness;
+}
+
+}  // namespace
 
 OpeningRectangle to_world(const OpeningDomain& domain, const GridRectangle& rect) {
   const Panel& panel = domain.panels()[rect.panel];
@@ -18,15 +33,7 @@ OpeningRectangle to_world(const OpeningDomain& domain, const GridRectangle& rect
   for (int row = rect.row0; row <= rect.row1; ++row)
     for (int col = rect.col0; col <= rect.col1; ++col) r.elements.push_back(panel.grid[row * panel.cols + col]);
   const double a = domain.element_size();
-  const Vec3 base = panel.origin + static_cast<float>(rect.col0 * a) * panel.u_axis +
-                    static_cast<float>(rect.row0 * a) * panel.v_axis;
-  r.width = rect.cols() * a;
-  r.height = rect.rows() * a;
-  const Vec3 u = static_cast<float>(r.width) * panel.u_axis, v = static_cast<float>(r.height) * panel.v_axis;
-  r.corners = {base, base + u, base + u + v, base + v};
-  r.centre = base + 0.5f * (u + v);
-  r.outward = panel.outward;
-  r.depth = panel.thickness;
+  place(panel, rect.col0 * a, rect.row0 * a, rect.cols() * a, rect.rows() * a, &r);
   return r;
 }
 
@@ -45,14 +52,7 @@ OpeningRectangle to_world(const OpeningDomain& domain, const PanelRectangle& rec
       const double cu = (col + 0.5) * a, cv = (row + 0.5) * a;
       if (k >= 0 && cu > rect.u0 && cu < rect.u1 && cv > rect.v0 && cv < rect.v1) r.elements.push_back(k);
     }
-  const Vec3 base = panel.origin + static_cast<float>(rect.u0) * panel.u_axis + static_cast<float>(rect.v0) * panel.v_axis;
-  r.width = rect.width();
-  r.height = rect.height();
-  const Vec3 u = static_cast<float>(r.width) * panel.u_axis, v = static_cast<float>(r.height) * panel.v_axis;
-  r.corners = {base, base + u, base + u + v, base + v};
-  r.centre = base + 0.5f * (u + v);
-  r.outward = panel.outward;
-  r.depth = panel.thickness;
+  place(panel, rect.u0, rect.v0, rect.width(), rect.height(), &r);
   return r;
 }
 

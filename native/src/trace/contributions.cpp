@@ -118,35 +118,16 @@ void accumulate_transport(const SensorRecord& rec, Eigen::MatrixXd* transport, c
 
 }  // namespace
 
-SensorValues Contributions::evaluate(const std::vector<uint8_t>& open, const Progress* progress) const {
-  if (open.size() != element_count())
-    throw std::invalid_argument("open-element mask has " + std::to_string(open.size()) + " entries, expected " +
-                                std::to_string(element_count()));
-  SensorValues out;
-  out.value.resize(records.size());
-  out.standard_error.resize(records.size());
-  tbb::parallel_for(size_t(0), records.size(), [&](size_t i) {
-    ReplicateSums sums;
-    for (size_t p = 0; p < records[i].path_count(); ++p) {
-      if (progress && p % kPollPaths == 0 && progress->cancelled()) return;
-      sums.add(p, path_value(records[i], p, open));
-    }
-    sums.estimate(records[i].path_count(), &out.value[i], &out.standard_error[i]);
-  });
-  if (progress) progress->throw_if_cancelled();
-  return out;
-}
+namespace {
 
-SensorValues Contributions::evaluate(const OpenRegion& region, const Progress* progress) const {
-  if (region.element_count() != element_count())
-    throw std::invalid_argument("open region of a domain with " + std::to_string(region.element_count()) +
-                                " elements, expected " + std::to_string(element_count()));
+// Value and standard error per sensor, with path p's value from path_value_in_region(is_open).
+template <typename IsOpen>
+SensorValues evaluate_records(const std::vector<SensorRecord>& records, IsOpen is_open, const Progress* progress) {
   SensorValues out;
   out.value.resize(records.size());
   out.standard_error.resize(records.size());
   tbb::parallel_for(size_t(0), records.size(), [&](size_t i) {
     ReplicateSums sums;
-    const auto is_open = [&](int32_t k, const PanelPoint& p) { return region.is_open(k, p); };
     for (size_t p = 0; p < records[i].path_count(); ++p) {
       if (progress && p % kPollPaths == 0 && progress->cancelled()) return;
       sums.add(p, path_value_in_region(records[i], p, is_open));
@@ -155,6 +136,22 @@ SensorValues Contributions::evaluate(const OpenRegion& region, const Progress* p
   });
   if (progress) progress->throw_if_cancelled();
   return out;
+}
+
+}  // namespace
+
+SensorValues Contributions::evaluate(const std::vector<uint8_t>& open, const Progress* progress) const {
+  if (open.size() != element_count())
+    throw std::invalid_argument("open-element mask has " + std::to_string(open.size()) + " entries, expected " +
+                                std::to_string(element_count()));
+  return evaluate_records(records, [&](int32_t k, const PanelPoint&) { return open[k] != 0; }, progress);
+}
+
+SensorValues Contributions::evaluate(const OpenRegion& region, const Progress* progress) const {
+  if (region.element_count() != element_count())
+    throw std::invalid_argument("open region of a domain with " + std::to_string(region.element_count()) +
+                                " elements, expected " + std::to_string(element_count()));
+  return evaluate_records(records, [&](int32_t k, const PanelPoint& p) { return region.is_open(k, p); }, progress);
 }
 
 size_t Contributions::memory_bytes() const {
