@@ -1,6 +1,7 @@
 #include "solve/edge_refinement.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -136,20 +137,30 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
         const PanelRectangle& current = search.rectangles()[i];
         const Panel& panel = domain.panels()[current.panel];
         if (panel.thickness > 0.0f && !whole_elements) continue;  // the tubes of a thick wall follow the grid
-        for (int edge = 0; edge < 4; ++edge)
+        // One edge at a time, or two opposite edges together (the opening slides along u or v).
+        static constexpr std::array<std::array<int, 2>, 6> kMoves = {
+            {{0, -1}, {1, -1}, {2, -1}, {3, -1}, {0, 1}, {2, 3}}};
+        for (const auto& move : kMoves)
           for (double direction : {-1.0, 1.0}) {
             if (progress) progress->throw_if_cancelled();
             std::vector<PanelRectangle> candidate = search.rectangles();
             PanelRectangle& r = candidate[i];
-            const double from = edge_of(r, edge);
-            edge_of(r, edge) = whole_elements ? from + direction * step : snap(from + direction * step, module);
-            if (edge_of(r, edge) == from || !admissible(r, panel, constraints, s)) continue;
+            std::vector<int> touched;
+            bool changed = true;
+            for (int edge : move) {
+              if (edge < 0) continue;
+              const double from = edge_of(r, edge);
+              edge_of(r, edge) = whole_elements ? from + direction * step : snap(from + direction * step, module);
+              changed = changed && edge_of(r, edge) != from;
+              const std::vector<int> strip = strip_elements(panel, r, edge, from, edge_of(r, edge), s);
+              touched.insert(touched.end(), strip.begin(), strip.end());
+            }
+            if (!changed || !admissible(r, panel, constraints, s)) continue;
             bool clear = true;
             for (size_t j = 0; j < candidate.size() && clear; ++j)
               if (j != i) clear = apart(r, candidate[j], constraints);
             if (!clear) continue;
-            const Eigen::VectorXd& values =
-                search.try_region(candidate, strip_elements(panel, r, edge, from, edge_of(r, edge), s));
+            const Eigen::VectorXd& values = search.try_region(candidate, touched);
             ++out.evaluations;
             const double e = prediction_error(objective, values - closed);
             if (e < error * (1.0 - 1e-9)) {

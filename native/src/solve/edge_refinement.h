@@ -1,6 +1,6 @@
 #pragma once
-// Openings' edges, moved while the exact error from the path records falls and the openings stay
-// admissible: by whole elements on every panel (an exact local search), then in halving steps from
+// Openings' edges, moved (one, or two opposite ones together so that the opening slides) while
+// the exact error from the path records falls and the openings stay admissible: by whole elements on every panel (an exact local search), then in halving steps from
 // half an element down to the module (or 1 cm when edges are continuous) on zero-thickness panels;
 // in thick walls the elements' tubes follow the element grid.
 #include <string>
