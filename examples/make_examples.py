@@ -17,6 +17,9 @@ apartment: two rooms side by side sharing a wall with a door, the south wall of 
     Preetham sky and sun on a spring morning; a window in each domain wall.
 atrium: a 6 x 6 x 9 m hall with a gallery, its flat roof the opening domain (0.5 m elements),
     25 sensors on the floor and 5 on the gallery, uniform sky; two skylights.
+solid_wall_room: window_room's room with its south wall modelled as a 0.3 m solid (inner face the
+    opening domain, outer face and edge strips modelled, the thickness measured), 0.25 m
+    elements, Preetham sky and sun on a spring morning (the sun oblique to the wall); two windows.
 """
 
 import json
@@ -284,10 +287,41 @@ def atrium():
     write_scene(out, scene, [((0, 0, 1), (2, 4), (2, 8)), ((0, 0, 1), (7, 9), (4, 6))])
 
 
+def solid_wall_room():
+    out = os.path.join(HERE, "solid_wall_room")
+    os.makedirs(out, exist_ok=True)
+    w, d, h, t = 5.0, 4.0, 2.8, 0.3
+    obj = Obj()
+    room(obj, w, d, h, "facade")
+    # The south wall's body: outer face at y = -t and the strips closing it.
+    obj.quad("wall_south_outer", "wall", (0, -t, 0), (w, -t, 0), (0, -t, h))
+    obj.quad("wall_south_bottom", "wall", (0, -t, 0), (0, 0, 0), (w, -t, 0))
+    obj.quad("wall_south_top", "wall", (0, -t, h), (w, -t, h), (0, 0, h))
+    obj.quad("wall_south_west", "wall", (0, -t, 0), (0, -t, h), (0, 0, 0))
+    obj.quad("wall_south_east", "wall", (w, -t, 0), (w, 0, 0), (w, -t, h))
+    obj.quad("ground", "ground", (-20, -20, -0.05), (20, -20, -0.05), (-20, 20, -0.05))
+    obj.write(os.path.join(out, "scene.obj"))
+    xs, ys = np.linspace(0.5, 4.5, 6), np.linspace(0.5, 3.5, 5)
+    scene = {
+        "fenestra": 1,
+        "geometry": "scene.obj",
+        "materials": GREY,
+        "opening_domain": {"materials": ["facade"], "element_size": 0.25},
+        "sensors": {"points": [[float(x), float(y), 0.8] for y in ys for x in xs], "normals": [0, 0, 1]},
+        "sky": {"type": "preetham", "latitude": 48.85, "longitude": 2.35, "timezone": "Europe/Paris",
+                "date": "2026-03-21", "time": "10:00", "turbidity": 3.0, "ground_reflectance": 0.2,
+                "resolution": [256, 128]},
+        "render": {"paths_per_sensor": 4096, "max_bounces": 8, "seed": 1, "threads": 0},
+    }
+    # 20 columns (from x = 5 toward x = 0) x 11 rows (from the floor up).
+    write_scene(out, scene, [((0, 1, 0), (3, 8), (3, 7)), ((0, 1, 0), (3, 8), (12, 16))])
+
+
 if __name__ == "__main__":
     reference_room()
     paper_scale()
     window_room()
     apartment()
     atrium()
+    solid_wall_room()
     print("examples written under", HERE)

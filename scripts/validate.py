@@ -1,6 +1,7 @@
 """Ground-truth validation of the opening solver (`make validate`).
 
-For each ground-truth scene of examples/ (window_room, apartment, atrium; see make_examples.py):
+For each ground-truth scene of examples/ (window_room, apartment, atrium, solid_wall_room; see
+make_examples.py):
 
 1. the scene's truth.json openings are path-traced with many paths (`evaluate`); the sensor
    values become lux goals, written with the scene into out/validate/<scene>/scene.json (with the
@@ -72,6 +73,12 @@ SCENES = {
     # 0.3 m walls (the south wall modelled by its inner face, the thickness given): the elements
     # are tubes through the wall, lined by their closed neighbours' reveals.
     "thick_walls_study": {
+        "paths": 131072,
+        "solver": SOLVER,
+    },
+    # A 0.3 m wall modelled as a solid (outer face and edge strips in the model; the thickness measured),
+    # under a sun oblique to the wall.
+    "solid_wall_room": {
         "paths": 131072,
         "solver": SOLVER,
     },
