@@ -46,17 +46,48 @@ struct Candidate {
   Flat flat;
 };
 
-std::vector<Candidate> parallel_faces_behind(const Mesh& mesh, const Panel& panel,
-                                             const std::vector<int>& triangle_panel, float grid_w, float grid_h) {
+// The scene's triangles outside the domain, sorted by |x| of their unit normal: faces parallel to a
+// panel (either way) lie in a narrow band of it, found without scanning the whole mesh per panel.
+struct NormalIndex {
+  std::vector<std::pair<float, uint32_t>> by_x;  // (x of the canonical unit normal, triangle)
+  std::vector<Vec3> normal;                       // canonical unit normal per entry of by_x
+
+  NormalIndex(const Mesh& mesh, const std::vector<int>& triangle_panel) {
+    std::vector<std::pair<float, uint32_t>> entries;
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+      if (t < triangle_panel.size() && triangle_panel[t] >= 0) continue;
+      const Vec3 n = mesh.area_normal(t);
+      if (!(n.norm() > 0.0f)) continue;
+      entries.push_back({canonical(n.normalized()).x(), static_cast<uint32_t>(t)});
+    }
+    std::sort(entries.begin(), entries.end());
+    by_x = std::move(entries);
+  }
+  static Vec3 canonical(const Vec3& n) {
+    const bool flip = n.x() < 0.0f || (n.x() == 0.0f && (n.y() < 0.0f || (n.y() == 0.0f && n.z() < 0.0f)));
+    return flip ? Vec3(-n) : n;
+  }
+  // Triangles whose normal's |x| lies within `band` of n's (a superset of the parallel ones).
+  template <typename F>
+  void near(const Vec3& n, float band, F visit) const {
+    const float x = canonical(n).x();
+    auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(x - band, uint32_t(0)));
+    for (; it != by_x.end() && it->first <= x + band; ++it) visit(it->second);
+  }
+};
+
+std::vector<Candidate> parallel_faces_behind(const Mesh& mesh, const Panel& panel, const NormalIndex& index,
+                                             float grid_w, float grid_h) {
   std::vector<Candidate> out;
-  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-    if (t < triangle_panel.size() && triangle_panel[t] >= 0) continue;
+  // |n1 - n2| for unit normals with |n1 . n2| >= kParallel is at most sqrt(2 (1 - kParallel)).
+  const float band = std::sqrt(2.0f * (1.0f - kParallel)) + 1e-4f;
+  index.near(panel.normal, band, [&](uint32_t t) {
     const Vec3 n = mesh.area_normal(t);
     const float len = n.norm();
-    if (!(len > 0.0f) || std::abs(n.dot(panel.normal)) < kParallel * len) continue;
+    if (!(len > 0.0f) || std::abs(n.dot(panel.normal)) < kParallel * len) return;
     const float offset = (mesh.vertex(t, 0) - panel.origin).dot(panel.outward);
-    if (!(offset > 1e-3f && offset <= kMaxMeasuredThickness)) continue;
-    Candidate c{static_cast<uint32_t>(t), offset, {}};
+    if (!(offset > 1e-3f && offset <= kMaxMeasuredThickness)) return;
+    Candidate c{t, offset, {}};
     Vec2 q[3];
     for (int k = 0; k < 3; ++k) {
       const Vec3 d = mesh.vertex(t, k) - panel.origin;
@@ -64,9 +95,9 @@ std::vector<Candidate> parallel_faces_behind(const Mesh& mesh, const Panel& pane
     }
     c.flat = {q[0], q[1], q[2], std::min({q[0].x(), q[1].x(), q[2].x()}), std::max({q[0].x(), q[1].x(), q[2].x()}),
               std::min({q[0].y(), q[1].y(), q[2].y()}), std::max({q[0].y(), q[1].y(), q[2].y()})};
-    if (c.flat.hi_u < 0.0f || c.flat.lo_u > grid_w || c.flat.hi_v < 0.0f || c.flat.lo_v > grid_h) continue;
+    if (c.flat.hi_u < 0.0f || c.flat.lo_u > grid_w || c.flat.hi_v < 0.0f || c.flat.lo_v > grid_h) return;
     out.push_back(c);
-  }
+  });
   return out;
 }
 
@@ -155,10 +186,11 @@ void add_wall_body(const Panel& panel, Mesh* mesh) {
 
 void OpeningDomain::build_walls(Mesh* mesh) {
   outer_panel_.assign(mesh->triangle_count(), -1);
+  const NormalIndex index(*mesh, triangle_panel_);  // of the model as read: added wall bodies are not outer faces
   for (size_t p = 0; p < panels_.size(); ++p) {
     Panel& panel = panels_[p];
-    const std::vector<Candidate> faces = parallel_faces_behind(*mesh, panel, triangle_panel_, panel.cols * element_size_,
-                                                               panel.rows * element_size_);
+    const std::vector<Candidate> faces =
+        parallel_faces_behind(*mesh, panel, index, panel.cols * element_size_, panel.rows * element_size_);
     const Measured m = measure(panel, elements_, faces, element_size_);
     if (m.coverage >= kIgnored && m.coverage < kModelled) {
       std::ostringstream msg;
