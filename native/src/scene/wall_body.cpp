@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "scene/opening_domain.h"
 
@@ -46,42 +47,49 @@ struct Candidate {
   Flat flat;
 };
 
-// The scene's triangles outside the domain, sorted by |x| of their unit normal: faces parallel to a
-// panel (either way) lie in a narrow band of it, found without scanning the whole mesh per panel.
-struct NormalIndex {
-  std::vector<std::pair<float, uint32_t>> by_x;  // (x of the canonical unit normal, triangle)
-  std::vector<Vec3> normal;                       // canonical unit normal per entry of by_x
-
-  NormalIndex(const Mesh& mesh, const std::vector<int>& triangle_panel) {
-    std::vector<std::pair<float, uint32_t>> entries;
+// The scene's triangles outside the domain, bucketed by their unit normal (sign chosen so that
+// opposite normals share a bucket): faces parallel to a panel are found in the buckets around its
+// normal instead of a scan of the whole mesh per panel.
+class NormalIndex {
+ public:
+  NormalIndex(const Mesh& mesh, const std::vector<int>& triangle_panel, float cell) : cell_(cell) {
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
       if (t < triangle_panel.size() && triangle_panel[t] >= 0) continue;
       const Vec3 n = mesh.area_normal(t);
       if (!(n.norm() > 0.0f)) continue;
-      entries.push_back({canonical(n.normalized()).x(), static_cast<uint32_t>(t)});
+      buckets_[key(canonical(n.normalized()), 0, 0, 0)].push_back(static_cast<uint32_t>(t));
     }
-    std::sort(entries.begin(), entries.end());
-    by_x = std::move(entries);
   }
+  // Every triangle whose normal is within one cell of n or of -n (a superset of the parallel ones).
+  template <typename F>
+  void near(const Vec3& n, F visit) const {
+    for (const Vec3& m : {canonical(n), Vec3(-canonical(n))})
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            const auto it = buckets_.find(key(m, dx, dy, dz));
+            if (it == buckets_.end()) continue;
+            for (uint32_t t : it->second) visit(t);
+          }
+  }
+
+ private:
   static Vec3 canonical(const Vec3& n) {
     const bool flip = n.x() < 0.0f || (n.x() == 0.0f && (n.y() < 0.0f || (n.y() == 0.0f && n.z() < 0.0f)));
     return flip ? Vec3(-n) : n;
   }
-  // Triangles whose normal's |x| lies within `band` of n's (a superset of the parallel ones).
-  template <typename F>
-  void near(const Vec3& n, float band, F visit) const {
-    const float x = canonical(n).x();
-    auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(x - band, uint32_t(0)));
-    for (; it != by_x.end() && it->first <= x + band; ++it) visit(it->second);
+  uint64_t key(const Vec3& n, int dx, int dy, int dz) const {
+    auto q = [&](float v, int d) { return static_cast<uint64_t>(std::floor(v / cell_) + d + 4096) & 0x1FFFFF; };
+    return q(n.x(), dx) | (q(n.y(), dy) << 21) | (q(n.z(), dz) << 42);
   }
+  float cell_;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> buckets_;
 };
 
 std::vector<Candidate> parallel_faces_behind(const Mesh& mesh, const Panel& panel, const NormalIndex& index,
                                              float grid_w, float grid_h) {
   std::vector<Candidate> out;
-  // |n1 - n2| for unit normals with |n1 . n2| >= kParallel is at most sqrt(2 (1 - kParallel)).
-  const float band = std::sqrt(2.0f * (1.0f - kParallel)) + 1e-4f;
-  index.near(panel.normal, band, [&](uint32_t t) {
+  index.near(panel.normal, [&](uint32_t t) {
     const Vec3 n = mesh.area_normal(t);
     const float len = n.norm();
     if (!(len > 0.0f) || std::abs(n.dot(panel.normal)) < kParallel * len) return;
@@ -186,7 +194,9 @@ void add_wall_body(const Panel& panel, Mesh* mesh) {
 
 void OpeningDomain::build_walls(Mesh* mesh) {
   outer_panel_.assign(mesh->triangle_count(), -1);
-  const NormalIndex index(*mesh, triangle_panel_);  // of the model as read: added wall bodies are not outer faces
+  // Buckets at least as wide as the distance between two unit normals with |n1 . n2| >= kParallel,
+  // sqrt(2 (1 - kParallel)); of the model as read (added wall bodies are no one's outer faces).
+  const NormalIndex index(*mesh, triangle_panel_, std::sqrt(2.0f * (1.0f - kParallel)) + 1e-3f);
   for (size_t p = 0; p < panels_.size(); ++p) {
     Panel& panel = panels_[p];
     const std::vector<Candidate> faces =
