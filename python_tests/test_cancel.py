@@ -194,7 +194,10 @@ def test_the_exact_evaluation_polls(small_room):
 # ---- Ctrl-C in Python -----------------------------------------------------------------------
 
 CHILD = textwrap.dedent("""
+    import signal
     import sys
+    # As in an interactive session: a parent started in the background may pass SIGINT on ignored.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     sys.path.insert(0, {addon!r})
     import fenestra
     scene = fenestra.load_scene({scene!r})
