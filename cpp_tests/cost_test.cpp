@@ -101,33 +101,31 @@ TEST(CostModel, MatricesAreSensorsTimesElementsAndElementsSquaredDoubles) {
 
 // The kept part of the estimate against Contributions::memory_bytes() (E, E_stderr, A, T and the
 // path records' capacity), measured: within a factor of 2, and not below (the model is conservative).
+void expect_memory_estimate_within_two(const Scene& scene, const std::string& what) {
+  const double estimate = estimate_cost(scene, CostCommand::Contributions).kept_bytes();
+  const double measured = static_cast<double>(compute_contributions(scene).memory_bytes());
+  EXPECT_GE(estimate, measured) << what;
+  EXPECT_LE(estimate, 2.0 * measured) << what;
+}
+
 TEST(CostModel, EstimateWithinAFactorOfTwoOfMeasuredMemory) {
   TempDir dir;
   for (int paths : {512, 4096}) {
     Scene scene = load_room(dir, 0.25, 12);
     scene.render.paths_per_sensor = paths;
-    const double estimate = estimate_cost(scene, CostCommand::Contributions).kept_bytes();
-    const double measured = static_cast<double>(compute_contributions(scene).memory_bytes());
-    EXPECT_GE(estimate, measured) << paths << " paths";
-    EXPECT_LE(estimate, 2.0 * measured) << paths << " paths";
+    expect_memory_estimate_within_two(scene, std::to_string(paths) + " paths");
   }
   // The reference room of the examples (Radiance-validated, 16 sensors, 192 elements).
   Scene reference = load_scene(std::string(FENESTRA_EXAMPLES) + "/reference_room/scene.json");
   reference.render.paths_per_sensor = 2048;
-  const double estimate = estimate_cost(reference, CostCommand::Contributions).kept_bytes();
-  const double measured = static_cast<double>(compute_contributions(reference).memory_bytes());
-  EXPECT_GE(estimate, measured);
-  EXPECT_LE(estimate, 2.0 * measured);
+  expect_memory_estimate_within_two(reference, "reference room");
 }
 
 TEST(CostModel, ThickWallRecordsWithinAFactorOfTwo) {
   // 0.3 m walls: paths branch at the elements' tubes, and the records grow with them.
   Scene scene = load_scene(std::string(FENESTRA_EXAMPLES) + "/thick_walls_study/scene.json");
   scene.render.paths_per_sensor = 512;
-  const double estimate = estimate_cost(scene, CostCommand::Contributions).kept_bytes();
-  const double measured = static_cast<double>(compute_contributions(scene).memory_bytes());
-  EXPECT_GE(estimate, measured);
-  EXPECT_LE(estimate, 2.0 * measured);
+  expect_memory_estimate_within_two(scene, "thick_walls_study");
 }
 
 TEST(CostModel, RecordsGrowWithBouncesAndReflectance) {

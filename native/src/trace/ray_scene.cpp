@@ -110,25 +110,16 @@ RTCDevice embree_device() {
 RayScene::RayScene(const Mesh& mesh, const Mesh& reveals, const Mesh& reveal_grid) {
   scene_ = rtcNewScene(embree_device());
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-  RTCGeometry g = make_triangles(mesh);
-  rtcSetGeometryIntersectFilterFunction(g, cutter_filter);
-  rtcCommitGeometry(g);
-  rtcAttachGeometryByID(scene_, g, kSceneGeometry);
-  rtcReleaseGeometry(g);
-  if (!reveals.triangles.empty()) {
-    RTCGeometry r = make_triangles(reveals);
-    rtcSetGeometryIntersectFilterFunction(r, reveal_filter);
-    rtcCommitGeometry(r);
-    rtcAttachGeometryByID(scene_, r, kRevealGeometry);
-    rtcReleaseGeometry(r);
-  }
-  if (!reveal_grid.triangles.empty()) {
-    RTCGeometry r = make_triangles(reveal_grid);
-    rtcSetGeometryIntersectFilterFunction(r, reveal_grid_filter);
-    rtcCommitGeometry(r);
-    rtcAttachGeometryByID(scene_, r, kRevealGridGeometry);
-    rtcReleaseGeometry(r);
-  }
+  const auto attach = [&](const Mesh& m, RTCFilterFunctionN filter, uint32_t id) {
+    RTCGeometry g = make_triangles(m);
+    rtcSetGeometryIntersectFilterFunction(g, filter);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(scene_, g, id);
+    rtcReleaseGeometry(g);
+  };
+  attach(mesh, cutter_filter, kSceneGeometry);
+  if (!reveals.triangles.empty()) attach(reveals, reveal_filter, kRevealGeometry);
+  if (!reveal_grid.triangles.empty()) attach(reveal_grid, reveal_grid_filter, kRevealGridGeometry);
   rtcCommitScene(scene_);
   check_device("build the scene");
 }
