@@ -355,7 +355,7 @@ Evaluation timed_evaluate(const Scene& scene, const std::vector<fenestra::Rectan
   const uint64_t rays_before = fenestra::rays_traced();
   const auto start = Clock::now();
   Evaluation e;
-  e.value = fenestra::evaluate_openings(scene, openings).value;
+  e.value = fenestra::evaluate_openings(scene, {openings.begin(), openings.end()}).value;
   e.seconds = seconds_since(start);
   e.rays = fenestra::rays_traced() - rays_before;
   return e;

@@ -79,7 +79,7 @@ TEST(OpenRegion, RectanglesOffTheGridMatchEvaluate) {
   // A window with every edge between grid lines, a narrow one, and a skylight (0.37 m off the grid).
   const std::vector<PanelRectangle> rects = {{wall, 0.33, 1.61, 0.71, 1.93}, {wall, 2.6, 2.85, 0.2, 2.3},
                                              {roof, 1.37, 2.12, 0.87, 1.49}};
-  std::vector<Rectangle> cuts;
+  std::vector<OpeningInput> cuts;
   for (const auto& r : rects) cuts.push_back(world_corners(scene.domain, r));
   const SensorValues exact = c.evaluate(OpenRegion(scene.domain, rects));
   const SensorValues truth = evaluate_openings(scene, cuts);

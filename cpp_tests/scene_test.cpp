@@ -65,8 +65,8 @@ TEST(Scene, DomainIsDicedIntoCentredSquareElementsWithRowsHorizontal) {
   EXPECT_NEAR(zmax, 2.55f, 1e-5f);
   // Every element is found at its own centre, and nothing in the margin.
   for (size_t k = 0; k < scene.domain.element_count(); ++k)
-    EXPECT_EQ(scene.domain.element_at(0, scene.domain.elements()[k].center), static_cast<int>(k));
-  EXPECT_EQ(scene.domain.element_at(0, Vec3(2, 0, 0.02f)), -1);
+    EXPECT_EQ(scene.domain.element_at(0, scene.domain.panel_point(0, scene.domain.elements()[k].center)), static_cast<int>(k));
+  EXPECT_EQ(scene.domain.element_at(0, scene.domain.panel_point(0, Vec3(2, 0, 0.02f))), -1);
 }
 
 TEST(Scene, NonRectangularPanelKeepsOnlyElementsInside) {

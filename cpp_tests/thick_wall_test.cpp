@@ -103,7 +103,7 @@ TEST_P(ThickWall, ExactRecordsEqualEvaluateWithRealCuts) {
   double max_z = 0.0;
   for (size_t set = 0; set < sets.size(); ++set) {
     std::vector<uint8_t> mask(n, 0);
-    std::vector<Rectangle> cuts;
+    std::vector<OpeningInput> cuts;
     for (int k : sets[set]) mask[k] = 1, cuts.push_back(square(scene, k));
     ASSERT_GT(cuts.size(), 3u);
     const SensorValues exact = c.evaluate(mask);

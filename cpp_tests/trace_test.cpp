@@ -187,7 +187,7 @@ TEST(Trace, ExactRecordsEqualEvaluateForASetOfOpenElements) {
   }
   ASSERT_EQ(std::count(mask.begin(), mask.end(), 1), 4 + 6 + 4);
   const SensorValues exact = c.evaluate(mask);
-  const SensorValues truth = evaluate_openings(scene, openings);
+  const SensorValues truth = evaluate_openings(scene, {openings.begin(), openings.end()});
   for (int i = 0; i < 4; ++i) {
     EXPECT_TRUE(within_sigma(exact.value[i], exact.standard_error[i], truth.value[i], truth.standard_error[i])) << "sensor " << i;
     EXPECT_GT(exact.value[i], 0.0);

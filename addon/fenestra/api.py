@@ -41,6 +41,30 @@ def scene_from_dict(scene, base_dir=".", progress=None, callback=None, max_memor
     return _run(work, progress, callback)
 
 
+def _plain(value):
+    """NumPy values as plain Python numbers and lists (for JSON)."""
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def openings_argument(openings):
+    """What the native module takes for openings: an (n, 4, 3) array of corners, or, when any
+    opening is given by "panel" and "parameter_rectangle" (the form of openings on curved panels),
+    the JSON text of an openings file."""
+    listed = openings.get("openings", []) if isinstance(openings, dict) else openings
+    if not isinstance(listed, np.ndarray) and any(isinstance(o, dict) and "parameter_rectangle" in o for o in listed):
+        chosen = [{k: o[k] for k in ("panel", "parameter_rectangle") if k in o} if "parameter_rectangle" in o
+                  else ({"corners": o["corners"]} if isinstance(o, dict) and "corners" in o else {"corners": o})
+                  for o in listed]
+        return json.dumps({"openings": _plain(chosen)})
+    return openings_array(openings)
+
+
 def openings_array(openings):
     """Rectangles as an (n, 4, 3) float array from an array, a list of corner lists, a list of
     {"corners": ...} dicts or an openings-file dict {"openings": [...]}."""
@@ -125,7 +149,7 @@ def contributions(scene, progress=None, callback=None, max_memory=None):
 def evaluate(scene, openings, progress=None, callback=None, max_memory=None):
     """Path-traces the scene with the openings really cut. Returns (value, stderr) arrays.
     Warns (RuntimeWarning) when the scene's daylight sky gives no light (the sun never up)."""
-    rects = openings_array(openings)
+    rects = openings_argument(openings)
     _warn_if_dark(scene)
     _cost.check_cost(scene, "evaluate", max_memory)
     return _run(lambda p: _core.evaluate(scene, rects, p), progress, callback)

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <new>
@@ -109,6 +110,26 @@ std::vector<Rectangle> rectangles_from(py::array_t<double, py::array::c_style | 
       out[i][c] = Vec3(r(i, c, 0), r(i, c, 1), r(i, c, 2));
     }
   return out;
+}
+
+// Openings from Python: an (n, 4, 3) array of corners, or the JSON text of an openings file
+// ({"openings": [...]}, with "corners" or "panel" and "parameter_rectangle" each).
+std::vector<OpeningInput> openings_from(const py::object& openings) {
+  if (py::isinstance<py::str>(openings)) {
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(openings.cast<std::string>());
+    } catch (const nlohmann::json::exception& e) {
+      throw std::invalid_argument(std::string("openings: not valid JSON: ") + e.what());
+    }
+    try {
+      return parse_openings(j, "argument");
+    } catch (const nlohmann::json::exception& e) {
+      throw std::invalid_argument(std::string("openings: a value has the wrong type: ") + e.what());
+    }
+  }
+  const auto rects = rectangles_from(openings.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>());
+  return std::vector<OpeningInput>(rects.begin(), rects.end());
 }
 
 }  // namespace
@@ -287,14 +308,13 @@ PYBIND11_MODULE(_core, m) {
           "Exact (value, stderr) per sensor with the elements where open is true open, from the recorded paths.")
       .def(
           "evaluate_openings",
-          [](const Contributions& c, const Scene& scene,
-             py::array_t<double, py::array::c_style | py::array::forcecast> openings, std::shared_ptr<Progress> progress) {
+          [](const Contributions& c, const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress) {
             check_contributions_match(scene, c, "evaluate_openings");
             std::vector<PanelRectangle> rects;
-            const auto corners = rectangles_from(openings);
-            for (size_t i = 0; i < corners.size(); ++i) {
+            const auto given = openings_from(openings);
+            for (size_t i = 0; i < given.size(); ++i) {
               try {
-                rects.push_back(to_panel_rectangle(scene.domain, corners[i]));
+                rects.push_back(to_panel_rectangle(scene.domain, given[i]));
               } catch (const std::invalid_argument& e) {
                 throw std::invalid_argument("opening " + std::to_string(i) + " " + e.what());
               }
@@ -308,8 +328,9 @@ PYBIND11_MODULE(_core, m) {
             return values_tuple(std::move(v));
           },
           py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
-          "Exact (value, stderr) per sensor with rectangles (n, 4, 3) open, their edges anywhere on their panels "
-          "(exact on zero-thickness panels), from the recorded paths.")
+          "Exact (value, stderr) per sensor with the openings open (an (n, 4, 3) array of corners, or the JSON "
+          "text of an openings file), their edges anywhere on their panels (exact on zero-thickness panels), from "
+          "the recorded paths.")
       .def("save", [](const Contributions& c, const Scene& s, const std::string& out) { return write_contributions(s, c, out); },
            py::arg("scene"), py::arg("path"), "Writes PATH.npz and PATH.json; returns both paths.")
       .def("__repr__", [](const Contributions& c) {
@@ -330,9 +351,8 @@ PYBIND11_MODULE(_core, m) {
       py::arg("scene"), py::arg("progress") = nullptr, "One pass of paths per sensor (see Contributions).");
   m.def(
       "evaluate",
-      [](const Scene& scene, py::array_t<double, py::array::c_style | py::array::forcecast> openings,
-         std::shared_ptr<Progress> progress) {
-        const auto rects = rectangles_from(openings);
+      [](const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress) {
+        const auto rects = openings_from(openings);
         SensorValues v;
         {
           py::gil_scoped_release release;
@@ -342,7 +362,8 @@ PYBIND11_MODULE(_core, m) {
         return values_tuple(std::move(v));
       },
       py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
-      "Path-traces the scene with rectangles (n, 4, 3) cut; returns (value, stderr) per sensor.");
+      "Path-traces the scene with the openings cut (an (n, 4, 3) array of corners, or the JSON text of an "
+      "openings file); returns (value, stderr) per sensor.");
   m.def(
       "write_image",
       [](const std::string& path, py::array_t<float, py::array::c_style | py::array::forcecast> image) {
@@ -396,13 +417,33 @@ PYBIND11_MODULE(_core, m) {
       "dark_sky_warning", [](const Scene& scene) { return text_of(dark_sky_warning(scene)); }, py::arg("scene"),
       "A sentence when the scene's daylight sky gives no light at all (the sun never up), else \"\".");
   m.def("rays_traced", &rays_traced, "Rays traced by parallel computations since the module was loaded.");
-  m.def("read_openings", [](const std::string& path) {
-    const auto rects = read_openings(path);
-    py::array_t<double> a({static_cast<py::ssize_t>(rects.size()), py::ssize_t(4), py::ssize_t(3)});
+  m.def("read_openings", [](const std::string& path) -> py::object {
+    const auto openings = read_openings(path);
+    const bool by_parameter = std::any_of(openings.begin(), openings.end(), [](const OpeningInput& o) { return o.parameter.has_value(); });
+    if (by_parameter) {  // the file's openings as dicts, checked
+      py::list list;
+      for (const OpeningInput& o : openings) {
+        py::dict d;
+        if (o.parameter) {
+          d["panel"] = o.parameter->panel;
+          py::dict r;
+          r["u0"] = o.parameter->u0, r["u1"] = o.parameter->u1, r["v0"] = o.parameter->v0, r["v1"] = o.parameter->v1;
+          d["parameter_rectangle"] = r;
+        } else {
+          py::list corners;
+          for (const Vec3& c : o.corners) corners.append(py::make_tuple(c.x(), c.y(), c.z()));
+          d["corners"] = corners;
+        }
+        list.append(d);
+      }
+      return std::move(list);
+    }
+    py::array_t<double> a({static_cast<py::ssize_t>(openings.size()), py::ssize_t(4), py::ssize_t(3)});
     auto w = a.mutable_unchecked<3>();
-    for (size_t i = 0; i < rects.size(); ++i)
+    for (size_t i = 0; i < openings.size(); ++i)
       for (int c = 0; c < 4; ++c)
-        for (int d = 0; d < 3; ++d) w(i, c, d) = rects[i][c][d];
-    return a;
-  });
+        for (int d = 0; d < 3; ++d) w(i, c, d) = openings[i].corners[c][d];
+    return std::move(a);
+  }, py::arg("path"), "The openings of an openings file: an (n, 4, 3) array of corners, or, when the file gives "
+                      "any by \"parameter_rectangle\", a list of opening dicts; evaluate() takes either.");
 }

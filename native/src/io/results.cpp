@@ -1,6 +1,7 @@
 #include "io/results.h"
 
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -76,7 +77,10 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
   for (const auto& p : scene.domain.panels())
     panels.push_back({{"label", p.label}, {"rows", p.rows}, {"cols", p.cols}, {"area_m2", p.area},
                       {"origin", vec_json(p.origin)}, {"u_axis", vec_json(p.u_axis)}, {"v_axis", vec_json(p.v_axis)},
-                      {"normal", vec_json(p.normal)}});
+                      {"normal", vec_json(p.normal)}, {"outward", vec_json(p.outward)},
+                      {"parameterisation", p.curved() ? p.chart->source_name() : "plane"},
+                      {"parameter_domain", {{"u0", p.parameter_lower.x()}, {"u1", p.parameter_upper.x()},
+                                            {"v0", p.parameter_lower.y()}, {"v1", p.parameter_upper.y()}}}});
   json summary = {
       {"format", "fenestra-contributions"},
       {"version", 1},
@@ -102,17 +106,46 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
   return {npz_path, json_path};
 }
 
-std::vector<Rectangle> parse_openings(const json& j, const std::string& source) {
+namespace {
+
+// "panel": i, "parameter_rectangle": {"u0", "u1", "v0", "v1"} (meters in the panel's parameter domain).
+PanelRectangle parse_parameter_rectangle(const json& o, const std::function<void(const std::string&)>& fail) {
+  if (!o.contains("panel") || !o.at("panel").is_number_integer() || o.at("panel").get<int64_t>() < 0 ||
+      o.at("panel").get<int64_t>() > 1000000000)
+    fail("\"parameter_rectangle\" needs \"panel\": the index of its panel (a whole number >= 0)");
+  const json& r = o.at("parameter_rectangle");
+  if (!r.is_object()) fail("\"parameter_rectangle\" is not an object {\"u0\", \"u1\", \"v0\", \"v1\"}");
+  PanelRectangle out;
+  out.panel = static_cast<int>(o.at("panel").get<int64_t>());
+  double* fields[] = {&out.u0, &out.u1, &out.v0, &out.v1};
+  const char* names[] = {"u0", "u1", "v0", "v1"};
+  for (int i = 0; i < 4; ++i) {
+    if (!r.contains(names[i]) || !r.at(names[i]).is_number())
+      fail(std::string("\"parameter_rectangle\" has no number \"") + names[i] + "\" (meters)");
+    *fields[i] = r.at(names[i]).get<double>();
+    if (!std::isfinite(*fields[i]) || std::abs(*fields[i]) > 1e6)
+      fail(std::string("\"parameter_rectangle\" ") + names[i] + " is not a finite number of meters within 1e6");
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<OpeningInput> parse_openings(const json& j, const std::string& source) {
   auto fail = [&](const std::string& m) -> void { throw std::invalid_argument("openings '" + source + "': " + m); };
   if (!j.is_object() || !j.contains("openings") || !j.at("openings").is_array())
     fail("expected an object with an \"openings\" list");
-  std::vector<Rectangle> out;
+  std::vector<OpeningInput> out;
   const json& list = j.at("openings");
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string where = "opening " + std::to_string(i);
     const json& o = list[i];
+    if (o.is_object() && o.contains("parameter_rectangle")) {
+      out.emplace_back(parse_parameter_rectangle(o, [&](const std::string& m) { fail(where + ": " + m); }));
+      continue;
+    }
     if (!o.is_object() || !o.contains("corners") || !o.at("corners").is_array() || o.at("corners").size() != 4)
-      fail(where + ": expected \"corners\": four [x, y, z] points");
+      fail(where + ": expected \"corners\": four [x, y, z] points, or \"panel\" and \"parameter_rectangle\"");
     Rectangle r;
     for (int c = 0; c < 4; ++c) {
       const json& p = o.at("corners")[c];
@@ -124,12 +157,12 @@ std::vector<Rectangle> parse_openings(const json& j, const std::string& source) 
                coordinate_requirement());
       r[c] = Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
     }
-    out.push_back(r);
+    out.emplace_back(r);
   }
   return out;
 }
 
-std::vector<Rectangle> read_openings(const std::string& path) {
+std::vector<OpeningInput> read_openings(const std::string& path) {
   check_input_file(path, "openings file", limits::kMaxSceneFileBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument("cannot open openings file '" + path + "'");

@@ -19,8 +19,8 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
                                                         const std::string& out);
 
 // Reads {"openings": [{"corners": [[x,y,z] x 4]}, ...]}; throws naming the file and opening.
-std::vector<Rectangle> read_openings(const std::string& path);
-std::vector<Rectangle> parse_openings(const nlohmann::json& j, const std::string& source);
+std::vector<OpeningInput> read_openings(const std::string& path);
+std::vector<OpeningInput> parse_openings(const nlohmann::json& j, const std::string& source);
 
 // `horizontal_illuminance`: the sky's (and sun's) on an unobstructed horizontal surface, for
 // daylight factors (sensors get "daylight_factor" in percent when it is positive).

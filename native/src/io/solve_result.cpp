@@ -20,16 +20,26 @@ json openings_json(const std::vector<OpeningRectangle>& openings) {
   for (const OpeningRectangle& o : openings) {
     json corners = json::array();
     for (const Vec3& c : o.corners) corners.push_back(point(c));
-    list.push_back({{"corners", corners},
-                    {"centre", point(o.centre)},
-                    {"width", o.width},
-                    {"height", o.height},
-                    {"normal", point(o.outward)},
-                    {"depth", o.depth},
-                    {"panel", o.panel},
-                    {"rows", {o.row0, o.row1}},
-                    {"columns", {o.col0, o.col1}},
-                    {"elements", o.elements}});
+    json entry = {{"corners", corners},
+                  {"centre", point(o.centre)},
+                  {"width", o.width},
+                  {"height", o.height},
+                  {"normal", point(o.outward)},
+                  {"depth", o.depth},
+                  {"panel", o.panel},
+                  {"parameter_rectangle",
+                   {{"u0", o.parameter.u0}, {"u1", o.parameter.u1}, {"v0", o.parameter.v0}, {"v1", o.parameter.v1}}},
+                  {"curved", o.curved},
+                  {"rows", {o.row0, o.row1}},
+                  {"columns", {o.col0, o.col1}},
+                  {"elements", o.elements}};
+    if (o.curved) {
+      json points = json::array(), normals = json::array();
+      for (const Vec3& p : o.grid_points) points.push_back(point(p));
+      for (const Vec3& n : o.grid_normals) normals.push_back(point(n));
+      entry["surface_grid"] = {{"rows", o.grid_rows}, {"columns", o.grid_columns}, {"points", points}, {"normals", normals}};
+    }
+    list.push_back(entry);
   }
   return list;
 }

@@ -15,6 +15,10 @@ struct Mesh {
   std::vector<int> triangle_material;             // index into the scene's materials
   std::vector<int> triangle_group;                // index into group_names, -1 when ungrouped
   std::vector<std::string> group_names;
+  // The UV map, where the model has one: texcoords[triangle_uv[t][k]] at corner k of triangle t;
+  // triangle_uv may be shorter than triangles, and -1 marks a triangle without UVs.
+  std::vector<Vec2> texcoords;
+  std::vector<std::array<int32_t, 3>> triangle_uv;
 
   size_t triangle_count() const { return triangles.size(); }
   Vec3 vertex(size_t tri, int corner) const { return positions[triangles[tri][corner]]; }
@@ -22,6 +26,8 @@ struct Mesh {
   Vec3 area_normal(size_t tri) const {
     return (vertex(tri, 1) - vertex(tri, 0)).cross(vertex(tri, 2) - vertex(tri, 0));
   }
+  bool has_uv(size_t tri) const { return tri < triangle_uv.size() && triangle_uv[tri][0] >= 0; }
+  Vec2 uv(size_t tri, int corner) const { return texcoords[triangle_uv[tri][corner]]; }
   void append(const Mesh& other);
 };
 

@@ -23,6 +23,13 @@ void Mesh::append(const Mesh& other) {
   const int group_base = static_cast<int>(group_names.size());
   for (int g : other.triangle_group) triangle_group.push_back(g < 0 ? -1 : g + group_base);
   group_names.insert(group_names.end(), other.group_names.begin(), other.group_names.end());
+  if (!other.triangle_uv.empty()) {
+    const int32_t uv_base = static_cast<int32_t>(texcoords.size());
+    texcoords.insert(texcoords.end(), other.texcoords.begin(), other.texcoords.end());
+    triangle_uv.resize(triangles.size() - other.triangles.size(), {-1, -1, -1});
+    for (const auto& t : other.triangle_uv)
+      triangle_uv.push_back(t[0] < 0 ? t : std::array<int32_t, 3>{t[0] + uv_base, t[1] + uv_base, t[2] + uv_base});
+  }
 }
 
 namespace {
@@ -165,6 +172,17 @@ Mesh load_obj(const std::string& path, const std::vector<std::string>& material_
     }
     mesh.positions.push_back(p);
   }
+  const size_t texcoord_count = attrib.texcoords.size() / 2;
+  mesh.texcoords.reserve(texcoord_count);
+  for (size_t i = 0; i < texcoord_count; ++i) {
+    const Vec2 t(attrib.texcoords[2 * i], attrib.texcoords[2 * i + 1]);
+    if (!std::isfinite(t.x()) || !std::isfinite(t.y()) || std::abs(t.x()) > 1e6f || std::abs(t.y()) > 1e6f) {
+      std::ostringstream s;
+      s << "geometry '" << path << "': texture coordinate (vt) " << i + 1 << " is not a finite number within 1e6";
+      throw std::invalid_argument(s.str());
+    }
+    mesh.texcoords.push_back(t);
+  }
 
   std::map<std::string, int> group_index;
   const int default_material = [&] {
@@ -192,12 +210,18 @@ Mesh load_obj(const std::string& path, const std::vector<std::string>& material_
         continue;  // lines or points left by the triangulator
       }
       std::array<uint32_t, 3> tri;
+      std::array<int32_t, 3> uv;
       for (int k = 0; k < 3; ++k) {
         const int vi = m.indices[offset + k].vertex_index;
         if (vi < 0 || static_cast<size_t>(vi) >= vertex_count)
           throw std::invalid_argument("geometry '" + path + "': a face refers to a missing vertex");
         tri[k] = static_cast<uint32_t>(vi);
+        const int ti = m.indices[offset + k].texcoord_index;
+        if (ti >= 0 && static_cast<size_t>(ti) >= texcoord_count)
+          throw std::invalid_argument("geometry '" + path + "': a face refers to a missing texture coordinate (vt)");
+        uv[k] = ti;
       }
+      if (uv[0] < 0 || uv[1] < 0 || uv[2] < 0) uv = {-1, -1, -1};
       offset += 3;
       int material = default_material;
       const int mid = m.material_ids[f];
@@ -211,6 +235,7 @@ Mesh load_obj(const std::string& path, const std::vector<std::string>& material_
                                     "' have no material (no usemtl, and no material named \"default\")");
       }
       mesh.triangles.push_back(tri);
+      mesh.triangle_uv.push_back(uv);
       mesh.triangle_material.push_back(material);
       mesh.triangle_group.push_back(group);
       const float area2 = mesh.area_normal(mesh.triangles.size() - 1).norm();

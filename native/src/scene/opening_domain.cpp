@@ -8,6 +8,8 @@
 #include <unordered_map>
 
 #include "cost/load_checks.h"
+#include "scene/position_key.h"
+#include "scene/surface_chart.h"
 
 namespace fenestra {
 namespace {
@@ -24,11 +26,6 @@ struct UnionFind {
   }
   void unite(int a, int b) { parent[find(a)] = find(b); }
 };
-
-uint64_t position_key(const Vec3& p) {
-  auto q = [](float x) { return static_cast<uint64_t>(static_cast<int64_t>(std::llround(x * 1e5)) & 0x1FFFFF); };
-  return q(p.x()) | (q(p.y()) << 21) | (q(p.z()) << 42);
-}
 
 // Rows run horizontally on walls and tilted roofs; flat roofs take +X as their row direction.
 void panel_axes(const Vec3& n, Vec3* u, Vec3* v) {
@@ -54,12 +51,52 @@ struct Triangle2D {
   }
 };
 
+// Triangles sharing an edge whose UVs, if either has them, agree along it.
+bool smoothly_joined(const Mesh& mesh, uint32_t a, uint32_t b) {
+  int shared = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      if (position_key(mesh.vertex(a, i)) != position_key(mesh.vertex(b, j))) continue;
+      if (mesh.has_uv(a) != mesh.has_uv(b)) return false;
+      if (mesh.has_uv(a) && (mesh.uv(a, i) - mesh.uv(b, j)).norm() > 1e-6f) return false;
+      ++shared;
+    }
+  return shared == 2;
+}
+
+bool is_flat(const Mesh& mesh, const std::vector<uint32_t>& tris) {
+  const Vec3 n0 = mesh.area_normal(tris.front()).normalized();
+  const Vec3 p0 = mesh.vertex(tris.front(), 0);
+  for (uint32_t t : tris) {
+    if (mesh.area_normal(t).normalized().dot(n0) < 1.0f - kNormalTolerance) return false;
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(n0.dot(mesh.vertex(t, k) - p0)) > kPlaneTolerance) return false;
+  }
+  return true;
+}
+
 std::string describe_panel(const Mesh& mesh, const std::vector<std::string>& material_names,
                            const std::vector<uint32_t>& tris) {
   const uint32_t t = tris.front();
   std::string label = "material '" + material_names[mesh.triangle_material[t]] + "'";
   if (mesh.triangle_group[t] >= 0) label += ", group '" + mesh.group_names[mesh.triangle_group[t]] + "'";
   return label;
+}
+
+// A curved panel's origin and axes: the surface's at the grid corner, its axes the directions of
+// the chart's u and v there (v vertical on a wall whose rulings are).
+void place_on_chart(Panel* panel, float element_size) {
+  const SurfaceChart& chart = *panel->chart;
+  const Vec2 centre = 0.5f * Vec2(panel->cols * element_size, panel->rows * element_size);
+  const Vec3 c = chart.surface_point(centre).position;
+  const float h = element_size;
+  const Vec3 du = chart.surface_point(centre + Vec2(h, 0)).position - c;
+  const Vec3 dv = chart.surface_point(centre + Vec2(0, h)).position - c;
+  if (du.norm() > 1e-6f && dv.norm() > 1e-6f) {
+    panel->u_axis = du.normalized();
+    panel->v_axis = (dv - dv.dot(panel->u_axis) * panel->u_axis).normalized();
+  }
+  panel->origin = chart.surface_point(Vec2::Zero()).position;
 }
 
 }  // namespace
@@ -95,21 +132,24 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
   if (tris.empty())
     throw std::invalid_argument("the opening domain is empty: no face has a material or group listed in \"opening_domain\"");
 
-  // Coplanar faces sharing a vertex position form one panel.
+  // Coplanar faces sharing a vertex position form one panel; so do faces sharing an edge at a
+  // small angle (a curved surface), where their UVs, if any, continue across it.
   std::vector<Vec3> unit_normal(tris.size());
   for (size_t i = 0; i < tris.size(); ++i) unit_normal[i] = mesh.area_normal(tris[i]).normalized();
   UnionFind uf(tris.size());
   std::unordered_map<uint64_t, std::vector<int>> by_vertex;
   for (size_t i = 0; i < tris.size(); ++i)
     for (int k = 0; k < 3; ++k) by_vertex[position_key(mesh.vertex(tris[i], k))].push_back(static_cast<int>(i));
+  const float smooth_cos = std::cos(kSmoothAngle * kPi / 180.0f);
   for (const auto& entry : by_vertex) {
     const auto& list = entry.second;
     for (size_t a = 0; a < list.size(); ++a)
       for (size_t b = a + 1; b < list.size(); ++b) {
         const int i = list[a], j = list[b];
-        if (unit_normal[i].dot(unit_normal[j]) < 1.0f - kNormalTolerance) continue;
-        if (std::abs(unit_normal[i].dot(mesh.vertex(tris[j], 0) - mesh.vertex(tris[i], 0))) > kPlaneTolerance) continue;
-        uf.unite(i, j);
+        const float cos = unit_normal[i].dot(unit_normal[j]);
+        const bool coplanar = cos >= 1.0f - kNormalTolerance &&
+                              std::abs(unit_normal[i].dot(mesh.vertex(tris[j], 0) - mesh.vertex(tris[i], 0))) <= kPlaneTolerance;
+        if (coplanar || (std::abs(cos) >= smooth_cos && smoothly_joined(mesh, tris[i], tris[j]))) uf.unite(i, j);
       }
   }
   std::vector<std::vector<uint32_t>> components;
@@ -132,22 +172,31 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
     panel.triangles = comp;
     panel.material = mesh.triangle_material[comp.front()];
     panel.label = describe_panel(mesh, material_names, comp);
+    const bool curved = !is_flat(mesh, comp);
+    std::shared_ptr<SurfaceChart> chart;
+    if (curved) chart = std::make_shared<SurfaceChart>(SurfaceChart::build(mesh, comp, panel.label));
     Vec3 n = Vec3::Zero();
-    for (uint32_t t : comp) n += mesh.area_normal(t);
-    panel.area = 0.5 * n.norm();
-    n.normalize();
+    double area = 0.0;
+    for (size_t i = 0; i < comp.size(); ++i) {
+      const Vec3 an = mesh.area_normal(comp[i]);
+      area += 0.5 * an.norm();
+      n += chart ? 0.5f * an.norm() * chart->chart_normal(comp[i]) : an;
+    }
+    panel.area = area;
+    n = n.norm() > 1e-6f * static_cast<float>(area) ? Vec3(n.normalized()) : mesh.area_normal(comp.front()).normalized();
     panel.normal = n;
     panel.outward = n;
     panel_axes(n, &panel.u_axis, &panel.v_axis);
 
+    // The faces flat in panel coordinates: the panel's plane, or the chart.
     const Vec3 o = mesh.vertex(comp.front(), 0);
     std::vector<Triangle2D> flat;
     float amin = 1e30f, amax = -1e30f, bmin = 1e30f, bmax = -1e30f;
-    for (uint32_t t : comp) {
+    for (size_t i = 0; i < comp.size(); ++i) {
       Vec2 q[3];
       for (int k = 0; k < 3; ++k) {
-        const Vec3 d = mesh.vertex(t, k) - o;
-        q[k] = Vec2(d.dot(panel.u_axis), d.dot(panel.v_axis));
+        const Vec3 d = mesh.vertex(comp[i], k) - o;
+        q[k] = chart ? chart->flat(i)[k] : Vec2(d.dot(panel.u_axis), d.dot(panel.v_axis));
         amin = std::min(amin, q[k].x()), amax = std::max(amax, q[k].x());
         bmin = std::min(bmin, q[k].y()), bmax = std::max(bmax, q[k].y());
       }
@@ -159,11 +208,20 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
     // Centre the grid so leftover margins are equal on both sides.
     const float a0 = amin + 0.5f * (width - panel.cols * s);
     const float b0 = bmin + 0.5f * (height - panel.rows * s);
-    panel.origin = o + a0 * panel.u_axis + b0 * panel.v_axis;
+    panel.parameter_lower = Vec2(amin - a0, bmin - b0);
+    panel.parameter_upper = Vec2(amax - a0, bmax - b0);
+    if (chart) {
+      chart->translate(Vec2(-a0, -b0));
+      panel.chart = chart;
+      place_on_chart(&panel, s);
+    } else {
+      panel.origin = o + a0 * panel.u_axis + b0 * panel.v_axis;
+    }
 
     const int panel_index = static_cast<int>(domain.panels_.size());
     panel.grid.assign(static_cast<size_t>(panel.rows) * panel.cols, -1);
     auto inside = [&](const Vec2& p) {
+      if (chart) return chart->contains(p - Vec2(a0, b0));
       for (const auto& tri : flat)
         if (tri.contains(p, 1e-5f)) return true;
       return false;
@@ -181,9 +239,12 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
         e.panel = panel_index;
         e.row = r;
         e.col = c;
-        const Vec3 c0 = panel.origin + (c * s) * panel.u_axis + (r * s) * panel.v_axis;
-        e.corners = {c0, c0 + s * panel.u_axis, c0 + s * (panel.u_axis + panel.v_axis), c0 + s * panel.v_axis};
-        e.center = c0 + 0.5f * s * (panel.u_axis + panel.v_axis);
+        auto at = [&](float u, float v) {
+          return chart ? chart->surface_point(Vec2(u, v)).position : Vec3(panel.origin + u * panel.u_axis + v * panel.v_axis);
+        };
+        const float u0 = c * s, v0 = r * s;
+        e.corners = {at(u0, v0), at(u0 + s, v0), at(u0 + s, v0 + s), at(u0, v0 + s)};
+        e.center = at(u0 + 0.5f * s, v0 + 0.5f * s);
         panel.grid[static_cast<size_t>(r) * panel.cols + c] = static_cast<int>(domain.elements_.size());
         domain.elements_.push_back(e);
       }
@@ -201,18 +262,51 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
 }
 
 void OpeningDomain::orient(const std::vector<Vec3>& sensor_points) {
-  for (Panel& panel : panels_) {
+  for (size_t index = 0; index < panels_.size(); ++index) {
+    Panel& panel = panels_[index];
     double side = 0.0;
-    for (const Vec3& p : sensor_points) side += (p - panel.origin).dot(panel.normal) > 0.0f ? 1.0 : -1.0;
+    if (!panel.curved()) {
+      for (const Vec3& p : sensor_points) side += (p - panel.origin).dot(panel.normal) > 0.0f ? 1.0 : -1.0;
+    } else {  // sensors vote at up to 16 of the panel's elements, against the local normal
+      std::vector<const Element*> own;
+      for (const Element& e : elements_)
+        if (e.panel == static_cast<int>(index)) own.push_back(&e);
+      const size_t step = std::max<size_t>(1, own.size() / 16);
+      for (size_t i = 0; i < own.size(); i += step) {
+        const SurfaceChart::SurfacePoint at = panel.chart->surface_point(
+            Vec2((own[i]->col + 0.5f) * element_size_, (own[i]->row + 0.5f) * element_size_));
+        for (const Vec3& p : sensor_points) side += (p - at.position).dot(at.normal) > 0.0f ? 1.0 : -1.0;
+      }
+    }
+    panel.chart_side = side > 0.0 ? -1.0f : 1.0f;
     panel.outward = side > 0.0 ? Vec3(-panel.normal) : panel.normal;
   }
 }
 
+DomainSurfacePoint OpeningDomain::surface_at(int panel_index, double u, double v) const {
+  const Panel& panel = panels_[panel_index];
+  DomainSurfacePoint out;
+  if (!panel.curved()) {
+    out.position = panel.origin + static_cast<float>(u) * panel.u_axis + static_cast<float>(v) * panel.v_axis;
+    out.outward = panel.outward;
+    const Vec2 q(static_cast<float>(u), static_cast<float>(v));
+    out.on_surface = (q.array() >= panel.parameter_lower.array() - 1e-4f).all() &&
+                     (q.array() <= panel.parameter_upper.array() + 1e-4f).all();
+    return out;
+  }
+  const SurfaceChart::SurfacePoint at = panel.chart->surface_point(Vec2(static_cast<float>(u), static_cast<float>(v)));
+  out.position = at.position;
+  out.outward = panel.chart_side * at.normal;
+  out.area_ratio = at.area_ratio;
+  out.on_surface = at.on_surface;
+  return out;
+}
+
 namespace {
 // Box from a rectangle through the wall: a hair on the room side, the thickness (and a hair) outside.
-CutterBox through_wall(const Vec3& origin, const Vec3& u, const Vec3& v, float w, float h, const Vec3& outward,
+Cutter through_wall(const Vec3& origin, const Vec3& u, const Vec3& v, float w, float h, const Vec3& outward,
                        float thickness) {
-  CutterBox box;
+  Cutter box;
   box.origin = origin;
   box.u_axis = u;
   box.v_axis = v;
@@ -229,25 +323,43 @@ bool OpeningDomain::has_thick_walls() const {
   return std::any_of(panels_.begin(), panels_.end(), [](const Panel& p) { return p.thickness > 0.0f; });
 }
 
-int OpeningDomain::element_at(int panel_index, const Vec3& p) const {
+int OpeningDomain::element_at(int panel_index, const PanelPoint& q) const {
   const Panel& panel = panels_[panel_index];
-  const Vec3 d = p - panel.origin;
-  const float a = d.dot(panel.u_axis) / element_size_;
-  const float b = d.dot(panel.v_axis) / element_size_;
+  const float a = q.u / element_size_;
+  const float b = q.v / element_size_;
   if (!(a >= 0.0f && b >= 0.0f)) return -1;
   const int c = static_cast<int>(a), r = static_cast<int>(b);
   if (c >= panel.cols || r >= panel.rows) return -1;
   return panel.grid[static_cast<size_t>(r) * panel.cols + c];
 }
 
-CutterBox OpeningDomain::element_cutter(int element) const {
+Cutter OpeningDomain::element_cutter(int element) const {
   const Element& e = elements_[element];
   const Panel& panel = panels_[e.panel];
+  if (panel.curved()) {
+    const double u0 = e.col * static_cast<double>(element_size_), v0 = e.row * static_cast<double>(element_size_);
+    return panel_rectangle_cutter(e.panel, u0, u0 + element_size_, v0, v0 + element_size_);
+  }
   return through_wall(e.corners[0], panel.u_axis, panel.v_axis, element_size_, element_size_, panel.outward,
                       panel.thickness);
 }
 
-CutterBox OpeningDomain::rectangle_cutter(const std::array<Vec3, 4>& c, int* panel_out) const {
+Cutter OpeningDomain::panel_rectangle_cutter(int panel_index, double u0, double u1, double v0, double v1) const {
+  const Panel& panel = panels_[panel_index];
+  if (!panel.curved()) {
+    const Vec3 corner = panel.origin + static_cast<float>(u0) * panel.u_axis + static_cast<float>(v0) * panel.v_axis;
+    return through_wall(corner, panel.u_axis, panel.v_axis, static_cast<float>(u1 - u0), static_cast<float>(v1 - v0),
+                        panel.outward, panel.thickness);
+  }
+  Cutter c;
+  c.chart = panel.chart.get();
+  c.u0 = static_cast<float>(u0), c.u1 = static_cast<float>(u1);
+  c.v0 = static_cast<float>(v0), c.v1 = static_cast<float>(v1);
+  c.normal = panel.outward;
+  return c;
+}
+
+Cutter OpeningDomain::rectangle_cutter(const std::array<Vec3, 4>& c, int* panel_out) const {
   for (const auto& p : c)
     if (!is_finite(p)) throw std::invalid_argument("has a non-finite corner");
   const Vec3 e1 = c[1] - c[0], e2 = c[3] - c[0];
@@ -259,7 +371,7 @@ CutterBox OpeningDomain::rectangle_cutter(const std::array<Vec3, 4>& c, int* pan
   const Vec3 n = e1.cross(e2).normalized();
   for (size_t i = 0; i < panels_.size(); ++i) {
     const Panel& panel = panels_[i];
-    if (std::abs(n.dot(panel.normal)) < 0.999f) continue;
+    if (panel.curved() || std::abs(n.dot(panel.normal)) < 0.999f) continue;
     if (std::abs((center - panel.origin).dot(panel.normal)) > kPlaneTolerance + 1e-3f) continue;
     const Vec3 d = center - panel.origin;
     const float a = d.dot(panel.u_axis), b = d.dot(panel.v_axis);
@@ -269,11 +381,12 @@ CutterBox OpeningDomain::rectangle_cutter(const std::array<Vec3, 4>& c, int* pan
     const Vec3 u = e1 / w;
     Vec3 v = panel.normal.cross(u);
     if (v.dot(e2) < 0.0f) v = -v;
-    const CutterBox box = through_wall(c[0], u, v, w, std::abs(e2.dot(v)), panel.outward, panel.thickness);
+    const Cutter box = through_wall(c[0], u, v, w, std::abs(e2.dot(v)), panel.outward, panel.thickness);
     if (panel_out) *panel_out = static_cast<int>(i);
     return box;
   }
-  throw std::invalid_argument("does not lie on any opening-domain panel");
+  throw std::invalid_argument("does not lie on any flat opening-domain panel (openings on curved panels are given by "
+                              "\"panel\" and \"parameter_rectangle\")");
 }
 
 }  // namespace fenestra

@@ -190,15 +190,75 @@ void add_wall_body(const Panel& panel, Mesh* mesh) {
   }
 }
 
+// Distance along the ray to triangle t (Moeller-Trumbore), infinity when missed.
+float ray_distance(const Mesh& mesh, size_t t, const Vec3& org, const Vec3& dir) {
+  const Vec3 a = mesh.vertex(t, 0), e1 = mesh.vertex(t, 1) - a, e2 = mesh.vertex(t, 2) - a;
+  const Vec3 p = dir.cross(e2);
+  const float det = e1.dot(p);
+  if (std::abs(det) < 1e-12f) return std::numeric_limits<float>::infinity();
+  const Vec3 s = org - a;
+  const float b1 = s.dot(p) / det;
+  const Vec3 q = s.cross(e1);
+  const float b2 = dir.dot(q) / det;
+  const float d = e2.dot(q) / det;
+  return b1 >= 0.0f && b2 >= 0.0f && b1 + b2 <= 1.0f && d > 0.0f ? d : std::numeric_limits<float>::infinity();
+}
+
+// Fraction of (up to 32 of) a curved panel's elements with another face of the model close behind
+// them, facing the same way: a wall modelled as a solid, which curved panels cannot model yet.
+double curved_solid_coverage(const Mesh& mesh, const OpeningDomain& domain, int panel_index) {
+  const Panel& panel = domain.panels()[panel_index];
+  std::vector<int> cells;
+  for (int e : panel.grid)
+    if (e >= 0) cells.push_back(e);
+  const size_t stride = std::max<size_t>(1, cells.size() / 32);
+  size_t probed = 0, behind = 0;
+  const float s = domain.element_size();
+  for (size_t i = 0; i < cells.size(); i += stride, ++probed) {
+    const Element& e = domain.elements()[cells[i]];
+    const DomainSurfacePoint at = domain.surface_at(panel_index, (e.col + 0.5) * s, (e.row + 0.5) * s);
+    const Vec3 org = at.position + 1e-4f * at.outward;
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+      if (domain.panel_of_triangle(t) == panel_index) continue;
+      const Vec3 n = mesh.area_normal(t);
+      if (std::abs(n.dot(at.outward)) < 0.9f * n.norm()) continue;
+      if (ray_distance(mesh, t, org, at.outward) <= kMaxMeasuredThickness) {
+        ++behind;
+        break;
+      }
+    }
+  }
+  return probed ? static_cast<double>(behind) / static_cast<double>(probed) : 0.0;
+}
+
 }  // namespace
 
+void OpeningDomain::check_curved_walls(const Mesh& mesh) const {
+  for (size_t p = 0; p < panels_.size(); ++p) {
+    const Panel& panel = panels_[p];
+    if (!panel.curved()) continue;
+    if (given_thickness_ && *given_thickness_ > 0.0f)
+      throw std::invalid_argument("opening_domain.thickness " + meters(*given_thickness_) +
+                                  ": the opening-domain panel of " + panel.label +
+                                  " is curved, and curved walls are modelled as single surfaces (thickness 0); "
+                                  "give the curved wall its own scene, or leave thickness out");
+    if (curved_solid_coverage(mesh, *this, static_cast<int>(p)) >= kModelled)
+      throw std::invalid_argument("the curved opening-domain panel of " + panel.label +
+                                  " is modelled as a solid (another face lies behind it, facing the same way); "
+                                  "curved walls are modelled as single surfaces: mark one surface, and remove the "
+                                  "faces behind it");
+  }
+}
+
 void OpeningDomain::build_walls(Mesh* mesh) {
+  check_curved_walls(*mesh);
   outer_panel_.assign(mesh->triangle_count(), -1);
   // Buckets at least as wide as the distance between two unit normals with |n1 . n2| >= kParallel,
   // sqrt(2 (1 - kParallel)); of the model as read (added wall bodies are no one's outer faces).
   const NormalIndex index(*mesh, triangle_panel_, std::sqrt(2.0f * (1.0f - kParallel)) + 1e-3f);
   for (size_t p = 0; p < panels_.size(); ++p) {
     Panel& panel = panels_[p];
+    if (panel.curved()) continue;  // a single surface (check_curved_walls)
     const std::vector<Candidate> faces =
         parallel_faces_behind(*mesh, panel, index, panel.cols * element_size_, panel.rows * element_size_);
     const Measured m = measure(panel, elements_, faces, element_size_);

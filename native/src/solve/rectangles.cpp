@@ -1,5 +1,6 @@
 #include "solve/rectangles.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <map>
@@ -8,16 +9,39 @@
 namespace fenestra {
 namespace {
 
+// Step of the surface grid reported for an opening on a curved panel: at most this many meters.
+constexpr double kSurfaceGridStep = 0.1;
+constexpr int kMaxSurfaceGridPoints = 64;  // along each side
+
 // The rectangle [u0, u0 + width] x [v0, v0 + height] of a panel in world coordinates.
-void place(const Panel& panel, double u0, double v0, double width, double height, OpeningRectangle* r) {
-  const Vec3 base = panel.origin + static_cast<float>(u0) * panel.u_axis + static_cast<float>(v0) * panel.v_axis;
+void place(const OpeningDomain& domain, int panel_index, double u0, double v0, double width, double height,
+           OpeningRectangle* r) {
+  const Panel& panel = domain.panels()[panel_index];
   r->width = width;
   r->height = height;
-  const Vec3 u = static_cast<float>(width) * panel.u_axis, v = static_cast<float>(height) * panel.v_axis;
-  r->corners = {base, base + u, base + u + v, base + v};
-  r->centre = base + 0.5f * (u + v);
-  r->outward = panel.outward;
+  r->parameter = {panel_index, u0, u0 + width, v0, v0 + height};
+  r->curved = panel.curved();
   r->depth = panel.thickness;
+  auto at = [&](double u, double v) { return domain.surface_at(panel_index, u, v); };
+  r->corners = {at(u0, v0).position, at(u0 + width, v0).position, at(u0 + width, v0 + height).position,
+                at(u0, v0 + height).position};
+  const DomainSurfacePoint centre = at(u0 + 0.5 * width, v0 + 0.5 * height);
+  r->centre = centre.position;
+  r->outward = panel.curved() ? centre.outward : panel.outward;
+  r->grid_points.clear();
+  r->grid_normals.clear();
+  if (!panel.curved()) return;
+  // Fine enough to follow the facets and the curvature: a cutter built from it follows the surface.
+  const double step = std::min(kSurfaceGridStep, 0.5 * domain.element_size());
+  r->grid_columns = std::clamp(static_cast<int>(std::ceil(width / step)), 1, kMaxSurfaceGridPoints - 1) + 1;
+  r->grid_rows = std::clamp(static_cast<int>(std::ceil(height / step)), 1, kMaxSurfaceGridPoints - 1) + 1;
+  for (int i = 0; i < r->grid_rows; ++i)
+    for (int j = 0; j < r->grid_columns; ++j) {
+      const DomainSurfacePoint p =
+          at(u0 + width * j / (r->grid_columns - 1), v0 + height * i / (r->grid_rows - 1));
+      r->grid_points.push_back(p.position);
+      r->grid_normals.push_back(p.outward);
+    }
 }
 
 }  // namespace
@@ -33,7 +57,7 @@ OpeningRectangle to_world(const OpeningDomain& domain, const GridRectangle& rect
   for (int row = rect.row0; row <= rect.row1; ++row)
     for (int col = rect.col0; col <= rect.col1; ++col) r.elements.push_back(panel.grid[row * panel.cols + col]);
   const double a = domain.element_size();
-  place(panel, rect.col0 * a, rect.row0 * a, rect.cols() * a, rect.rows() * a, &r);
+  place(domain, rect.panel, rect.col0 * a, rect.row0 * a, rect.cols() * a, rect.rows() * a, &r);
   return r;
 }
 
@@ -52,7 +76,7 @@ OpeningRectangle to_world(const OpeningDomain& domain, const PanelRectangle& rec
       const double cu = (col + 0.5) * a, cv = (row + 0.5) * a;
       if (k >= 0 && cu > rect.u0 && cu < rect.u1 && cv > rect.v0 && cv < rect.v1) r.elements.push_back(k);
     }
-  place(panel, rect.u0, rect.v0, rect.width(), rect.height(), &r);
+  place(domain, rect.panel, rect.u0, rect.v0, rect.width(), rect.height(), &r);
   return r;
 }
 

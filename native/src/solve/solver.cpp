@@ -307,8 +307,8 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
 
   if (settings.verify) {
     t = Clock::now();
-    std::vector<Rectangle> cutters;
-    for (const OpeningRectangle& o : out.openings) cutters.push_back(o.corners);
+    std::vector<OpeningInput> cutters;
+    for (const OpeningRectangle& o : out.openings) cutters.emplace_back(o.parameter);
     const SensorValues v = evaluate_openings(scene, cutters, progress);
     out.verified = true;
     out.verified_value = v.value;

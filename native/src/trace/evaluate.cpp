@@ -1,5 +1,6 @@
 #include "trace/evaluate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -27,13 +28,51 @@ void add_quad(Mesh* mesh, const Vec3& a, const Vec3& b, const Vec3& c, const Vec
 
 }  // namespace
 
-OpeningsGeometry build_openings(const Scene& scene, const std::vector<Rectangle>& openings) {
+PanelRectangle to_panel_rectangle(const OpeningDomain& domain, const OpeningInput& opening) {
+  if (!opening.parameter) return to_panel_rectangle(domain, opening.corners);
+  const PanelRectangle& r = *opening.parameter;
+  if (r.panel < 0 || static_cast<size_t>(r.panel) >= domain.panels().size())
+    throw std::invalid_argument("is on panel " + std::to_string(r.panel) + ", which does not exist (the domain has " +
+                                std::to_string(domain.panels().size()) + " panels)");
+  if (!std::isfinite(r.u0) || !std::isfinite(r.u1) || !std::isfinite(r.v0) || !std::isfinite(r.v1) ||
+      !(r.u1 - r.u0 > 1e-4) || !(r.v1 - r.v0 > 1e-4))
+    throw std::invalid_argument("has parameter rectangle u " + std::to_string(r.u0) + ".." + std::to_string(r.u1) +
+                                ", v " + std::to_string(r.v0) + ".." + std::to_string(r.v1) +
+                                ": expected finite numbers with u0 < u1 and v0 < v1 (meters, at least 0.1 mm apart)");
+  const Panel& panel = domain.panels()[r.panel];
+  constexpr double kSlack = 1e-3;  // meters: rounding of a rectangle written out and read back
+  const Vec2 lo = panel.parameter_lower, hi = panel.parameter_upper;
+  bool inside = r.u0 >= lo.x() - kSlack && r.u1 <= hi.x() + kSlack && r.v0 >= lo.y() - kSlack && r.v1 <= hi.y() + kSlack;
+  // Corners (a hair inside) and centre on the faces: a chart need not be a rectangle.
+  const double du = std::min(kSlack, 0.25 * r.width()), dv = std::min(kSlack, 0.25 * r.height());
+  const double us[] = {r.u0 + du, r.u1 - du, 0.5 * (r.u0 + r.u1)}, vs[] = {r.v0 + dv, r.v1 - dv, 0.5 * (r.v0 + r.v1)};
+  for (int i = 0; i < 5 && inside; ++i) {
+    const int iu = i == 4 ? 2 : i % 2, iv = i == 4 ? 2 : i / 2;
+    inside = domain.surface_at(r.panel, us[iu], vs[iv]).on_surface;
+  }
+  if (!inside) {
+    std::ostringstream m;
+    m << "has parameter rectangle u " << r.u0 << ".." << r.u1 << " m, v " << r.v0 << ".." << r.v1
+      << " m, outside its panel " << r.panel << " (" << panel.label << "), whose faces span u " << lo.x() << ".."
+      << hi.x() << " m, v " << lo.y() << ".." << hi.y() << " m";
+    throw std::invalid_argument(m.str());
+  }
+  return r;
+}
+
+OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInput>& openings) {
   OpeningsGeometry g;
   for (size_t i = 0; i < openings.size(); ++i) {
     int panel = -1;
-    CutterBox box;
+    Cutter box;
     try {
-      box = scene.domain.rectangle_cutter(openings[i], &panel);
+      if (openings[i].parameter) {
+        const PanelRectangle r = to_panel_rectangle(scene.domain, openings[i]);
+        panel = r.panel;
+        box = scene.domain.panel_rectangle_cutter(r.panel, r.u0, r.u1, r.v0, r.v1);
+      } else {
+        box = scene.domain.rectangle_cutter(openings[i].corners, &panel);
+      }
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("opening " + std::to_string(i) + " " + e.what());
     }
@@ -55,7 +94,7 @@ OpeningsGeometry build_openings(const Scene& scene, const std::vector<Rectangle>
   return g;
 }
 
-SensorValues evaluate_openings(const Scene& scene, const std::vector<Rectangle>& openings, Progress* progress) {
+SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings, Progress* progress) {
   OpeningsGeometry g = build_openings(scene, openings);
   const PathTracer tracer(scene, std::move(g.cutters), std::move(g.reveals));
   tracer.check_sensors();

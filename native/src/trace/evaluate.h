@@ -1,15 +1,32 @@
 #pragma once
 // Ground truth: the scene path-traced with the given openings really cut, independent of E.
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "scene/scene.h"
 #include "trace/contributions.h"
+#include "trace/open_region.h"
 #include "util/progress.h"
 
 namespace fenestra {
 
 using Rectangle = std::array<Vec3, 4>;  // corners in order, world coordinates (meters)
+
+// An opening as scene files and results give it: a rectangle of a panel's parameter domain (any
+// panel, the only form on curved ones), or else four world corners in order around it (on a flat
+// panel).
+struct OpeningInput {
+  std::optional<PanelRectangle> parameter;
+  Rectangle corners{};
+  OpeningInput() = default;
+  OpeningInput(const Rectangle& c) : corners(c) {}  // NOLINT: corners are the common form
+  OpeningInput(const PanelRectangle& r) : parameter(r) {}  // NOLINT
+};
+
+// The opening as a rectangle of its panel; throws std::invalid_argument (without naming the
+// opening) when it is no rectangle, lies on no panel, or leaves its panel's parameter domain.
+PanelRectangle to_panel_rectangle(const OpeningDomain& domain, const OpeningInput& opening);
 
 struct OpeningsGeometry {
   CutterSet cutters;
@@ -18,9 +35,9 @@ struct OpeningsGeometry {
 
 // Validates the rectangles against the opening domain (throws std::invalid_argument naming the
 // opening) and builds their cutters and reveal faces.
-OpeningsGeometry build_openings(const Scene& scene, const std::vector<Rectangle>& openings);
+OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInput>& openings);
 
-SensorValues evaluate_openings(const Scene& scene, const std::vector<Rectangle>& openings,
+SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings,
                                Progress* progress = nullptr);
 
 }  // namespace fenestra

@@ -72,6 +72,7 @@ struct PathTracer::Surface {
   int panel = -1;      // opening-domain panel whose inner (domain) or outer face this is
   bool outer = false;  // the outer face of the panel's wall
   int reveal_grid_face = -1;  // a side of an element's tube through a thick wall (RevealGridFace)
+  uint32_t triangle = 0;      // the scene triangle, on the scene's geometry
   bool inner_face() const { return panel >= 0 && !outer; }
 };
 
@@ -230,7 +231,8 @@ PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals)
   element_area_ = a * a;
   for (const Element& e : scene_.domain.elements()) {
     const Panel& panel = scene_.domain.panels()[e.panel];
-    portals_.push_back({e.corners[0], a * panel.u_axis, a * panel.v_axis, panel.normal});
+    portals_.push_back({e.corners[0], a * panel.u_axis, a * panel.v_axis, panel.normal, e.panel, panel.curved(),
+                        {e.col * a, e.row * a}});
   }
 }
 
@@ -278,18 +280,45 @@ void PathTracer::sensor_portals(size_t sensor, size_t path, SensorPortal* out) c
 }
 
 
-float PathTracer::portal_pdf(int k, float distance, const Vec3& dir) const {
-  // Element chosen with probability 1/No, then a uniform point on it, converted to solid angle.
-  const float cos = std::abs(dir.dot(portals_[k].normal));
+PathTracer::PortalPoint PathTracer::portal_point(int k, const Vec2& uv) const {
+  const Portal& portal = portals_[k];
+  PortalPoint out;
+  if (!portal.curved) {
+    out.position = portal.corner + uv.x() * portal.u + uv.y() * portal.v;
+    out.normal = portal.normal;
+    out.at = scene_.domain.panel_point(portal.panel, out.position);
+    return out;
+  }
+  const float a = scene_.domain.element_size();
+  out.at = {portal.cell.u + uv.x() * a, portal.cell.v + uv.y() * a};
+  const DomainSurfacePoint s = scene_.domain.surface_at(portal.panel, out.at.u, out.at.v);
+  out.position = s.position;
+  out.normal = s.outward;
+  out.area_ratio = s.area_ratio;
+  return out;
+}
+
+float PathTracer::portal_pdf(int k, const PanelPoint& at, float distance, const Vec3& dir) const {
+  // Element chosen with probability 1/No, then a uniform point of its square in panel coordinates,
+  // converted to solid angle (on a curved panel, through the surface's area there).
+  const Portal& portal = portals_[k];
+  Vec3 normal = portal.normal;
+  float area_ratio = 1.0f;
+  if (portal.curved) {
+    const DomainSurfacePoint s = scene_.domain.surface_at(portal.panel, at.u, at.v);
+    normal = s.outward;
+    area_ratio = s.area_ratio;
+  }
+  const float cos = std::abs(dir.dot(normal));
   if (!(cos > 1e-6f)) return 0.0f;
-  return distance * distance / (element_area_ * cos) / static_cast<float>(portals_.size());
+  return distance * distance / (element_area_ * area_ratio * cos) / static_cast<float>(portals_.size());
 }
 
 template <typename BsdfOfDirection>
 void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec3& x, const Vec3& n,
                                const PathState& st, Rng& rng, BsdfOfDirection f_and_pdf, Sink& sink) const {
-  const Portal& portal = portals_[k];
-  const Vec3 y = portal.corner + uv.x() * portal.u + uv.y() * portal.v;
+  const PortalPoint portal = portal_point(k, uv);
+  const Vec3& y = portal.position;
   Vec3 dir = y - x;
   const float dist = dir.norm();
   if (!(dist > 1e-5f)) return;
@@ -300,7 +329,7 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   if (!(f > 0.0f).any()) return;
   const float cos_y = std::abs(dir.dot(portal.normal));
   if (!(cos_y > 1e-6f)) return;
-  const float pdf = selection * dist * dist / (element_area_ * cos_y);
+  const float pdf = selection * dist * dist / (element_area_ * portal.area_ratio * cos_y);
   // Everything that arrives through k along dir: sky, and light from outdoor surfaces.
   PathState through_state = st;
   through_state.beta = st.beta * f / pdf;
@@ -317,7 +346,7 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   const CutterSet through{scene_.domain.element_cutter(k)};
   Sink outside = Sink::outside();
   trace(x, dir, through_state, &through, rng, outside);
-  sink.light_through({k, scene_.domain.panel_point(scene_.domain.elements()[k].panel, y)}, outside);
+  sink.light_through({k, portal.at}, outside);
 }
 
 PathTracer::Surface PathTracer::surface(const Hit& hit) const {
@@ -333,6 +362,7 @@ PathTracer::Surface PathTracer::surface(const Hit& hit) const {
   } else {
     s.normal = scene_normals_[hit.primitive];
     s.material = scene_.mesh.triangle_material[hit.primitive];
+    s.triangle = hit.primitive;
     s.panel = scene_.domain.panel_of_triangle(hit.primitive);
     if (s.panel < 0) {
       s.panel = scene_.domain.outer_panel_of_triangle(hit.primitive);
@@ -352,7 +382,8 @@ PathTracer::Crossing PathTracer::crossing_met(const Surface& s, const Vec3& p, c
     return {k, scene_.domain.panel_point(f.panel, scene_.domain.elements()[k].center)};
   }
   if (s.panel < 0) return {};
-  return {scene_.domain.element_at(s.panel, p), scene_.domain.panel_point(s.panel, p)};
+  const PanelPoint at = scene_.domain.panel_point(s.panel, s.triangle, p);
+  return {scene_.domain.element_at(s.panel, at), at};
 }
 
 void PathTracer::shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutters, bool collect, Shadow* out) const {
@@ -410,7 +441,7 @@ void PathTracer::record_escape(const Crossing& met, bool inner_face, const Vec3&
     outside_state.branch_both_depth = st.depth;
     if (st.portals && inner_face) {
       const float distance = (org + t * dir - st.vertex).norm();
-      outside_state.portal_pdf = portal_pdf(met.element, distance, dir);
+      outside_state.portal_pdf = portal_pdf(met.element, met.point, distance, dir);
     }
     // What would arrive through k if it were open: the same ray, continued with k cut.
     const CutterSet through{scene_.domain.element_cutter(met.element)};
@@ -437,7 +468,7 @@ void PathTracer::sample_sky_once(const Vertex& v, const PathState& st, const Cut
   shadow(offset_origin(v.p, v.ng, wl), wl, cutters, sink.recording() || sink.outside_element(), &sh);
   if (!sh.visible) return;
   const float portal = sink.recording() && sh.first_is_element
-                           ? portal_pdf(sh.crossed[0].element, sh.crossed_distance[0], wl)
+                           ? portal_pdf(sh.crossed[0].element, sh.crossed[0].point, sh.crossed_distance[0], wl)
                            : 0.0f;
   const float w = power_heuristic(count * light_pdf, bsdf_pdf(*v.material, v.wo, wl_local), portal);
   sink.light(st.beta * f * sky.radiance(wl) * sh.attenuation * (w / (count * light_pdf)), sh.crossed.data(),

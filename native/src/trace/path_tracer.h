@@ -50,13 +50,24 @@ class PathTracer {
   class Sink;
 
   struct Portal {
-    Vec3 corner, u, v, normal;  // element square: corner + s u + t v, s, t in [0, 1)
+    Vec3 corner, u, v, normal;  // element square: corner + s u + t v, s, t in [0, 1) (flat panels)
+    int panel = 0;
+    bool curved = false;         // a patch of a curved panel: the chart square at `cell`
+    PanelPoint cell;             // the element's grid corner in panel coordinates
   };
+  // The point of element k at uv (in [0, 1)^2 over its square), its panel point, its unit normal
+  // and its surface area per square meter of panel coordinates.
+  struct PortalPoint {
+    Vec3 position, normal;
+    PanelPoint at;
+    float area_ratio = 1.0f;
+  };
+  PortalPoint portal_point(int k, const Vec2& uv) const;
 
   void trace_sensor(size_t sensor, size_t path, Rng& rng, const CutterSet* cutters, Sink& sink) const;
   // Solid-angle density with which portal sampling at a vertex yields `dir`, which meets element k
-  // first, at `distance`.
-  float portal_pdf(int k, float distance, const Vec3& dir) const;
+  // first, at `distance`, at panel point `at`.
+  float portal_pdf(int k, const PanelPoint& at, float distance, const Vec3& dir) const;
   // Portal sample through point uv of element k from vertex x (normal n, path state st): a direction through a
   // random point of k, followed outside with k cut; recorded as light that needs k open.
   // f_and_pdf(dir, &pdf) gives the vertex's BSDF times cosine and BSDF density toward dir.

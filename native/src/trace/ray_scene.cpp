@@ -36,7 +36,7 @@ void cutter_filter(const RTCFilterFunctionNArguments* args) {
                    RTCRayN_org_z(args->ray, args->N, i));
     const Vec3 dir(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
                    RTCRayN_dir_z(args->ray, args->N, i));
-    if (any_contains(*ctx->cutters, org + t * dir)) args->valid[i] = 0;
+    if (any_cuts(*ctx->cutters, org + t * dir, RTCHitN_primID(args->hit, args->N, i))) args->valid[i] = 0;
   }
 }
 
