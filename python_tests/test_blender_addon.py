@@ -1,6 +1,7 @@
 """The Blender add-on, headless: registration, a solved study, save/reload, bad setups
-(python_tests/blender/addon_study.py), and the openings cut through zero-thickness and solid walls
-(python_tests/blender/addon_holes.py), run inside Blender with the add-on on its add-on path."""
+(python_tests/blender/addon_study.py), the openings cut through zero-thickness and solid walls
+(python_tests/blender/addon_holes.py) and through a curved wall, whose UV map is exported
+(python_tests/blender/addon_curved.py), run inside Blender with the add-on on its add-on path."""
 
 import os
 import shutil
@@ -36,6 +37,15 @@ def test_openings_cut_through_the_walls(tmp_path):
     r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_holes.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
     assert "Ran 7 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+
+
+@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+def test_openings_cut_through_a_curved_wall(tmp_path):
+    """The active UV map is exported with the geometry; a curved opening's cutter follows the
+    wall, so rays through it reach the sky and rays beside it hit the wall; a flat one's is a box."""
+    r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_curved.py"), str(tmp_path / "out"))
+    assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
+    assert "Ran 6 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 
 
 @pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")

@@ -1,8 +1,8 @@
 """The Blender add-on over the fenestra API: the only part of the package that imports bpy.
 
 properties (scene.fenestra, object.fenestra), export (scene -> study files), materials, sky,
-results (cutters, Booleans, achieved lux), operators, panels (3D View sidebar, "Fenestra" tab),
-overlay (the domain drawn highlighted in the viewport).
+results (cutters, Booleans, achieved lux), cutter (an opening's cutter as a solid), operators,
+panels (3D View sidebar, "Fenestra" tab), overlay (the domain drawn highlighted in the viewport).
 """
 
 import bpy

@@ -93,6 +93,21 @@ def _world_normals(mesh, matrix):
     return n / length[:, None]
 
 
+def _corner_uvs(mesh):
+    """The active UV map at the loop triangles' corners: (its distinct coordinates as written, the
+    index of each corner's among them, shape (triangles, 3)), or None without a UV map. Blender
+    keeps a UV per face corner; corners with the same coordinates share one OBJ `vt`."""
+    layer = mesh.uv_layers.active
+    if layer is None or len(mesh.loops) == 0:
+        return None
+    uv = np.empty(len(mesh.loops) * 2, np.float64)
+    layer.data.foreach_get("uv", uv)
+    loops = np.empty(len(mesh.loop_triangles) * 3, np.int64)
+    mesh.loop_triangles.foreach_get("loops", loops)
+    coordinates, index = np.unique(np.round(uv.reshape(-1, 2)[loops], 6), axis=0, return_inverse=True)
+    return coordinates, index.reshape(-1, 3)
+
+
 def _face_flags(mesh, name):
     """Per polygon booleans of a FACE attribute (all False without it)."""
     flags = np.zeros(len(mesh.polygons), bool)
@@ -197,7 +212,7 @@ def _build(context, depsgraph):
 
     # Geometry: one OBJ group per object, its domain faces in a group of their own.
     taken_groups, material_names, material_defs = set(), {}, {}
-    lines, offset, domain_groups = [], 0, []
+    lines, offset, uv_offset, domain_groups = [], 0, 0, []
     for obj in objects:
         if obj.fenestra.is_sensor:
             continue
@@ -222,8 +237,12 @@ def _build(context, depsgraph):
             # Areas are in the mesh's own space; scale them by the object's (uniform part of) scale.
             scale = abs(np.linalg.det(np.array(obj_eval.matrix_world, np.float64)[:3, :3])) ** (2.0 / 3.0)
             slots = [s.material for s in obj_eval.material_slots]
+            # The UV map parameterises a curved domain for dicing; written for every object that has one.
+            uvs = _corner_uvs(mesh)
 
             lines.append("v " + "\nv ".join(" ".join("%.6f" % c for c in v) for v in verts))
+            if uvs is not None:
+                lines.append("vt " + "\nvt ".join("%.6f %.6f" % tuple(t) for t in uvs[0]))
             group = _safe(obj.name, taken_groups)
             for is_domain in (False, True):
                 chosen = domain == is_domain
@@ -245,10 +264,16 @@ def _build(context, depsgraph):
                         name = _safe(key or "default", set(material_names.values()))
                         material_names[key] = name
                         material_defs[name] = materials.material_dict(material)
-                    faces = tris[chosen & (mat_index == index)] + offset + 1
+                    selected = chosen & (mat_index == index)
+                    faces = tris[selected] + offset + 1
                     lines.append("usemtl " + material_names[key])
-                    lines.append("f " + "\nf ".join("%d %d %d" % tuple(f) for f in faces))
+                    if uvs is None:
+                        lines.append("f " + "\nf ".join("%d %d %d" % tuple(f) for f in faces))
+                    else:  # v/vt per corner
+                        corners = np.stack([faces, uvs[1][selected] + uv_offset + 1], axis=2).reshape(-1, 6)
+                        lines.append("f " + "\nf ".join("%d/%d %d/%d %d/%d" % tuple(f) for f in corners))
             offset += len(verts)
+            uv_offset += len(uvs[0]) if uvs is not None else 0
         finally:
             obj_eval.to_mesh_clear()
 

@@ -1,10 +1,11 @@
-"""A solve's result in the model: cutter boxes, Boolean modifiers that cut through the walls,
-achieved lux on the sensors."""
+"""A solve's result in the model: cutters (cutter.py), Boolean modifiers that cut through the
+walls, achieved lux on the sensors."""
 
 import bmesh
 import bpy
 import numpy as np
 
+from .cutter import Cutter
 from .export import BOOLEAN_NAME, OPEN_THROUGH_NAME, is_result_modifier
 
 COLLECTION = "Fenestra Openings"
@@ -68,58 +69,19 @@ def _open_through_group():
     return group
 
 
-class _Box:
-    """A cutter as a box in world space: the opening rectangle (corner, unit edges u and v, their
-    lengths), n the unit normal toward the sensors, spanning -(depth + margin) to +margin along n."""
-
-    def __init__(self, corners, toward_sensors, depth, margin):
-        c = np.asarray(corners, np.float64)
-        self.corner = c[0]
-        self.u, self.v = c[1] - c[0], c[3] - c[0]
-        self.lu, self.lv = np.linalg.norm(self.u), np.linalg.norm(self.v)
-        self.u, self.v = self.u / self.lu, self.v / self.lv
-        n = np.cross(self.u, self.v)
-        n /= np.linalg.norm(n)
-        if np.dot(toward_sensors, n) < 0:
-            n = -n
-        self.n = n
-        self.near, self.far = margin, -(depth + margin)
-
-    def vertices(self, shrink=0.0):
-        """The 12 vertices: the room-side end, the rectangle itself, the far end (rings of 4);
-        with shrink, the rectangle shrunk by that much on each side."""
-        a0, a1, b0, b1 = shrink, self.lu - shrink, shrink, self.lv - shrink
-        ring = np.array([self.corner + a * self.u + b * self.v for a, b in ((a0, b0), (a1, b0), (a1, b1), (a0, b1))])
-        return np.concatenate([ring + self.n * self.near, ring, ring + self.n * self.far])
-
-    def contains(self, points, shrink):
-        d = points - self.corner
-        a, b, h = d @ self.u, d @ self.v, d @ self.n
-        return ((a > shrink) & (a < self.lu - shrink) & (b > shrink) & (b < self.lv - shrink)
-                & (h > self.far) & (h < self.near))
-
-
-# Faces of the 12 vertices of _Box.vertices: the room-side end and sides first (tagged), then the
-# sides through the wall and the far end.
-_CUTTER_FACES = ([(0, 1, 2, 3)] + [(i, (i + 1) % 4, 4 + (i + 1) % 4, 4 + i) for i in range(4)]
-                 + [(4 + i, 4 + (i + 1) % 4, 8 + (i + 1) % 4, 8 + i) for i in range(4)] + [(8, 9, 10, 11)])
-_ROOM_SIDE_FACES = 5
-
-
-def _cutter_mesh(name, box):
-    """The opening's rectangle extruded `depth + margin` away from the sensors and `margin` toward
-    them, in coordinates about its centre, split at the rectangle: the faces on the room side carry
-    ROOM_SIDE_ATTRIBUTE. Returns (mesh, centre)."""
-    verts = box.vertices()
-    centre = verts[4:8].mean(axis=0)
+def _cutter_mesh(name, cutter):
+    """The cutter's solid in coordinates about the centre of the opening's outline, split at the
+    wall's surface: the faces on the room side carry ROOM_SIDE_ATTRIBUTE. Returns (mesh, centre)."""
+    verts = cutter.vertices()
+    centre = cutter.outline().mean(axis=0)
     mesh = bpy.data.meshes.new(name)
-    mesh.from_pydata([tuple(v) for v in verts - centre], [], _CUTTER_FACES)
+    mesh.from_pydata([tuple(v) for v in verts - centre], [], cutter.faces)
     bm = bmesh.new()
     bm.from_mesh(mesh)
     bmesh.ops.recalc_face_normals(bm, faces=bm.faces)
     bm.to_mesh(mesh)
     bm.free()
-    flags = [i < _ROOM_SIDE_FACES for i in range(len(_CUTTER_FACES))]
+    flags = [i < cutter.room_side_faces for i in range(len(cutter.faces))]
     mesh.attributes.new(ROOM_SIDE_ATTRIBUTE, 'BOOLEAN', 'FACE').data.foreach_set("value", flags)
     mesh.update()
     return mesh, centre
@@ -134,17 +96,26 @@ def _toward_sensors(opening, study, centre):
     return study.sensor_centroid - centre
 
 
-def _objects_reached(context, boxes, exclude):
-    """The visible mesh objects with faces inside or across a cutter (its rectangle shrunk by
+def _cutter(opening, study, depth, margin):
+    """A curved opening's cutter follows its surface grid; a flat one's is the box of its corners."""
+    grid = opening.get("surface_grid")
+    if grid:
+        return Cutter.from_grid(grid, depth, margin)
+    centre = np.asarray(opening["corners"], np.float64).mean(axis=0)
+    return Cutter.flat(opening["corners"], _toward_sensors(opening, study, centre), depth, margin)
+
+
+def _objects_reached(context, cutters, exclude):
+    """The visible mesh objects with faces inside or across a cutter (its outline shrunk by
     TOUCH_TOLERANCE, so that a floor or wall meeting the opening's edge does not count): the
     domain's own objects, and the wall's outer faces and reveals wherever they are modelled."""
     from mathutils.bvhtree import BVHTree
     depsgraph = context.evaluated_depsgraph_get()
     cutter_trees = []
-    for box in boxes:
-        verts = box.vertices(TOUCH_TOLERANCE)
+    for cutter in cutters:
+        verts = cutter.vertices(TOUCH_TOLERANCE)
         cutter_trees.append((verts.min(axis=0), verts.max(axis=0),
-                             BVHTree.FromPolygons([tuple(v) for v in verts], _CUTTER_FACES)))
+                             BVHTree.FromPolygons([tuple(v) for v in verts], cutter.faces)))
     reached = []
     for obj in context.scene.objects:
         if (obj.type != 'MESH' or obj.name in exclude or obj.fenestra.is_sensor or obj.fenestra.is_opening
@@ -160,11 +131,11 @@ def _objects_reached(context, boxes, exclude):
             m = np.array(obj_eval.matrix_world, np.float64)
             co = co.reshape(-1, 3) @ m[:3, :3].T + m[:3, 3]
             lo, hi = co.min(axis=0), co.max(axis=0)
-            near = [(box, tree) for box, (blo, bhi, tree) in zip(boxes, cutter_trees)
-                    if np.all(lo <= bhi) and np.all(blo <= hi)]
+            near = [(cutter, tree) for cutter, (clo, chi, tree) in zip(cutters, cutter_trees)
+                    if np.all(lo <= chi) and np.all(clo <= hi)]
             if not near:
                 continue
-            if any(box.contains(co, TOUCH_TOLERANCE).any() for box, _ in near):
+            if any(cutter.contains(co, TOUCH_TOLERANCE).any() for cutter, _ in near):
                 reached.append(obj)
                 continue
             polygons = [tuple(p.vertices) for p in mesh.polygons]
@@ -184,27 +155,25 @@ def apply(context, study, result):
     coll = _collection(scene)
     solve = settings.solve
     margin = max(solve.cutter_margin, MIN_MARGIN)
-    boxes = []
+    cutters = []
     for i, opening in enumerate(result["openings"]):
         name = "Fenestra Opening %03d" % (i + 1)
-        centre = np.asarray(opening["corners"], np.float64).mean(axis=0)
-        box = _Box(opening["corners"], _toward_sensors(opening, study, centre),
-                   opening.get("depth", solve.wall_thickness), margin)
-        boxes.append(box)
-        mesh, centre = _cutter_mesh(name, box)
+        cutter = _cutter(opening, study, opening.get("depth", solve.wall_thickness), margin)
+        cutters.append(cutter)
+        mesh, centre = _cutter_mesh(name, cutter)
         obj = bpy.data.objects.new(name, mesh)
         obj.location = centre
         obj.display_type = 'WIRE'
         obj.hide_render = True
         obj.fenestra.is_opening = True
         coll.objects.link(obj)
-    if solve.use_booleans and boxes:
+    if solve.use_booleans and cutters:
         # The domain objects, and every other object the cutters reach (a solid wall's outer
         # faces and edges, modelled in the same object or in another one).
         domain = [bpy.data.objects.get(name) for name in study.domain_objects]
         domain = [o for o in domain if o is not None and o.type == 'MESH']
         group = _open_through_group()
-        for obj in domain + _objects_reached(context, boxes, {o.name for o in domain}):
+        for obj in domain + _objects_reached(context, cutters, {o.name for o in domain}):
             m = obj.modifiers.new(BOOLEAN_NAME, 'BOOLEAN')
             m.operation = 'DIFFERENCE'
             m.operand_type = 'COLLECTION'
