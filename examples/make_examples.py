@@ -317,6 +317,111 @@ def solid_wall_room():
     write_scene(out, scene, [((0, 1, 0), (3, 8), (3, 7)), ((0, 1, 0), (3, 8), (12, 16))])
 
 
+def fan(obj, group, material, centre, points):
+    """Triangles from centre to each pair of consecutive points (a sector floor, a gable)."""
+    obj.lines.append("o %s\nusemtl %s" % (group, material))
+    base = obj.count
+    for p in [centre] + list(points):
+        obj.lines.append("v %.6f %.6f %.6f" % tuple(p))
+    obj.count += 1 + len(points)
+    for i in range(len(points) - 1):
+        obj.lines.append("f %d %d %d" % (base + 1, base + 2 + i, base + 3 + i))
+
+
+def strip(obj, group, material, lower, upper):
+    """Quads between two polylines of equal length (a faceted curved surface)."""
+    obj.lines.append("o %s\nusemtl %s" % (group, material))
+    base = obj.count
+    for p in list(lower) + list(upper):
+        obj.lines.append("v %.6f %.6f %.6f" % tuple(p))
+    n = len(lower)
+    obj.count += 2 * n
+    for i in range(n - 1):
+        a = base + 1 + i
+        obj.lines.append("f %d %d %d %d" % (a, a + 1, a + n + 1, a + n))
+
+
+def write_parameter_truth(out, scene, openings):
+    """Writes scene.json and truth.json with openings on panel 0 given as parameter rectangles
+    (rows, columns) of its element grid (inclusive), in meters of its chart."""
+    with open(os.path.join(out, "scene.json"), "w") as f:
+        json.dump(scene, f, indent=2)
+    loaded = fenestra.load_scene(os.path.join(out, "scene.json"))
+    a = loaded.element_size
+    truth = {"openings": [{"panel": 0, "parameter_rectangle": {"u0": round(c0 * a, 6), "u1": round((c1 + 1) * a, 6),
+                                                               "v0": round(r0 * a, 6), "v1": round((r1 + 1) * a, 6)}}
+                          for (r0, r1), (c0, c1) in openings]}
+    with open(os.path.join(out, "truth.json"), "w") as f:
+        json.dump(truth, f, indent=2)
+
+
+def curved_wall_room():
+    """A quarter-circle room (radius 4 m): two straight walls along +X and +Y from the centre, and
+    90 degrees of a cylinder between them, 16 facets, the opening domain (unrolled: no UV map)."""
+    out = os.path.join(HERE, "curved_wall_room")
+    os.makedirs(out, exist_ok=True)
+    r, h, facets = 4.0, 3.0, 16
+    angles = np.linspace(0.0, np.pi / 2, facets + 1)
+    arc = [(r * np.cos(t), r * np.sin(t)) for t in angles]
+    obj = Obj()
+    fan(obj, "floor", "floor", (0, 0, 0), [(x, y, 0) for x, y in arc])
+    fan(obj, "ceiling", "ceiling", (0, 0, h), [(x, y, h) for x, y in reversed(arc)])
+    obj.quad("wall_x", "wall", (0, 0, 0), (0, 0, h), (r, 0, 0))
+    obj.quad("wall_y", "wall", (0, 0, 0), (0, r, 0), (0, 0, h))
+    strip(obj, "wall_curved", "facade", [(x, y, 0) for x, y in arc], [(x, y, h) for x, y in arc])
+    obj.quad("ground", "ground", (-20, -20, -0.05), (20, -20, -0.05), (-20, 20, -0.05))
+    obj.write(os.path.join(out, "scene.obj"))
+    points = [[float(x), float(y), 0.8] for y in np.linspace(0.5, 3.3, 5) for x in np.linspace(0.5, 3.3, 5)
+              if np.hypot(x, y) < r - 0.5]
+    scene = {
+        "fenestra": 1,
+        "geometry": "scene.obj",
+        "materials": GREY,
+        "opening_domain": {"materials": ["facade"], "element_size": 0.3, "thickness": 0.0},
+        "sensors": {"points": points, "normals": [0, 0, 1]},
+        "sky": {"type": "cie_overcast", "horizontal_illuminance": 10000.0, "ground_reflectance": 0.2,
+                "resolution": [256, 128]},
+        "render": {"paths_per_sensor": 4096, "max_bounces": 8, "seed": 1, "threads": 0},
+    }
+    # 20 columns along the arc x 10 rows (from the floor up); each opening spans several facets.
+    write_parameter_truth(out, scene, [((3, 7), (2, 6)), ((2, 8), (12, 15))])
+
+
+def vault_room():
+    """A 6 x 4 m room with 2.5 m walls under a barrel vault (a half cylinder of radius 2 m along X,
+    16 facets), the opening domain; gables close its ends."""
+    out = os.path.join(HERE, "vault_room")
+    os.makedirs(out, exist_ok=True)
+    w, d, h, r, facets = 6.0, 4.0, 2.5, 2.0, 16
+    angles = np.linspace(0.0, np.pi, facets + 1)
+    arch = [(d / 2 + r * np.cos(t), h + r * np.sin(t)) for t in angles]  # (y, z), from y = 4 to y = 0
+    obj = Obj()
+    obj.quad("floor", "floor", (0, 0, 0), (0, d, 0), (w, 0, 0), 4, 6)
+    obj.quad("wall_south", "wall", (w, 0, 0), (0, 0, 0), (w, 0, h))
+    obj.quad("wall_north", "wall", (0, d, 0), (w, d, 0), (0, d, h))
+    obj.quad("wall_west", "wall", (0, 0, 0), (0, 0, h), (0, d, 0))
+    obj.quad("wall_east", "wall", (w, 0, 0), (w, d, 0), (w, 0, h))
+    fan(obj, "gable_west", "wall", (0, d / 2, h), [(0, y, z) for y, z in arch])
+    fan(obj, "gable_east", "wall", (w, d / 2, h), [(w, y, z) for y, z in reversed(arch)])
+    strip(obj, "vault", "roof", [(w, y, z) for y, z in arch], [(0, y, z) for y, z in arch])
+    obj.quad("ground", "ground", (-20, -20, -0.05), (20, -20, -0.05), (-20, 20, -0.05))
+    obj.write(os.path.join(out, "scene.obj"))
+    points = [[float(x), float(y), 0.8] for y in np.linspace(0.5, 3.5, 4) for x in np.linspace(0.5, 5.5, 6)]
+    materials = dict(GREY, roof={"type": "diffuse", "reflectance": 0.7})
+    scene = {
+        "fenestra": 1,
+        "geometry": "scene.obj",
+        "materials": materials,
+        "opening_domain": {"materials": ["roof"], "element_size": 0.4, "thickness": 0.0},
+        "sensors": {"points": points, "normals": [0, 0, 1]},
+        "sky": {"type": "cie_overcast", "horizontal_illuminance": 10000.0, "ground_reflectance": 0.2,
+                "resolution": [256, 128]},
+        "render": {"paths_per_sensor": 4096, "max_bounces": 8, "seed": 1, "threads": 0},
+    }
+    # 15 columns along the vault's axis x 15 rows around the arch.
+    write_parameter_truth(out, scene, [((3, 5), (2, 4)), ((8, 10), (9, 12))])
+
+
 if __name__ == "__main__":
     reference_room()
     paper_scale()
@@ -324,4 +429,6 @@ if __name__ == "__main__":
     apartment()
     atrium()
     solid_wall_room()
+    curved_wall_room()
+    vault_room()
     print("examples written under", HERE)

@@ -98,6 +98,16 @@ SCENES = {
         "solver": SOLVER,
         "target": False,
     },
+    # Curved domains, diced in their unrolled surface; the truths are parameter rectangles spanning
+    # several facets.
+    "curved_wall_room": {
+        "paths": 131072,
+        "solver": SOLVER,
+    },
+    "vault_room": {
+        "paths": 131072,
+        "solver": SOLVER,
+    },
 }
 
 SKY_NAMES = {
@@ -124,12 +134,23 @@ def noise_level(stderr_a, stderr_b, goals):
     return float(np.sqrt(np.sum(stderr_a ** 2 + stderr_b ** 2) / np.sum(goals ** 2)))
 
 
-def open_mask(scene, rectangles):
-    """Elements whose centre lies in one of the rectangles (grid-aligned openings cover whole elements)."""
+def open_mask(scene, openings):
+    """Elements whose centre lies in one of the openings (grid-aligned openings cover whole
+    elements): by parameter rectangle where given, else by world corners."""
+    openings = openings["openings"] if isinstance(openings, dict) else openings
+    a = scene.element_size
+    grid = np.asarray(scene.element_grid)
     centres = scene.element_corners.mean(axis=1)
+    u, v = (grid[:, 2] + 0.5) * a, (grid[:, 1] + 0.5) * a
     mask = np.zeros(scene.element_count, bool)
-    tolerance = 1e-4 * scene.element_size
-    for rect in fenestra.openings_array(rectangles):
+    tolerance = 1e-4 * a
+    for o in openings:
+        if isinstance(o, dict) and "parameter_rectangle" in o:
+            r = o["parameter_rectangle"]
+            mask |= ((grid[:, 0] == o["panel"]) & (u > r["u0"] - tolerance) & (u < r["u1"] + tolerance)
+                     & (v > r["v0"] - tolerance) & (v < r["v1"] + tolerance))
+            continue
+        rect = fenestra.openings_array([o])[0]
         lo, hi = rect.min(axis=0) - tolerance, rect.max(axis=0) + tolerance
         mask |= np.all((centres >= lo) & (centres <= hi), axis=1)
     return mask
