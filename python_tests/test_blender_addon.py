@@ -45,7 +45,7 @@ def test_openings_cut_through_a_curved_wall(tmp_path):
     wall, so rays through it reach the sky and rays beside it hit the wall; a flat one's is a box."""
     r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_curved.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
-    assert "Ran 6 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+    assert "Ran 7 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 
 
 @pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")

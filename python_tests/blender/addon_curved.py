@@ -13,6 +13,7 @@ cast on the evaluated depsgraph from inside the room along the surface's normal 
 room through the openings and hit the wall just beside them. The add-on must be on Blender's
 add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
 
+import json
 import os
 import re
 import sys
@@ -313,6 +314,34 @@ class CurvedWall(unittest.TestCase):
                 self.assertLess(r.max(), RADIUS + 1e-5)
             else:
                 self.assertGreater(r.max(), RADIUS)
+
+    def test_real_solve_cuts_the_curved_wall(self):
+        """A real Preview solve on the curved wall (diced in its UV map): the result's openings are
+        curved, their surface grid on the facets, and rays through them leave the room."""
+        setup()
+        s = bpy.context.scene.fenestra.solve
+        s.element_size, s.quality, s.paths, s.generations, s.population = 0.4, 'CUSTOM', 512, 20, 16
+        s.study_directory = os.path.join(OUT, "solve_study")
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        with open(os.path.join(OUT, "solve_study", "result.json")) as f:
+            result = json.load(f)
+        self.assertGreaterEqual(len(result["openings"]), 1)
+        for opening in result["openings"]:
+            self.assertTrue(opening["curved"])
+            points = np.array(opening["surface_grid"]["points"])
+            normals = np.array(opening["surface_grid"]["normals"])
+            # On the facets: between the chord's distance from the axis and the radius.
+            radius = np.linalg.norm(points[:, :2], axis=1)
+            self.assertTrue(np.all(radius <= RADIUS + 1e-4))
+            self.assertTrue(np.all(radius >= RADIUS * np.cos(ARC / FACETS / 2) - 1e-4))
+            self.assertTrue(np.all(np.einsum("ij,ij->i", normals, points * [1, 1, 0]) > 0))  # outward
+            # Rays along the normal from inside the room through points well within the opening.
+            r = opening["parameter_rectangle"]
+            rows, cols = opening["surface_grid"]["rows"], opening["surface_grid"]["columns"]
+            inner = [i * cols + j for i in range(1, rows - 1) for j in range(1, cols - 1)] or [0]
+            for k in inner[:6]:
+                self.assertIsNone(cast(points[k] - 0.5 * normals[k], normals[k]),
+                                  "the wall is still across the opening at %s (u %.2f..%.2f)" % (points[k], r["u0"], r["u1"]))
 
     def test_flat_opening_gets_a_box(self):
         """A flat opening's cutter is the box it always was: 12 vertices, 10 faces, 5 on the room side."""
