@@ -355,6 +355,20 @@ def write_parameter_truth(out, scene, openings):
         json.dump(truth, f, indent=2)
 
 
+def overcast_scene(materials, domain_material, element_size, points):
+    """A scene file of scene.obj under a CIE overcast sky, horizontal work-plane sensors at points."""
+    return {
+        "fenestra": 1,
+        "geometry": "scene.obj",
+        "materials": materials,
+        "opening_domain": {"materials": [domain_material], "element_size": element_size, "thickness": 0.0},
+        "sensors": {"points": points, "normals": [0, 0, 1]},
+        "sky": {"type": "cie_overcast", "horizontal_illuminance": 10000.0, "ground_reflectance": 0.2,
+                "resolution": [256, 128]},
+        "render": {"paths_per_sensor": 4096, "max_bounces": 8, "seed": 1, "threads": 0},
+    }
+
+
 def curved_wall_room():
     """A quarter-circle room (radius 4 m): two straight walls along +X and +Y from the centre, and
     90 degrees of a cylinder between them, 16 facets, the opening domain (unrolled: no UV map)."""
@@ -373,16 +387,7 @@ def curved_wall_room():
     obj.write(os.path.join(out, "scene.obj"))
     points = [[float(x), float(y), 0.8] for y in np.linspace(0.5, 3.3, 5) for x in np.linspace(0.5, 3.3, 5)
               if np.hypot(x, y) < r - 0.5]
-    scene = {
-        "fenestra": 1,
-        "geometry": "scene.obj",
-        "materials": GREY,
-        "opening_domain": {"materials": ["facade"], "element_size": 0.3, "thickness": 0.0},
-        "sensors": {"points": points, "normals": [0, 0, 1]},
-        "sky": {"type": "cie_overcast", "horizontal_illuminance": 10000.0, "ground_reflectance": 0.2,
-                "resolution": [256, 128]},
-        "render": {"paths_per_sensor": 4096, "max_bounces": 8, "seed": 1, "threads": 0},
-    }
+    scene = overcast_scene(GREY, "facade", 0.3, points)
     # 20 columns along the arc x 10 rows (from the floor up); each opening spans several facets.
     write_parameter_truth(out, scene, [((3, 7), (2, 6)), ((2, 8), (12, 15))])
 
@@ -408,16 +413,7 @@ def vault_room():
     obj.write(os.path.join(out, "scene.obj"))
     points = [[float(x), float(y), 0.8] for y in np.linspace(0.5, 3.5, 4) for x in np.linspace(0.5, 5.5, 6)]
     materials = dict(GREY, roof={"type": "diffuse", "reflectance": 0.7})
-    scene = {
-        "fenestra": 1,
-        "geometry": "scene.obj",
-        "materials": materials,
-        "opening_domain": {"materials": ["roof"], "element_size": 0.4, "thickness": 0.0},
-        "sensors": {"points": points, "normals": [0, 0, 1]},
-        "sky": {"type": "cie_overcast", "horizontal_illuminance": 10000.0, "ground_reflectance": 0.2,
-                "resolution": [256, 128]},
-        "render": {"paths_per_sensor": 4096, "max_bounces": 8, "seed": 1, "threads": 0},
-    }
+    scene = overcast_scene(materials, "roof", 0.4, points)
     # 15 columns along the vault's axis x 15 rows around the arch.
     write_parameter_truth(out, scene, [((3, 5), (2, 4)), ((8, 10), (9, 12))])
 
