@@ -58,6 +58,12 @@ def openings_argument(openings):
     the JSON text of an openings file."""
     listed = openings.get("openings", []) if isinstance(openings, dict) else openings
     if not isinstance(listed, np.ndarray) and any(isinstance(o, dict) and "parameter_rectangle" in o for o in listed):
+        for i, o in enumerate(listed):  # JSON has no NaN: name the value here
+            rect = o.get("parameter_rectangle") if isinstance(o, dict) else None
+            for key, value in (rect.items() if isinstance(rect, dict) else ()):
+                if isinstance(value, (float, np.floating)) and not np.isfinite(value):
+                    raise ValueError("opening %d: parameter_rectangle %s is %s, not a finite number of meters"
+                                     % (i, key, value))
         chosen = [{k: o[k] for k in ("panel", "parameter_rectangle") if k in o} if "parameter_rectangle" in o
                   else ({"corners": o["corners"]} if isinstance(o, dict) and "corners" in o else {"corners": o})
                   for o in listed]

@@ -315,6 +315,7 @@ PYBIND11_MODULE(_core, m) {
             for (size_t i = 0; i < given.size(); ++i) {
               try {
                 rects.push_back(to_panel_rectangle(scene.domain, given[i]));
+                check_on_elements(scene.domain, rects.back());
               } catch (const std::invalid_argument& e) {
                 throw std::invalid_argument("opening " + std::to_string(i) + " " + e.what());
               }

@@ -65,11 +65,17 @@ void check_vertex_line(const std::string& path, size_t line_number, std::istring
 
 // tinyobjloader reads indices with wrapping integer arithmetic (an index past 2^64 silently
 // becomes another vertex): every index of a face must be a plain integer naming an existing
-// vertex (1..n, or -1..-n counting back from the last vertex so far). Returns the largest
-// positive vertex index, checked against the vertex count once the whole file is read.
-long long check_face_line(const std::string& path, size_t line_number, std::istringstream& words,
-                          size_t vertices_so_far) {
-  long long largest = 0;
+// vertex, texture coordinate or normal (1..n, or -1..-n counting back from the last one so far).
+// Positive indices are checked against the counts once the whole file is read.
+// Counts of the indexed kinds (vertex, texture coordinate, normal) so far, and the largest index
+// faces used of each, with its line.
+struct IndexedKinds {
+  size_t so_far[3] = {0, 0, 0};
+  long long largest[3] = {0, 0, 0};
+  size_t largest_line[3] = {0, 0, 0};
+};
+
+void check_face_line(const std::string& path, size_t line_number, std::istringstream& words, IndexedKinds* kinds_seen) {
   std::string token;
   while (words >> token) {
     size_t start = 0;
@@ -90,13 +96,12 @@ long long check_face_line(const std::string& path, size_t line_number, std::istr
       if (index.size() - signs > 9) fail("is out of range (at most 999999999)");
       const long long v = std::stoll(index);
       if (v == 0) fail("is 0 (OBJ indices start at 1)");
-      if (field != 0) continue;
-      if (v < 0 && static_cast<size_t>(-v) > vertices_so_far)
-        fail("refers back past the first vertex (" + std::to_string(vertices_so_far) + " vertices so far)");
-      largest = std::max(largest, v);
+      const size_t so_far = kinds_seen->so_far[field];
+      if (v < 0 && static_cast<size_t>(-v) > so_far)
+        fail(std::string("refers back past the first ") + kinds[field] + " (" + std::to_string(so_far) + " so far)");
+      if (v > kinds_seen->largest[field]) kinds_seen->largest[field] = v, kinds_seen->largest_line[field] = line_number;
     }
   }
-  return largest;
 }
 
 std::string prepare_obj_text(const std::string& path, const std::string& text, std::set<std::string>* used) {
@@ -104,18 +109,17 @@ std::string prepare_obj_text(const std::string& path, const std::string& text, s
   std::ostringstream out;
   out << "mtllib fenestra_materials.mtl\n";
   std::string line;
-  size_t line_number = 0, vertices = 0, largest_line = 0;
-  long long largest_index = 0;
+  size_t line_number = 0;
+  IndexedKinds kinds;
   while (std::getline(in, line)) {
     ++line_number;
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
-    if (keyword == "v") check_vertex_line(path, line_number, words), ++vertices;
-    if (keyword == "f") {
-      const long long largest = check_face_line(path, line_number, words, vertices);
-      if (largest > largest_index) largest_index = largest, largest_line = line_number;
-    }
+    if (keyword == "v") check_vertex_line(path, line_number, words), ++kinds.so_far[0];
+    if (keyword == "vt") ++kinds.so_far[1];
+    if (keyword == "vn") ++kinds.so_far[2];
+    if (keyword == "f") check_face_line(path, line_number, words, &kinds);
     if (keyword == "mtllib") {
       out << "#\n";
       continue;
@@ -129,10 +133,14 @@ std::string prepare_obj_text(const std::string& path, const std::string& text, s
     }
     out << line << "\n";
   }
-  if (largest_index > static_cast<long long>(vertices))
-    throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(largest_line) + ": face vertex index " +
-                                std::to_string(largest_index) + " is past the last vertex (the file has " +
-                                std::to_string(vertices) + ")");
+  const char* names[] = {"vertex", "texture coordinate", "normal"};
+  const char* plurals[] = {"vertices", "texture coordinates (vt)", "normals (vn)"};
+  for (int k = 0; k < 3; ++k)
+    if (kinds.largest[k] > static_cast<long long>(kinds.so_far[k]))
+      throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(kinds.largest_line[k]) + ": face " +
+                                  names[k] + " index " + std::to_string(kinds.largest[k]) + " is past the last " +
+                                  (k == 0 ? "vertex" : names[k]) + " (the file has " + std::to_string(kinds.so_far[k]) +
+                                  " " + plurals[k] + ")");
   return out.str();
 }
 

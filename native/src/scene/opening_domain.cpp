@@ -51,14 +51,14 @@ struct Triangle2D {
   }
 };
 
-// Triangles sharing an edge whose UVs, if either has them, agree along it.
+// Triangles sharing an edge whose UVs, where both have them, agree along it (a UV seam parts the
+// surface; a face without UVs beside one with them stays joined, and its chart is refused).
 bool smoothly_joined(const Mesh& mesh, uint32_t a, uint32_t b) {
   int shared = 0;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       if (position_key(mesh.vertex(a, i)) != position_key(mesh.vertex(b, j))) continue;
-      if (mesh.has_uv(a) != mesh.has_uv(b)) return false;
-      if (mesh.has_uv(a) && (mesh.uv(a, i) - mesh.uv(b, j)).norm() > 1e-6f) return false;
+      if (mesh.has_uv(a) && mesh.has_uv(b) && (mesh.uv(a, i) - mesh.uv(b, j)).norm() > 1e-6f) return false;
       ++shared;
     }
   return shared == 2;

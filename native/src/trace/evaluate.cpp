@@ -36,20 +36,28 @@ PanelRectangle to_panel_rectangle(const OpeningDomain& domain, const OpeningInpu
                                 std::to_string(domain.panels().size()) + " panels)");
   if (!std::isfinite(r.u0) || !std::isfinite(r.u1) || !std::isfinite(r.v0) || !std::isfinite(r.v1) ||
       !(r.u1 - r.u0 > 1e-4) || !(r.v1 - r.v0 > 1e-4))
-    throw std::invalid_argument("has parameter rectangle u " + std::to_string(r.u0) + ".." + std::to_string(r.u1) +
-                                ", v " + std::to_string(r.v0) + ".." + std::to_string(r.v1) +
-                                ": expected finite numbers with u0 < u1 and v0 < v1 (meters, at least 0.1 mm apart)");
+  {
+    std::ostringstream m;
+    m << "has parameter rectangle u " << r.u0 << ".." << r.u1 << " m, v " << r.v0 << ".." << r.v1
+      << " m: expected finite numbers with u0 < u1 and v0 < v1 (meters, at least 0.1 mm apart)";
+    throw std::invalid_argument(m.str());
+  }
   const Panel& panel = domain.panels()[r.panel];
   constexpr double kSlack = 1e-3;  // meters: rounding of a rectangle written out and read back
   const Vec2 lo = panel.parameter_lower, hi = panel.parameter_upper;
   bool inside = r.u0 >= lo.x() - kSlack && r.u1 <= hi.x() + kSlack && r.v0 >= lo.y() - kSlack && r.v1 <= hi.y() + kSlack;
-  // Corners (a hair inside) and centre on the faces: a chart need not be a rectangle.
+  // Points over the whole rectangle (a hair inside its edges) on the faces: a chart need not be a
+  // rectangle, and a notch may cut into an edge between its corners.
+  const double step = 0.5 * domain.element_size();
+  const int nu = std::clamp(static_cast<int>(std::ceil(r.width() / step)), 1, 64);
+  const int nv = std::clamp(static_cast<int>(std::ceil(r.height() / step)), 1, 64);
   const double du = std::min(kSlack, 0.25 * r.width()), dv = std::min(kSlack, 0.25 * r.height());
-  const double us[] = {r.u0 + du, r.u1 - du, 0.5 * (r.u0 + r.u1)}, vs[] = {r.v0 + dv, r.v1 - dv, 0.5 * (r.v0 + r.v1)};
-  for (int i = 0; i < 5 && inside; ++i) {
-    const int iu = i == 4 ? 2 : i % 2, iv = i == 4 ? 2 : i / 2;
-    inside = domain.surface_at(r.panel, us[iu], vs[iv]).on_surface;
-  }
+  for (int i = 0; i <= nv && inside; ++i)
+    for (int j = 0; j <= nu && inside; ++j) {
+      const double u = std::clamp(r.u0 + r.width() * j / nu, r.u0 + du, r.u1 - du);
+      const double v = std::clamp(r.v0 + r.height() * i / nv, r.v0 + dv, r.v1 - dv);
+      inside = domain.surface_at(r.panel, u, v).on_surface;
+    }
   if (!inside) {
     std::ostringstream m;
     m << "has parameter rectangle u " << r.u0 << ".." << r.u1 << " m, v " << r.v0 << ".." << r.v1

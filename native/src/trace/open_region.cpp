@@ -1,6 +1,8 @@
 #include "trace/open_region.h"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +18,25 @@ PanelRectangle to_panel_rectangle(const OpeningDomain& domain, const std::array<
     r.v0 = std::min<double>(r.v0, q.v), r.v1 = std::max<double>(r.v1, q.v);
   }
   return r;
+}
+
+void check_on_elements(const OpeningDomain& domain, const PanelRectangle& r) {
+  const Panel& panel = domain.panels().at(r.panel);
+  const double a = domain.element_size();
+  constexpr double kTolerance = 1e-6;  // in elements: rounding of edges written on grid lines
+  const int c0 = static_cast<int>(std::floor(r.u0 / a + kTolerance)), c1 = static_cast<int>(std::ceil(r.u1 / a - kTolerance)) - 1;
+  const int r0 = static_cast<int>(std::floor(r.v0 / a + kTolerance)), r1 = static_cast<int>(std::ceil(r.v1 / a - kTolerance)) - 1;
+  bool covered = c0 <= c1 && r0 <= r1;
+  for (int row = r0; row <= r1 && covered; ++row)
+    for (int col = c0; col <= c1 && covered; ++col)
+      covered = row >= 0 && col >= 0 && row < panel.rows && col < panel.cols &&
+                panel.grid[static_cast<size_t>(row) * panel.cols + col] >= 0;
+  if (covered) return;
+  std::ostringstream m;
+  m << "reaches beyond the elements of panel " << r.panel << " (" << panel.label << "; its grid spans u 0.." << panel.cols * a
+    << " m, v 0.." << panel.rows * a << " m): paths are recorded by element, so the exact evaluation cannot count "
+    << "light through the panel's margin; evaluate() traces it";
+  throw std::invalid_argument(m.str());
 }
 
 OpenRegion::OpenRegion(const OpeningDomain& domain, const std::vector<PanelRectangle>& rectangles)

@@ -22,6 +22,11 @@ struct PanelRectangle {
 // std::invalid_argument when it is not a rectangle or lies on no panel.
 PanelRectangle to_panel_rectangle(const OpeningDomain& domain, const std::array<Vec3, 4>& corners);
 
+// Throws std::invalid_argument when the rectangle reaches beyond its panel's elements (into the
+// margin the grid leaves, or a gap of a non-rectangular panel): paths are recorded by element, so
+// light through such parts is not in the records (`evaluate` cuts them).
+void check_on_elements(const OpeningDomain& domain, const PanelRectangle& rectangle);
+
 class OpenRegion {
  public:
   OpenRegion(const OpeningDomain& domain, const std::vector<PanelRectangle>& rectangles);
