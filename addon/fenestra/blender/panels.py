@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import export, native, sky
+from . import export, native, sensor_results, sky
 
 SHOWN = 12  # sensors listed in the Results panel
 
@@ -189,15 +189,16 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             draw_warning(layout, warning)
         col.label(text="Time %.1f s (solver %.1f s)" % (r.seconds_total, r.seconds_solver))
         box = layout.box()
+        box.label(text="Farthest from their goals:" if len(r.sensors) > SHOWN else "Sensors:")
         col = box.column(align=True)
         for cells in [("Sensor", "Goal lx", "Got lx")] + [
-                (str(i), "-" if s.goal < 0 else "%.0f" % s.goal, "%.0f" % s.achieved)
-                for i, s in enumerate(r.sensors[:SHOWN])]:
+                (sensor_results.name(s), "-" if s.goal < 0 else "%.0f" % s.goal, "%.0f" % s.achieved)
+                for s in sensor_results.farthest_from_goal(r, SHOWN)]:
             row = col.row(align=True)
             for text in cells:
                 row.label(text=text)
         if len(r.sensors) > SHOWN:
-            box.label(text="%d more: see 'fenestra_achieved'" % (len(r.sensors) - SHOWN))
+            box.label(text="%d more: select a sensor vertex, or see the false colour" % (len(r.sensors) - SHOWN))
         layout.operator("fenestra.clear_results", icon='X')
 
 
