@@ -191,14 +191,15 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
         box = layout.box()
         box.label(text="Farthest from their goals:" if len(r.sensors) > SHOWN else "Sensors:")
         col = box.column(align=True)
-        for cells in [("Sensor", "Goal lx", "Got lx")] + [
-                (sensor_results.name(s), "-" if s.goal < 0 else "%.0f" % s.goal, "%.0f" % s.achieved)
+        one_object = len({s.object_name for s in r.sensors}) == 1
+        for cells in [("Vertex" if one_object else "Sensor", "Goal lx", "Got lx")] + [
+                (sensor_results.name(s, one_object), "-" if s.goal < 0 else "%.0f" % s.goal, "%.0f" % s.achieved)
                 for s in sensor_results.farthest_from_goal(r, SHOWN)]:
             row = col.row(align=True)
             for text in cells:
                 row.label(text=text)
         if len(r.sensors) > SHOWN:
-            box.label(text="%d more: select a sensor vertex, or see the false colour" % (len(r.sensors) - SHOWN))
+            box.label(text="%d more: select a vertex" % (len(r.sensors) - SHOWN))
         layout.operator("fenestra.clear_results", icon='X')
 
 

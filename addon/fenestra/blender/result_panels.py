@@ -15,7 +15,8 @@ class FENESTRA_PT_result_display(FenestraPanel, bpy.types.Panel):
 
     def draw(self, context):
         layout, display = self.layout, context.scene.fenestra.display
-        layout.prop(display, "false_colour")
+        layout.label(text="False Colour:")
+        layout.prop(display, "false_colour", text="")
         if display.false_colour in {'ACHIEVED', 'DAYLIGHT_FACTOR'}:
             layout.prop(display, "colour_max")
         row = layout.row()

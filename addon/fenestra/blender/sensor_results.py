@@ -81,9 +81,12 @@ def active_sensor(context):
     return obj, active, values[0][active], values[1][active]
 
 
-def name(sensor):
-    """A result row's sensor as the user knows it: its object and vertex."""
-    return "%s %d" % (sensor.object_name, sensor.vertex) if sensor.object_name else "%d" % sensor.vertex
+def name(sensor, vertex_only=False):
+    """A result row's sensor as the user knows it: its object and vertex (the vertex alone when
+    every sensor is in one object)."""
+    if vertex_only or not sensor.object_name:
+        return "%d" % sensor.vertex
+    return "%s %d" % (sensor.object_name, sensor.vertex)
 
 
 def farthest_from_goal(results, count):
