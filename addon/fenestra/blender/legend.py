@@ -48,7 +48,7 @@ def layout(context):
     x0 = _left(context, scale) + PADDING * scale
     y0 = MARGIN * scale + PADDING * scale + 1.6 * TEXT * scale  # tick labels below the bar
     bar = (x0, y0, x0 + w, y0 + h)
-    whole = (x0 - PADDING * scale, MARGIN * scale, bar[2] + 3 * TEXT * scale, bar[3] + 2.0 * TEXT * scale + PADDING * scale)
+    whole = (x0 - PADDING * scale, MARGIN * scale, bar[2] + 2 * TEXT * scale, bar[3] + 2.0 * TEXT * scale + PADDING * scale)
     return whole, bar
 
 
