@@ -129,6 +129,7 @@ class FENESTRA_PT_sky(FenestraPanel, bpy.types.Panel):
             layout.prop(s, "ground_reflectance")
             layout.prop(s, "map_width")
         layout.prop(s, "preview_strength")
+        layout.prop(context.scene.view_settings, "exposure")  # set by Preview Sky, yours to change
         layout.operator("fenestra.preview_sky", icon='WORLD')
 
 

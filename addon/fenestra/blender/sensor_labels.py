@@ -44,6 +44,8 @@ def _labelled(context):
         if not obj.fenestra.is_sensor:
             continue
         active, selected = sensor_results.selection(obj)
+        if obj.mode != 'EDIT' and len(selected) == len(obj.data.vertices):
+            continue  # every vertex (as a new sensor grid is): no choice was made
         if len(selected) > MAX_LABELS:
             selected = [active] if active is not None else []
         chosen.append((obj, [int(i) for i in selected]))
