@@ -51,7 +51,9 @@ class FENESTRA_PT_domain(FenestraPanel, bpy.types.Panel):
         if context.mode != 'EDIT_MESH':
             layout.label(text="Select faces in Edit Mode", icon='INFO')
         layout.label(text="%d faces, %.2f m²" % (settings.domain_faces, settings.domain_area))
-        layout.prop(settings, "show_domain")
+        row = layout.row()
+        row.prop(settings, "show_domain")
+        row.prop(settings.display, "domain_colour", text="")
         size = settings.solve.element_size
         layout.label(text="About %d elements of %.2f m" % (settings.domain_area / size ** 2, size))
 

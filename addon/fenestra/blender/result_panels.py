@@ -9,9 +9,16 @@ from . import sensor_results
 from .panels import FenestraPanel
 
 
-class FENESTRA_PT_result_display(FenestraPanel, bpy.types.Panel):
-    bl_label = "Display"
+class ResultSubPanel(FenestraPanel):
     bl_parent_id = "FENESTRA_PT_results"
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene.fenestra.results.valid
+
+
+class FENESTRA_PT_result_display(ResultSubPanel, bpy.types.Panel):
+    bl_label = "Display"
 
     def draw(self, context):
         layout, display = self.layout, context.scene.fenestra.display
@@ -22,16 +29,14 @@ class FENESTRA_PT_result_display(FenestraPanel, bpy.types.Panel):
         row = layout.row()
         row.prop(display, "show_legend")
         row.prop(display, "show_sensor_labels", text="Labels")
-        layout.prop(display, "domain_colour")
         layout.operator("fenestra.show_goal_plot", icon='GRAPH')
 
 
-class FENESTRA_PT_selected_sensor(FenestraPanel, bpy.types.Panel):
+class FENESTRA_PT_selected_sensor(ResultSubPanel, bpy.types.Panel):
     bl_label = "Selected Sensor"
-    bl_parent_id = "FENESTRA_PT_results"
 
     def draw(self, context):
-        found = sensor_results.active_sensor(context) if context.scene.fenestra.results.valid else None
+        found = sensor_results.active_sensor(context)
         if found is None:
             self.layout.label(text="Select one vertex of a sensor object", icon='INFO')
             return
