@@ -2,8 +2,8 @@
 values and scales, each sensor by object and vertex, the goal plot, Preview Sky's exposure and live
 strength, the domain highlight cut by the result, Clear Results and Clear Domain), and in a real
 window under Xvfb (python_tests/blender/screenshot_results.py: screenshots of the 3D View show a
-sky that is neither white nor black, brighter when the strength is raised, and the legend's colour
-bar and title)."""
+sky that is neither white nor black, brighter when the strength is raised, the legend's colour
+bar and title, and Inspect Sensors labelling the sensor under the pointer)."""
 
 import os
 import shutil
@@ -34,11 +34,11 @@ def test_viewport_screenshots_show_the_sky_and_the_legend(tmp_path):
                     "import bpy; bpy.context.preferences.view.show_splash = False; bpy.ops.wm.save_userpref()"],
                    env=env, check=True, capture_output=True, timeout=120)
     out = tmp_path / "shots"
-    cmd = [XVFB_RUN, "-a", "-s", "-screen 0 1400x1000x24", BLENDER, "--window-geometry", "0", "0", "1400", "1000",
+    cmd = [XVFB_RUN, "-a", "-s", "-screen 0 1400x1000x24", BLENDER, "--enable-event-simulate", "--window-geometry", "0", "0", "1400", "1000",
            "--python", os.path.join(HERE, "blender", "screenshot_results.py"), "--", str(out)]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=env)
     checks = [line for line in r.stdout.splitlines() if line.startswith("CHECK")]
     assert r.returncode == 0 and "RESULT all checks ok" in r.stdout, "\n".join(checks) + r.stdout[-3000:] + r.stderr[-3000:]
-    assert len(checks) == 6, checks
-    for name in ("sky.png", "sky_brighter.png", "results.png"):
+    assert len(checks) == 9, checks
+    for name in ("sky.png", "sky_brighter.png", "results.png", "hover.png"):
         assert (out / name).stat().st_size > 0

@@ -1,11 +1,11 @@
 """The viewport after Preview Sky and a solve, checked on screenshots (needs a display; run by
 test_blender_results.py under Xvfb):
 
-    blender --window-geometry 0 0 1400 1000 --python screenshot_results.py -- OUT_DIR
+    blender --enable-event-simulate --window-geometry 0 0 1400 1000 --python screenshot_results.py -- OUT_DIR
 
 with user preferences whose splash screen is off (BLENDER_USER_CONFIG) and the add-on on Blender's
-add-on path (BLENDER_USER_SCRIPTS/addons/fenestra). Writes OUT_DIR/sky.png, sky_brighter.png and
-results.png (screenshots of the 3D View) and prints one line per check: "CHECK name ok|FAILED
+add-on path (BLENDER_USER_SCRIPTS/addons/fenestra). Writes OUT_DIR/sky.png, sky_brighter.png,
+results.png and hover.png (screenshots of the 3D View; the pointer is moved by simulated events) and prints one line per check: "CHECK name ok|FAILED
 numbers". Exits 1 when a check fails or a step raises."""
 
 import math
@@ -16,6 +16,7 @@ import traceback
 
 import bpy
 import numpy as np
+from bpy_extras.view3d_utils import location_3d_to_region_2d
 from mathutils import Euler
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -150,6 +151,42 @@ def check_legend():
     title = pixels[oy + int(y1) + 2:oy + int(y1) + 20, ox + int(x0):ox + int(x1)]
     check("legend_title_drawn", (title.min(axis=2) > 0.8).sum() > 30,
           "%d white pixels" % (title.min(axis=2) > 0.8).sum())
+    # Inspect Sensors: the pointer moved next to a sensor labels it.
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        assert bpy.ops.fenestra.inspect_sensors('INVOKE_DEFAULT') == {'RUNNING_MODAL'}
+    sensors = bpy.data.objects["Fenestra Sensors"]
+    target = len(sensors.data.vertices) // 2
+    where = location_3d_to_region_2d(region, region_data(), sensors.matrix_world @ sensors.data.vertices[target].co)
+    x, y = int(region.x + where.x + 4), int(region.y + where.y + 3)
+    window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x - 40, y=y)
+    window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
+    state["target"], state["where"] = target, (where.x, where.y)
+    bpy.app.timers.register(guarded(check_hover), first_interval=2.0)
+    return None
+
+
+def region_data():
+    return view3d()[1].spaces.active.region_3d
+
+
+def check_hover():
+    from fenestra.blender import sensor_hover
+    pixels, (ox, oy) = screenshot("hover.png")
+    hovered = dict(sensor_hover.hovered)
+    check("hovered_sensor", hovered.get("object") == "Fenestra Sensors" and hovered.get("vertex") == state["target"],
+          "hovered %s, pointed at vertex %d" % (hovered.get("vertex"), state["target"]))
+    x, y = state["where"]
+    label = pixels[oy + int(y) + 2:oy + int(y) + 20, ox + int(x) + 8:ox + int(x) + 160]
+    check("hover_label_drawn", (label.min(axis=2) > 0.8).sum() > 30, "%d white pixels" % (label.min(axis=2) > 0.8).sum())
+    window = view3d()[0]
+    window.event_simulate(type='ESC', value='PRESS')
+    bpy.app.timers.register(guarded(finish), first_interval=1.0)
+    return None
+
+
+def finish():
+    from fenestra.blender import sensor_hover
+    check("inspect_ends_on_esc", not sensor_hover.hovered, str(sensor_hover.hovered))
     print("RESULT %s" % ("FAILED " + " ".join(state["failed"]) if state["failed"] else "all checks ok"))
     sys.stdout.flush()
     os._exit(1 if state["failed"] else 0)

@@ -2,19 +2,20 @@
 
 properties (scene.fenestra, object.fenestra; display_settings: scene.fenestra.display), export
 (scene -> study files), materials, sky, sky_preview (Preview Sky's World and exposure), results
-(cutters, Booleans, achieved lux), cutter (an opening's cutter as a solid), operators and
-result_operators, panels and result_panels (3D View sidebar, "Fenestra" tab). Drawn in the
-viewport: overlay (the domain highlighted), false_colour_overlay (the sensors in false colour),
-legend (its colour bar), sensor_labels (goal and achieved next to the selected sensors).
+(cutters, Booleans, achieved lux), cutter (an opening's cutter as a solid), operators,
+result_operators and sensor_hover (Inspect Sensors), panels and result_panels (3D View sidebar,
+"Fenestra" tab). Drawn in the viewport: overlay (the domain highlighted), false_colour_overlay
+(the sensors in false colour), legend (its colour bar), sensor_labels (goal and achieved next to
+the selected or pointed-at sensors).
 """
 
 import bpy
 
 from . import (false_colour_overlay, legend, operators, overlay, panels, properties, result_operators,
-               result_panels, sensor_labels)
+               result_panels, sensor_hover, sensor_labels)
 
-classes = (properties.classes + operators.classes + result_operators.classes + panels.classes
-           + result_panels.classes)
+classes = (properties.classes + operators.classes + result_operators.classes + sensor_hover.classes
+           + panels.classes + result_panels.classes)
 DRAWN = (overlay, false_colour_overlay, legend, sensor_labels)
 
 

@@ -29,6 +29,7 @@ class FENESTRA_PT_result_display(ResultSubPanel, bpy.types.Panel):
         row = layout.row()
         row.prop(display, "show_legend")
         row.prop(display, "show_sensor_labels", text="Labels")
+        layout.operator("fenestra.inspect_sensors", icon='EYEDROPPER')
         layout.operator("fenestra.show_goal_plot", icon='GRAPH')
 
 

@@ -1,6 +1,7 @@
 """Writes goal and achieved lux next to the selected sensors in the 3D View: the selected vertices
 of sensor objects in Edit Mode, or of the active sensor object as last left in Edit Mode
-(`scene.fenestra.display.show_sensor_labels`). Drawing only."""
+(`scene.fenestra.display.show_sensor_labels`), and the sensor Inspect Sensors points at. Drawing
+only."""
 
 import math
 
@@ -10,7 +11,7 @@ import bpy
 from bpy_extras.view3d_utils import location_3d_to_region_2d
 from mathutils import Vector
 
-from . import sensor_results
+from . import sensor_hover, sensor_results
 
 MAX_LABELS = 24  # more selected vertices than this: only the active one is labelled
 TEXT = 11
@@ -35,7 +36,16 @@ def _positions(obj, indices):
 
 
 def _labelled(context):
-    """[(object, vertex indices)] to label."""
+    """[(object, vertex indices)] to label: the selected sensors, and the one Inspect Sensors points at."""
+    chosen = _selected(context)
+    if sensor_hover.hovered and sensor_hover.hovered["region"] == context.region.as_pointer():
+        obj = bpy.data.objects.get(sensor_hover.hovered["object"])
+        if obj is not None:
+            chosen.append((obj, [sensor_hover.hovered["vertex"]]))
+    return chosen
+
+
+def _selected(context):
     objects = [o for o in context.objects_in_mode if o.type == 'MESH'] if context.mode == 'EDIT_MESH' else []
     if not objects and context.active_object is not None and context.active_object.type == 'MESH':
         objects = [context.active_object]
