@@ -51,7 +51,7 @@ class FENESTRA_PT_domain(FenestraPanel, bpy.types.Panel):
         if context.mode != 'EDIT_MESH':
             layout.label(text="Select faces in Edit Mode", icon='INFO')
         layout.label(text="%d faces, %.2f m²" % (settings.domain_faces, settings.domain_area))
-        row = layout.row()
+        row = layout.split(factor=0.8)
         row.prop(settings, "show_domain")
         row.prop(settings.display, "domain_colour", text="")
         size = settings.solve.element_size
