@@ -7,7 +7,7 @@ packages=(
   libembree-dev pybind11-dev libeigen3-dev libopenimageio-dev libtbb-dev
   nlohmann-json3-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
   libhowardhinnant-date-dev
-  python3-dev python3-numpy python3-scipy python3-pytest python3-astropy
+  python3-dev python3-numpy python3-scipy python3-pytest python3-astropy python3-matplotlib
   blender xvfb
 )
 

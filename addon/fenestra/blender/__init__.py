@@ -1,26 +1,35 @@
 """The Blender add-on over the fenestra API: the only part of the package that imports bpy.
 
-properties (scene.fenestra, object.fenestra), export (scene -> study files), materials, sky,
-results (cutters, Booleans, achieved lux), cutter (an opening's cutter as a solid), operators,
-panels (3D View sidebar, "Fenestra" tab), overlay (the domain drawn highlighted in the viewport).
+properties (scene.fenestra, object.fenestra; display_settings: scene.fenestra.display), export
+(scene -> study files), materials, sky, sky_preview (Preview Sky's World and exposure), results
+(cutters, Booleans, achieved lux), cutter (an opening's cutter as a solid), operators,
+result_operators and sensor_hover (Inspect Sensors), panels and result_panels (3D View sidebar,
+"Fenestra" tab). Drawn in the viewport: overlay (the domain highlighted), false_colour_overlay
+(the sensors in false colour), legend (its colour bar), sensor_labels (goal and achieved next to
+the selected or pointed-at sensors).
 """
 
 import bpy
 
-from . import operators, overlay, panels, properties
+from . import (false_colour_overlay, legend, operators, overlay, panels, properties, result_operators,
+               result_panels, sensor_hover, sensor_labels)
 
-classes = properties.classes + operators.classes + panels.classes
+classes = (properties.classes + operators.classes + result_operators.classes + sensor_hover.classes
+           + panels.classes + result_panels.classes)
+DRAWN = (overlay, false_colour_overlay, legend, sensor_labels)
 
 
 def register():
     for cls in classes:
         bpy.utils.register_class(cls)
     properties.register()
-    overlay.register()
+    for module in DRAWN:
+        module.register()
 
 
 def unregister():
-    overlay.unregister()
+    for module in reversed(DRAWN):
+        module.unregister()
     properties.unregister()
     for cls in reversed(classes):
         bpy.utils.unregister_class(cls)

@@ -2,14 +2,13 @@
 
 import json
 import os
-import tempfile
 import threading
 
 import bpy
 import numpy as np
 from mathutils import Vector
 
-from . import export, native, results, sky
+from . import export, native, results, sky_preview
 
 
 def _native_or_report(op):
@@ -22,7 +21,8 @@ def _native_or_report(op):
 # Opening domain ---------------------------------------------------------------------------------
 
 def _mark_selected(context, value):
-    """Sets `fenestra_domain` on the selected faces of the meshes in Edit Mode; returns the count."""
+    """Sets `fenestra_domain` on the selected faces of the meshes in Edit Mode; returns how many
+    faces changed (marked that were not, or unmarked that were)."""
     objects = [o for o in context.objects_in_mode if o.type == 'MESH']
     bpy.ops.object.mode_set(mode='OBJECT')
     changed = 0
@@ -39,9 +39,9 @@ def _mark_selected(context, value):
                 attr = mesh.attributes.new(export.DOMAIN_ATTRIBUTE, 'BOOLEAN', 'FACE')
             flags = np.zeros(n, bool)
             attr.data.foreach_get("value", flags)
+            changed += int((selected & (flags != value)).sum())
             flags[selected] = value
             attr.data.foreach_set("value", flags)
-            changed += int(selected.sum())
             mesh.update()
         _count_domain(context.scene)
     finally:
@@ -154,7 +154,7 @@ class FENESTRA_OT_add_sensor_grid(bpy.types.Operator):
 # Sky --------------------------------------------------------------------------------------------
 
 class FENESTRA_OT_preview_sky(bpy.types.Operator):
-    """Compute the study's sky map and light the World with it (the sun is not in the map)"""
+    """Compute the study's sky map and light the World with it (the sun is not in the map), exposed so that the zenith is mid grey"""
     bl_idname = "fenestra.preview_sky"
     bl_label = "Preview Sky"
     bl_options = {'REGISTER', 'UNDO'}
@@ -162,21 +162,14 @@ class FENESTRA_OT_preview_sky(bpy.types.Operator):
     def execute(self, context):
         if not _native_or_report(self):
             return {'CANCELLED'}
-        from .. import api as fenestra
-        scene = context.scene
-        path = os.path.join(export.study_directory(scene), "sky.exr")
         try:
-            with tempfile.TemporaryDirectory() as probe:
-                native_scene = native.probe_scene(probe, sky=sky.sky_dict(scene))
-                os.makedirs(os.path.dirname(path), exist_ok=True)
-                fenestra.write_sky(native_scene, path)
-                summary = fenestra.sky(native_scene)["horizontal_illuminance"]
+            summary, exposure = sky_preview.preview(context.scene)
         except (ValueError, OSError) as exc:
             self.report({'ERROR'}, str(exc))
             return {'CANCELLED'}
-        sky.show_in_world(scene, path, scene.fenestra.sky.preview_strength)
-        self.report({'INFO'}, "Sky %.0f lux + sun %.0f lux on the horizontal (mean over the interval)"
-                    % (summary["sky"], summary["sun"]))
+        light = summary["horizontal_illuminance"]
+        self.report({'INFO'}, "Sky %.0f lux + sun %.0f lux on the horizontal (mean over the interval)%s"
+                    % (light["sky"], light["sun"], "" if exposure is None else ", exposure %+.1f" % exposure))
         return {'FINISHED'}
 
 
@@ -293,13 +286,14 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
 
 
 class FENESTRA_OT_clear_results(bpy.types.Operator):
-    """Remove the openings' cutters and Boolean modifiers made by Solve Openings"""
+    """Remove what Solve Openings made: the cutters and their collection, the Boolean and Geometry Nodes modifiers, the sensors' achieved values and the result's figures"""
     bl_idname = "fenestra.clear_results"
     bl_label = "Clear Results"
     bl_options = {'REGISTER', 'UNDO'}
 
     def execute(self, context):
-        results.clear(context.scene)
+        n = results.clear(context.scene)
+        self.report({'INFO'}, "Result cleared: %d cutters removed" % n)
         return {'FINISHED'}
 
 

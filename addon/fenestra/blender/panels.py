@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import export, native, sky
+from . import export, native, sensor_results, sky
 
 SHOWN = 12  # sensors listed in the Results panel
 
@@ -51,7 +51,9 @@ class FENESTRA_PT_domain(FenestraPanel, bpy.types.Panel):
         if context.mode != 'EDIT_MESH':
             layout.label(text="Select faces in Edit Mode", icon='INFO')
         layout.label(text="%d faces, %.2f m²" % (settings.domain_faces, settings.domain_area))
-        layout.prop(settings, "show_domain")
+        row = layout.split(factor=0.8)
+        row.prop(settings, "show_domain")
+        row.prop(settings.display, "domain_colour", text="")
         size = settings.solve.element_size
         layout.label(text="About %d elements of %.2f m" % (settings.domain_area / size ** 2, size))
 
@@ -129,6 +131,7 @@ class FENESTRA_PT_sky(FenestraPanel, bpy.types.Panel):
             layout.prop(s, "ground_reflectance")
             layout.prop(s, "map_width")
         layout.prop(s, "preview_strength")
+        layout.prop(context.scene.view_settings, "exposure")  # set by Preview Sky, yours to change
         layout.operator("fenestra.preview_sky", icon='WORLD')
 
 
@@ -189,15 +192,17 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             draw_warning(layout, warning)
         col.label(text="Time %.1f s (solver %.1f s)" % (r.seconds_total, r.seconds_solver))
         box = layout.box()
+        box.label(text="Farthest from their goals:" if len(r.sensors) > SHOWN else "Sensors:")
         col = box.column(align=True)
-        for cells in [("Sensor", "Goal lx", "Got lx")] + [
-                (str(i), "-" if s.goal < 0 else "%.0f" % s.goal, "%.0f" % s.achieved)
-                for i, s in enumerate(r.sensors[:SHOWN])]:
+        one_object = len({s.object_name for s in r.sensors}) == 1
+        for cells in [("Vertex" if one_object else "Sensor", "Goal lx", "Got lx")] + [
+                (sensor_results.name(s, one_object), "-" if s.goal < 0 else "%.0f" % s.goal, "%.0f" % s.achieved)
+                for s in sensor_results.farthest_from_goal(r, SHOWN)]:
             row = col.row(align=True)
             for text in cells:
                 row.label(text=text)
         if len(r.sensors) > SHOWN:
-            box.label(text="%d more: see 'fenestra_achieved'" % (len(r.sensors) - SHOWN))
+            box.label(text="%d more: select a vertex" % (len(r.sensors) - SHOWN))
         layout.operator("fenestra.clear_results", icon='X')
 
 

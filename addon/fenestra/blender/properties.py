@@ -7,6 +7,9 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
                        PointerProperty, StringProperty)
 from bpy.types import PropertyGroup
 
+from . import sky_preview
+from .display_settings import FenestraDisplaySettings
+
 TODAY = datetime.date.today()
 
 
@@ -61,7 +64,9 @@ class FenestraSkySettings(PropertyGroup):
                            min=16, max=8192, default=1024)
     preview_strength: FloatProperty(
         name="Preview Strength", min=0.0, default=0.001, precision=5,
-        description="World strength of the previewed sky map (1 = cd/m², as Fenestra lights the scene)")
+        description="World strength of the previewed sky map (1 = cd/m², as Fenestra lights the scene); "
+                    "applied at once, the map is not computed again",
+        update=sky_preview.strength_changed)
 
 
 class FenestraGoalSettings(PropertyGroup):
@@ -153,6 +158,8 @@ class FenestraSolveSettings(PropertyGroup):
 class FenestraSensorResult(PropertyGroup):
     goal: FloatProperty(name="Goal", description="Lux (negative: no goal)")
     achieved: FloatProperty(name="Achieved", description="Lux")
+    object_name: StringProperty(name="Object", description="The sensor object this sensor is a vertex of")
+    vertex: IntProperty(name="Vertex", description="Its vertex index in that object")
 
 
 class FenestraResults(PropertyGroup):
@@ -171,6 +178,10 @@ class FenestraResults(PropertyGroup):
     seconds_solver: FloatProperty(name="Solver", unit='TIME_ABSOLUTE')
     study_path: StringProperty(name="Study", subtype='FILE_PATH')
     sensors: CollectionProperty(type=FenestraSensorResult)
+    horizontal_illuminance: FloatProperty(
+        name="Unobstructed Horizontal Illuminance", default=0.0,
+        description="Lux of the solved sky on an unobstructed horizontal surface, for daylight factors "
+                    "(0: not known yet)")
 
 
 class FenestraSceneSettings(PropertyGroup):
@@ -178,13 +189,14 @@ class FenestraSceneSettings(PropertyGroup):
     goals: PointerProperty(type=FenestraGoalSettings)
     solve: PointerProperty(type=FenestraSolveSettings)
     results: PointerProperty(type=FenestraResults)
+    display: PointerProperty(type=FenestraDisplaySettings)
     sensor_height: FloatProperty(name="Height", min=0.0, default=0.8, unit='LENGTH',
                                  description="Sensor grid: height above the floor")
     sensor_spacing: FloatProperty(name="Spacing", min=0.05, default=0.5, unit='LENGTH',
                                   description="Sensor grid: distance between sensors")
     domain_faces: IntProperty(name="Domain Faces", description="Faces marked as opening domain (last count)")
     show_domain: BoolProperty(name="Highlight Domain", default=True,
-                              description="Draw the opening domain's faces highlighted in the viewport (Object Mode)")
+                              description="Draw the opening domain's faces highlighted in the viewport (not over the openings cut)")
     domain_area: FloatProperty(name="Domain Area", unit='AREA', description="Their area (last count)")
 
 
@@ -196,6 +208,7 @@ classes = (
     FenestraSolveSettings,
     FenestraSensorResult,
     FenestraResults,
+    FenestraDisplaySettings,
     FenestraSceneSettings,
 )
 

@@ -5,6 +5,7 @@ import bmesh
 import bpy
 import numpy as np
 
+from . import sky_reference
 from .cutter import Cutter
 from .export import BOOLEAN_NAME, OPEN_THROUGH_NAME, is_result_modifier
 
@@ -16,20 +17,35 @@ TOUCH_TOLERANCE = 0.001  # m: geometry this close to a cutter's edge only touche
 
 
 def clear(scene):
-    """Removes the cutters and the modifiers of a previous result."""
+    """Removes everything a result put into the file: the cutters, the modifiers and their node
+    group, the cutters' collection, the `fenestra_achieved` attribute, and the result's figures.
+    Returns the number of cutters removed."""
     for obj in list(scene.objects):
         for m in [m for m in obj.modifiers if is_result_modifier(m)]:
             obj.modifiers.remove(m)
     group = bpy.data.node_groups.get(OPEN_THROUGH_NAME)
     if group is not None and group.users == 0:
         bpy.data.node_groups.remove(group)
-    for obj in [o for o in bpy.data.objects if o.fenestra.is_opening]:
+    cutters = [o for o in bpy.data.objects if o.fenestra.is_opening]
+    for obj in cutters:
         mesh = obj.data
         bpy.data.objects.remove(obj)
         if mesh is not None and mesh.users == 0:
             bpy.data.meshes.remove(mesh)
-    scene.fenestra.results.valid = False
-    scene.fenestra.results.sensors.clear()
+    coll = bpy.data.collections.get(COLLECTION)
+    if coll is not None and not coll.objects and not coll.children:  # kept if the user put things in it
+        bpy.data.collections.remove(coll)
+    for obj in scene.objects:
+        if obj.type == 'MESH' and obj.data is not None:
+            attr = obj.data.attributes.get(ACHIEVED_ATTRIBUTE)
+            if attr is not None:
+                obj.data.attributes.remove(attr)
+    results = scene.fenestra.results
+    for key in results.bl_rna.properties.keys():
+        if key not in {"rna_type", "name", "sensors"}:
+            results.property_unset(key)  # back to its default: no old count is left on show
+    results.sensors.clear()
+    return len(cutters)
 
 
 def _collection(scene):
@@ -205,10 +221,12 @@ def apply(context, study, result):
 
     r = settings.results
     r.sensors.clear()
-    for s in result["sensors"]:
+    owners = [(name, vertex) for name, count in study.sensor_objects for vertex in range(count)]
+    for s, (name, vertex) in zip(result["sensors"], owners):
         item = r.sensors.add()
         item.goal = s["goal"] if s["goal"] is not None else -1.0
         item.achieved = s["predicted"]
+        item.object_name, item.vertex = name, vertex
     timings = result.get("timings_s", {})
     r.relative_rms = result["error"]["relative_rms"]
     r.max_relative = result["error"].get("max_relative", 0.0)
@@ -223,5 +241,7 @@ def apply(context, study, result):
     r.seconds_solver = r.seconds_total - r.seconds_contributions
     r.study_path = study.scene_path
     r.valid = True
+    if settings.display.false_colour == 'DAYLIGHT_FACTOR':
+        sky_reference.ensure_horizontal_illuminance(scene)
     settings.domain_faces = study.domain_faces
     settings.domain_area = study.domain_area
