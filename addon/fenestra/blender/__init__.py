@@ -2,14 +2,17 @@
 
 properties (scene.fenestra, object.fenestra), export (scene -> study files), materials, sky,
 results (cutters, Booleans, achieved lux), cutter (an opening's cutter as a solid), operators,
-panels (3D View sidebar, "Fenestra" tab), overlay (the domain drawn highlighted in the viewport).
+panels (3D View sidebar, "Fenestra" tab), overlay (the domain drawn highlighted in the viewport),
+user_messages (the core's messages in the user's words), visibility (hidden marked objects),
+goal_bounds (the goal fields' ranges), setup_checks and check_setup (warnings before a solve),
+opening_cutters and evaluate_openings (the cutters as the user moved them, path-traced).
 """
 
 import bpy
 
-from . import operators, overlay, panels, properties
+from . import check_setup, operators, overlay, panels, properties
 
-classes = properties.classes + operators.classes + panels.classes
+classes = properties.classes + operators.classes + panels.classes + check_setup.classes
 
 
 def register():
