@@ -86,9 +86,14 @@ def _world_vertices(mesh, matrix):
 
 
 def _world_normals(mesh, matrix):
+    """Vertex normals in world space; up for a vertex on no face (Blender gives such a vertex its
+    position's direction, which would point a sensor anywhere)."""
     n = np.empty(len(mesh.vertices) * 3, np.float64)
     mesh.vertex_normals.foreach_get("vector", n)
     n = n.reshape(-1, 3) @ np.linalg.inv(np.array(matrix, np.float64)[:3, :3])  # inverse transpose
+    corners = np.empty(len(mesh.loops), np.int64)
+    mesh.loops.foreach_get("vertex_index", corners)
+    n[np.bincount(corners, minlength=len(mesh.vertices)) == 0] = 0.0
     length = np.linalg.norm(n, axis=1)
     n[length < 1e-9] = (0.0, 0.0, 1.0)
     length[length < 1e-9] = 1.0
