@@ -206,14 +206,12 @@ def domain_sides(tree, study):
 
 def hidden_objects(context):
     """Marked objects left out of the study because they are hidden (the others are in it)."""
-    warnings = []
-    for obj, faces, reason in visibility.hidden_domain(context):
-        warnings.append("The %d domain faces of '%s' are on a hidden object (%s) and are left out of the study"
-                        % (faces, obj.name, reason))
-    for obj, count, reason in visibility.hidden_sensors(context):
-        warnings.append("The %d sensors of '%s' are on a hidden object (%s) and are left out of the study"
-                        % (count, obj.name, reason))
-    return warnings
+    def left_out(count, what, name, reason):
+        one = count == 1
+        return ("The %d %s%s of '%s' %s on a hidden object (%s) and %s left out of the study"
+                % (count, what, "" if one else "s", name, "is" if one else "are", reason, "is" if one else "are"))
+    return ([left_out(faces, "domain face", obj.name, reason) for obj, faces, reason in visibility.hidden_domain(context)]
+            + [left_out(n, "sensor", obj.name, reason) for obj, n, reason in visibility.hidden_sensors(context)])
 
 
 def run(context, study):

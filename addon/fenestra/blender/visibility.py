@@ -23,8 +23,6 @@ def _layer_path(layer_collection, collection):
 
 def hidden_reason(obj, view_layer):
     """How obj is hidden in the view layer, in the Outliner's words."""
-    if obj.name not in view_layer.objects:
-        return "it is in no collection of the view layer '%s'" % view_layer.name
     if obj.hide_viewport:
         return "it is disabled in viewports, the monitor icon in the Outliner"
     for collection in obj.users_collection:
@@ -35,6 +33,8 @@ def hidden_reason(obj, view_layer):
                 return "its collection '%s' is disabled in viewports" % layer.name
             if layer.hide_viewport:
                 return "its collection '%s' is hidden" % layer.name
+    if obj.name not in view_layer.objects:
+        return "it is in no collection of the view layer '%s'" % view_layer.name
     if obj.hide_get(view_layer=view_layer):
         return "it is hidden, Alt+H shows it"
     return "it is not shown in the viewport"
