@@ -1,8 +1,9 @@
 """The Blender add-on, headless: registration, a solved study, save/reload, bad setups
 (python_tests/blender/addon_study.py), the openings cut through zero-thickness and solid walls
 (python_tests/blender/addon_holes.py) and through a curved wall, whose UV map is exported
-(python_tests/blender/addon_curved.py), messages and setup checks (python_tests/blender/addon_checks.py),
-run inside Blender with the add-on on its add-on path."""
+(python_tests/blender/addon_curved.py), messages and setup checks (python_tests/blender/addon_checks.py)
+and Evaluate on moved cutters (python_tests/blender/addon_evaluate.py), run inside Blender with the
+add-on on its add-on path."""
 
 import os
 import shutil
@@ -57,6 +58,16 @@ def test_messages_and_setup_checks(tmp_path):
     r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_checks.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
     assert "Ran 18 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+
+
+@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+def test_evaluate_moved_cutters(tmp_path):
+    """After a solve, a cutter moved 0.5 m along the wall (or scaled) is read back as its rectangle
+    and path-traced: the results change to what fenestra.evaluate gives for that rectangle, within
+    standard errors; cutters off the wall, and curved ones once moved, are refused in plain words."""
+    r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_evaluate.py"), str(tmp_path / "out"))
+    assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
+    assert "Ran 5 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 
 
 @pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")

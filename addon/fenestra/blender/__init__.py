@@ -10,9 +10,10 @@ opening_cutters and evaluate_openings (the cutters as the user moved them, path-
 
 import bpy
 
-from . import check_setup, operators, overlay, panels, properties
+from . import check_setup, evaluate_openings, operators, overlay, panels, properties
 
-classes = properties.classes + operators.classes + panels.classes + check_setup.classes
+classes = (properties.classes + operators.classes + evaluate_openings.classes + panels.classes
+           + check_setup.classes)
 
 
 def register():

@@ -182,6 +182,8 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
         col.label(text="%d openings" % r.openings)
         col.label(text="%d of %d elements open" % (r.open_elements, r.elements))
         col.label(text="Error %.1f %% RMS" % (100 * r.relative_rms))
+        if r.evaluated:
+            col.label(text="Evaluated: the cutters as they stand", icon='CHECKMARK')
         col.label(text="Worst sensor %.1f %%" % (100 * r.max_relative))
         if r.verified_rms >= 0:
             col.label(text="Checked: %.1f %% RMS" % (100 * r.verified_rms))
@@ -198,6 +200,7 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
                 row.label(text=text)
         if len(r.sensors) > SHOWN:
             box.label(text="%d more: see 'fenestra_achieved'" % (len(r.sensors) - SHOWN))
+        layout.operator("fenestra.evaluate_openings", icon='PLAY')
         layout.operator("fenestra.clear_results", icon='X')
 
 

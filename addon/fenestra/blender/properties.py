@@ -173,6 +173,9 @@ class FenestraResults(PropertyGroup):
                                 description="Relative RMS error path-traced with the openings really cut "
                                             "(negative: not checked)")
     warnings: StringProperty(name="Warnings", description="What to know before trusting the result, one per line")
+    evaluated: BoolProperty(name="Evaluated", default=False,
+                            description="The values and errors are path-traced with the cutters as they stand "
+                                        "(Evaluate), not the solve's")
     max_relative: FloatProperty(name="Worst Sensor Error")
     openings: IntProperty(name="Openings")
     open_elements: IntProperty(name="Open Elements")
