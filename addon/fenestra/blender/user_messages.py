@@ -138,6 +138,12 @@ RULES = [
                 r"model's\)$"),
      lambda m, c: ("Wall Thickness %s disagrees with the wall modelled behind %s: its outer face is %s behind "
                    "them. Set Wall Thickness to 0 to use the model's" % m.groups())),
+    # The face's number counts the OBJ group's triangles, not the object's faces: left out.
+    (re.compile(r"^(?:geometry: )?geometry '[^']*': face \d+ of group '([^']*)' is degenerate \(zero area\)$"),
+     lambda m, c: ("A face of '%s'%s has no area (a zero-length edge, or corners in a line): delete it, for instance "
+                   "with Mesh > Clean Up > Degenerate Dissolve in Edit Mode"
+                   % (c.object_of_group(m.group(1)), " (one of its domain faces)" if m.group(1).endswith(".domain")
+                      and m.group(1) in c.group_objects else ""))),
     (re.compile(r"^opening (\d+) (does not lie on any flat opening-domain panel).*$"),
      lambda m, c: ("%s does not lie flat on the opening domain: move it back onto the marked faces"
                    % c.opening(int(m.group(1))))),
