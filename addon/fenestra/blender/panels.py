@@ -183,7 +183,7 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
         col.label(text="%d of %d elements open" % (r.open_elements, r.elements))
         col.label(text="Error %.1f %% RMS" % (100 * r.relative_rms))
         if r.evaluated:
-            col.label(text="Evaluated: the cutters as they stand", icon='CHECKMARK')
+            col.label(text="Evaluated as placed", icon='CHECKMARK')
         col.label(text="Worst sensor %.1f %%" % (100 * r.max_relative))
         if r.verified_rms >= 0:
             col.label(text="Checked: %.1f %% RMS" % (100 * r.verified_rms))
