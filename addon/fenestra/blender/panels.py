@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import export, native, sky
+from . import export, native, sky, visibility
 
 SHOWN = 12  # sensors listed in the Results panel
 
@@ -51,6 +51,8 @@ class FENESTRA_PT_domain(FenestraPanel, bpy.types.Panel):
         if context.mode != 'EDIT_MESH':
             layout.label(text="Select faces in Edit Mode", icon='INFO')
         layout.label(text="%d faces, %.2f m²" % (settings.domain_faces, settings.domain_area))
+        for obj, faces, reason in visibility.hidden_domain(context):
+            draw_warning(layout, "%d on '%s': %s; left out of the study" % (faces, obj.name, reason))
         layout.prop(settings, "show_domain")
         size = settings.solve.element_size
         layout.label(text="About %d elements of %.2f m" % (settings.domain_area / size ** 2, size))
@@ -71,6 +73,8 @@ class FENESTRA_PT_sensors(FenestraPanel, bpy.types.Panel):
             layout.prop(obj.fenestra, "is_sensor", text="Sensor Object (%s)" % obj.name)
         sensors = [o for o in context.scene.objects if o.fenestra.is_sensor and o.type == 'MESH']
         layout.label(text="%d sensors in %d objects" % (sum(len(o.data.vertices) for o in sensors), len(sensors)))
+        for obj, count, reason in visibility.hidden_sensors(context):
+            draw_warning(layout, "%d in '%s': %s; left out of the study" % (count, obj.name, reason))
         goals = settings.goals
         layout.prop(goals, "source")
         layout.prop(goals, "units")
