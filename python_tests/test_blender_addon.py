@@ -1,7 +1,9 @@
 """The Blender add-on, headless: registration, a solved study, save/reload, bad setups
 (python_tests/blender/addon_study.py), the openings cut through zero-thickness and solid walls
 (python_tests/blender/addon_holes.py) and through a curved wall, whose UV map is exported
-(python_tests/blender/addon_curved.py), run inside Blender with the add-on on its add-on path."""
+(python_tests/blender/addon_curved.py), messages and setup checks (python_tests/blender/addon_checks.py)
+and Evaluate on moved cutters (python_tests/blender/addon_evaluate.py), run inside Blender with the
+add-on on its add-on path."""
 
 import os
 import shutil
@@ -46,6 +48,26 @@ def test_openings_cut_through_a_curved_wall(tmp_path):
     r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_curved.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
     assert "Ran 7 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+
+
+@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+def test_messages_and_setup_checks(tmp_path):
+    """Refusals name objects and fields, not scene-file keys or paths; hidden marked objects are
+    named as hidden; goal fields stay in range; Check Setup warns, with counts, about goals all 0,
+    sensors outdoors or facing down, rooms open to the sky, domain faces seen from the wrong side."""
+    r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_checks.py"), str(tmp_path / "out"))
+    assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
+    assert "Ran 18 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+
+
+@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+def test_evaluate_moved_cutters(tmp_path):
+    """After a solve, a cutter moved 0.5 m along the wall (or scaled) is read back as its rectangle
+    and path-traced: the results change to what fenestra.evaluate gives for that rectangle, within
+    standard errors; cutters off the wall, and curved ones once moved, are refused in plain words."""
+    r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_evaluate.py"), str(tmp_path / "out"))
+    assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
+    assert "Ran 5 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 
 
 @pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")

@@ -243,7 +243,7 @@ class BadSetups(unittest.TestCase):
     def test_element_size_larger_than_the_wall(self):
         study()
         bpy.context.scene.fenestra.solve.element_size = 50.0
-        self.assert_refused(["element_size", "larger"])
+        self.assert_refused(["Element Size 50 m is too large", "the domain faces of 'Room'"])
 
     def test_element_size_too_small(self):
         study()
@@ -261,13 +261,13 @@ class BadSetups(unittest.TestCase):
         study()
         solve = bpy.context.scene.fenestra.solve
         solve.quality, solve.generations = 'CUSTOM', 10 ** 7
-        self.assert_refused(["genetic algorithm", "solver.generations"])
+        self.assert_refused(["genetic algorithm", "fewer Generations"])
 
     def test_bad_setup_after_a_solve_keeps_the_result(self):
         study()
         self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
         bpy.context.scene.fenestra.solve.element_size = 50.0
-        self.assert_refused(["element_size"])
+        self.assert_refused(["Element Size"])
         self.assertTrue(bpy.context.scene.fenestra.results.valid)
 
 

@@ -6,16 +6,19 @@ properties (scene.fenestra, object.fenestra; display_settings: scene.fenestra.di
 result_operators and sensor_hover (Inspect Sensors), panels and result_panels (3D View sidebar,
 "Fenestra" tab). Drawn in the viewport: overlay (the domain highlighted), false_colour_overlay
 (the sensors in false colour), legend (its colour bar), sensor_labels (goal and achieved next to
-the selected or pointed-at sensors).
+the selected or pointed-at sensors). user_messages (the core's messages in the user's words),
+visibility (hidden marked objects), goal_bounds (the goal fields' ranges), setup_checks and
+check_setup (warnings before a solve), opening_cutters and evaluate_openings (the cutters as the
+user moved them, path-traced).
 """
 
 import bpy
 
-from . import (false_colour_overlay, legend, operators, overlay, panels, properties, result_operators,
-               result_panels, sensor_hover, sensor_labels)
+from . import (check_setup, evaluate_openings, false_colour_overlay, legend, operators, overlay, panels, properties,
+               result_operators, result_panels, sensor_hover, sensor_labels)
 
 classes = (properties.classes + operators.classes + result_operators.classes + sensor_hover.classes
-           + panels.classes + result_panels.classes)
+           + evaluate_openings.classes + panels.classes + result_panels.classes + check_setup.classes)
 DRAWN = (overlay, false_colour_overlay, legend, sensor_labels)
 
 

@@ -11,7 +11,7 @@ import re
 import bpy
 import numpy as np
 
-from . import materials, sky
+from . import materials, sky, visibility
 
 DOMAIN_ATTRIBUTE = "fenestra_domain"
 GOAL_ATTRIBUTE = "fenestra_goal"
@@ -33,6 +33,8 @@ class Study:
         self.obj_text = ""
         self.sensor_objects = []   # (object name, vertex count) in sensor order
         self.domain_objects = []   # names of the objects with domain faces
+        self.group_objects = {}    # OBJ group -> the name of the object it was written from
+        self.triangles = []        # (object name, world vertices, triangles, domain flags), as written
         self.sensor_centroid = np.zeros(3)
         self.domain_area = 0.0
         self.domain_faces = 0
@@ -84,9 +86,14 @@ def _world_vertices(mesh, matrix):
 
 
 def _world_normals(mesh, matrix):
+    """Vertex normals in world space; up for a vertex on no face (Blender gives such a vertex its
+    position's direction, which would point a sensor anywhere)."""
     n = np.empty(len(mesh.vertices) * 3, np.float64)
     mesh.vertex_normals.foreach_get("vector", n)
     n = n.reshape(-1, 3) @ np.linalg.inv(np.array(matrix, np.float64)[:3, :3])  # inverse transpose
+    corners = np.empty(len(mesh.loops), np.int64)
+    mesh.loops.foreach_get("vertex_index", corners)
+    n[np.bincount(corners, minlength=len(mesh.vertices)) == 0] = 0.0
     length = np.linalg.norm(n, axis=1)
     n[length < 1e-9] = (0.0, 0.0, 1.0)
     length[length < 1e-9] = 1.0
@@ -191,7 +198,8 @@ def _build(context, depsgraph):
                and not o.fenestra.is_opening]
     sensor_objects = [o for o in objects if o.fenestra.is_sensor]
     if not sensor_objects:
-        raise StudyError("No sensors: mark an object as sensors (Sensors > Sensor Object) or add a sensor grid")
+        raise StudyError(visibility.no_sensors_message(context) or
+                         "No sensors: mark an object as sensors (Sensors > Sensor Object) or add a sensor grid")
 
     # Sensors, and their goals, first (cheap, so a bad setup fails fast).
     points, normals, goals = [], [], []
@@ -244,12 +252,15 @@ def _build(context, depsgraph):
             if uvs is not None:
                 lines.append("vt " + "\nvt ".join("%.6f %.6f" % tuple(t) for t in uvs[0]))
             group = _safe(obj.name, taken_groups)
+            study.group_objects[group] = obj.name
+            study.triangles.append((obj.name, verts, tris, domain))
             for is_domain in (False, True):
                 chosen = domain == is_domain
                 if not chosen.any():
                     continue
                 if is_domain:
                     group_name = _safe(obj.name + ".domain", taken_groups)
+                    study.group_objects[group_name] = obj.name
                     domain_groups.append(group_name)
                     study.domain_objects.append(obj.name)
                     study.domain_faces += int(len(np.unique(polygon[chosen])))
@@ -278,7 +289,8 @@ def _build(context, depsgraph):
             obj_eval.to_mesh_clear()
 
     if not domain_groups:
-        raise StudyError("No opening domain: select faces in Edit Mode and use Opening Domain > Mark")
+        raise StudyError(visibility.no_domain_message(context) or
+                         "No opening domain: select faces in Edit Mode and use Opening Domain > Mark")
     if not (solve.element_size > 0):
         raise StudyError("The element size must be positive")
     estimate = study.domain_area / solve.element_size ** 2

@@ -8,7 +8,7 @@ import bpy
 import numpy as np
 from mathutils import Vector
 
-from . import export, native, results, sky_preview
+from . import check_setup, export, native, results, setup_checks, sky_preview, user_messages
 
 
 def _native_or_report(op):
@@ -165,7 +165,7 @@ class FENESTRA_OT_preview_sky(bpy.types.Operator):
         try:
             summary, exposure = sky_preview.preview(context.scene)
         except (ValueError, OSError) as exc:
-            self.report({'ERROR'}, str(exc))
+            self.report({'ERROR'}, user_messages.for_user(exc))
             return {'CANCELLED'}
         light = summary["horizontal_illuminance"]
         self.report({'INFO'}, "Sky %.0f lux + sun %.0f lux on the horizontal (mean over the interval)%s"
@@ -195,13 +195,14 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
         from .. import api as fenestra
         try:
             self._study = export.build(context)
+            check_setup.show(self, context, setup_checks.run(context, self._study))
             path = self._study.write(export.study_directory(context.scene))
             self._scene = fenestra.load_scene(path)
             # The cost model (docs/cost.md): refuse here, before the worker thread starts, what
             # would not fit in memory or take too long (a Blender killed by the OOM killer loses work).
             fenestra.check_cost(self._scene, "solve")
         except (ValueError, OSError) as exc:
-            self.report({'ERROR'}, str(exc))
+            self.report({'ERROR'}, user_messages.for_user(exc, getattr(self, "_study", None)))
             return False
         return True
 
@@ -224,7 +225,7 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
         try:
             result = fenestra.solve(self._scene)
         except Exception as exc:  # the native message, for the user
-            self.report({'ERROR'}, str(exc))
+            self.report({'ERROR'}, user_messages.for_user(exc, self._study))
             return {'CANCELLED'}
         return self._finish(context, result)
 
@@ -280,7 +281,7 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
             self.report({'WARNING'}, "Solve cancelled")
             return {'CANCELLED'}
         if error is not None:
-            self.report({'ERROR'}, str(error))
+            self.report({'ERROR'}, user_messages.for_user(error, self._study))
             return {'CANCELLED'}
         return self._finish(context, self._outcome["result"])
 

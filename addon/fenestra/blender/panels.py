@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import export, native, sensor_results, sky
+from . import export, native, sensor_results, sky, visibility
 
 SHOWN = 12  # sensors listed in the Results panel
 
@@ -51,6 +51,8 @@ class FENESTRA_PT_domain(FenestraPanel, bpy.types.Panel):
         if context.mode != 'EDIT_MESH':
             layout.label(text="Select faces in Edit Mode", icon='INFO')
         layout.label(text="%d faces, %.2f m²" % (settings.domain_faces, settings.domain_area))
+        for obj, faces, reason in visibility.hidden_domain(context):
+            draw_warning(layout, "%d on '%s': %s; left out of the study" % (faces, obj.name, reason))
         row = layout.split(factor=0.8)
         row.prop(settings, "show_domain")
         row.prop(settings.display, "domain_colour", text="")
@@ -73,6 +75,8 @@ class FENESTRA_PT_sensors(FenestraPanel, bpy.types.Panel):
             layout.prop(obj.fenestra, "is_sensor", text="Sensor Object (%s)" % obj.name)
         sensors = [o for o in context.scene.objects if o.fenestra.is_sensor and o.type == 'MESH']
         layout.label(text="%d sensors in %d objects" % (sum(len(o.data.vertices) for o in sensors), len(sensors)))
+        for obj, count, reason in visibility.hidden_sensors(context):
+            draw_warning(layout, "%d in '%s': %s; left out of the study" % (count, obj.name, reason))
         goals = settings.goals
         layout.prop(goals, "source")
         layout.prop(goals, "units")
@@ -185,6 +189,8 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
         col.label(text="%d openings" % r.openings)
         col.label(text="%d of %d elements open" % (r.open_elements, r.elements))
         col.label(text="Error %.1f %% RMS" % (100 * r.relative_rms))
+        if r.evaluated:
+            col.label(text="Evaluated as placed", icon='CHECKMARK')
         col.label(text="Worst sensor %.1f %%" % (100 * r.max_relative))
         if r.verified_rms >= 0:
             col.label(text="Checked: %.1f %% RMS" % (100 * r.verified_rms))
@@ -203,6 +209,7 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
                 row.label(text=text)
         if len(r.sensors) > SHOWN:
             box.label(text="%d more: select a vertex" % (len(r.sensors) - SHOWN))
+        layout.operator("fenestra.evaluate_openings", icon='PLAY')
         layout.operator("fenestra.clear_results", icon='X')
 
 

@@ -7,7 +7,7 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
                        PointerProperty, StringProperty)
 from bpy.types import PropertyGroup
 
-from . import sky_preview
+from . import goal_bounds, sky_preview
 from .display_settings import FenestraDisplaySettings
 
 TODAY = datetime.date.today()
@@ -79,12 +79,21 @@ class FenestraGoalSettings(PropertyGroup):
         name="Units", default='NORMALIZED',
         items=(('NORMALIZED', "Normalized", "0 = dark, 1 = the sensor's value with every element open"),
                ('LUX', "Lux", "Illuminance"),
-               ('DAYLIGHT_FACTOR', "Daylight Factor", "Percent of the unobstructed horizontal illuminance")))
-    level: FloatProperty(name="Goal", min=0.0, default=0.5, description="Uniform goal, in the goal units")
+               ('DAYLIGHT_FACTOR', "Daylight Factor", "Percent of the unobstructed horizontal illuminance")),
+        update=goal_bounds.units_changed)
+    # Hard limits hold every unit's range; the callbacks clamp to the chosen units' (goal_bounds.py).
+    level: FloatProperty(name="Goal", min=0.0, max=goal_bounds.HARD_MAX, soft_max=1000.0, default=0.5,
+                         update=goal_bounds.level_changed,
+                         description="Uniform goal, in the goal units: normalized 0 to 1, daylight factor "
+                                     "0 to 100 %, lux from 0")
     use_min: BoolProperty(name="Minimum", default=False)
-    min: FloatProperty(name="Minimum", min=0.0, default=0.3, description="Penalised below this, goal units")
+    min: FloatProperty(name="Minimum", min=0.0, max=goal_bounds.HARD_MAX, soft_max=1000.0, default=0.3,
+                       update=goal_bounds.min_changed,
+                       description="Penalised below this, goal units (at most the goal)")
     use_max: BoolProperty(name="Maximum", default=False)
-    max: FloatProperty(name="Maximum", min=0.0, default=0.8, description="Penalised above this, goal units")
+    max: FloatProperty(name="Maximum", min=0.0, max=goal_bounds.HARD_MAX, soft_max=1000.0, default=0.8,
+                       update=goal_bounds.max_changed,
+                       description="Penalised above this, goal units (at least the goal)")
     scale: FloatProperty(name="Scale", min=0.0, default=1.0,
                          description="Painted goals: the goal of a white vertex (or of a float value 1)")
 
@@ -169,6 +178,9 @@ class FenestraResults(PropertyGroup):
                                 description="Relative RMS error path-traced with the openings really cut "
                                             "(negative: not checked)")
     warnings: StringProperty(name="Warnings", description="What to know before trusting the result, one per line")
+    evaluated: BoolProperty(name="Evaluated", default=False,
+                            description="The values and errors are path-traced with the cutters as they stand "
+                                        "(Evaluate), not the solve's")
     max_relative: FloatProperty(name="Worst Sensor Error")
     openings: IntProperty(name="Openings")
     open_elements: IntProperty(name="Open Elements")
@@ -198,6 +210,9 @@ class FenestraSceneSettings(PropertyGroup):
     show_domain: BoolProperty(name="Highlight Domain", default=True,
                               description="Draw the opening domain's faces highlighted in the viewport (not over the openings cut)")
     domain_area: FloatProperty(name="Domain Area", unit='AREA', description="Their area (last count)")
+    setup_warnings: StringProperty(name="Setup Warnings",
+                                   description="What the last setup check found (check_setup.py), one per line")
+    setup_checked: BoolProperty(name="Setup Checked", default=False)
 
 
 classes = (

@@ -165,6 +165,7 @@ def _objects_reached(context, cutters, exclude):
 
 def apply(context, study, result):
     """Replaces the previous result with this one (a dict as fenestra.solve returns)."""
+    from .opening_cutters import remember  # (it reads this module's names)
     scene = context.scene
     settings = scene.fenestra
     clear(scene)
@@ -182,6 +183,7 @@ def apply(context, study, result):
         obj.display_type = 'WIRE'
         obj.hide_render = True
         obj.fenestra.is_opening = True
+        remember(obj, opening)  # for Evaluate, once the user has moved it
         coll.objects.link(obj)
     if solve.use_booleans and cutters:
         # The domain objects, and every other object the cutters reach (a solid wall's outer
