@@ -141,3 +141,17 @@ def test_same_seed_same_numbers_across_thread_counts(small_room):
     assert np.array_equal(a, b)
     scene.render.seed = 99
     assert not np.array_equal(a, fenestra.contributions(scene).E)
+
+
+def test_goal_error_is_the_solvers_measure():
+    goals = np.array([100.0, 200.0, -1.0, np.nan, 50.0])
+    values = np.array([110.0, 180.0, 5.0, 7.0, 50.0])
+    has = np.array([True, True, False, False, True])
+    d, g = values[has] - goals[has], goals[has]
+    e = fenestra.goal_error(goals, values)
+    assert e["relative_rms"] == pytest.approx(np.sqrt(np.sum(d * d) / np.sum(g * g)), rel=1e-12)
+    assert e["max_relative"] == pytest.approx(0.1) and e["worst_sensor"] == 0
+    weighted = fenestra.goal_error(goals, values, weights=[1.0, 0.0, 1.0, 1.0, 1.0])
+    assert weighted["relative_rms"] == pytest.approx(10.0 / np.sqrt(100.0 ** 2 + 50.0 ** 2), rel=1e-12)
+    with pytest.raises(ValueError, match="one entry per sensor"):
+        fenestra.goal_error(goals, values[:3])

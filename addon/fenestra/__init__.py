@@ -26,6 +26,7 @@ import sys  # noqa: E402
 
 try:
     from ._core import (
+        goal_error,
         preetham_radiance,
         preetham_sun,
         solar_position,
@@ -71,6 +72,7 @@ __all__ = [
     "contributions",
     "estimate_cost",
     "evaluate",
+    "goal_error",
     "load_scene",
     "openings_array",
     "preetham_radiance",

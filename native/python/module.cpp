@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <new>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -16,6 +17,7 @@
 #include "io/results.h"
 #include "io/sky_output.h"
 #include "io/solve_result.h"
+#include "solve/goals.h"
 #include "solve/solver.h"
 #include "trace/ray_scene.h"
 #include "scene/input_limits.h"
@@ -417,6 +419,26 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "dark_sky_warning", [](const Scene& scene) { return text_of(dark_sky_warning(scene)); }, py::arg("scene"),
       "A sentence when the scene's daylight sky gives no light at all (the sun never up), else \"\".");
+  m.def(
+      "goal_error",
+      [](const Eigen::VectorXd& goals, const Eigen::VectorXd& values, std::optional<Eigen::VectorXd> weights) {
+        if (values.size() != goals.size() || (weights && weights->size() != goals.size()))
+          throw std::invalid_argument("goal_error: goals, values (and weights) must have one entry per sensor");
+        SolverGoals g;
+        g.target = goals;
+        g.weight = weights ? *weights : Eigen::VectorXd::Ones(goals.size());
+        for (Eigen::Index i = 0; i < goals.size(); ++i)
+          if (!std::isfinite(goals[i]) || goals[i] < 0.0) g.weight[i] = 0.0;  // no goal
+        const GoalError e = goal_error(g, values);
+        py::dict d;
+        d["relative_rms"] = e.relative_rms;
+        d["max_relative"] = e.max_relative;
+        d["worst_sensor"] = e.worst_sensor;
+        return d;
+      },
+      py::arg("goals"), py::arg("values"), py::arg("weights") = py::none(),
+      "The solver's error measure of values against goals (lux; NaN or negative: no goal): relative RMS "
+      "sqrt(sum w (v - g)^2 / sum w g^2), the largest relative error and its sensor.");
   m.def("rays_traced", &rays_traced, "Rays traced by parallel computations since the module was loaded.");
   m.def("read_openings", [](const std::string& path) -> py::object {
     const auto openings = read_openings(path);
