@@ -4,11 +4,11 @@ vertices' colours, and a dot at every vertex (a sensor object may have no faces)
 import bpy
 import numpy as np
 
+from .viewport_drawing import ViewportDrawing
 from . import result_display
 from .toward_viewer import toward_viewer
 
 POINT_SIZE = 7.0  # pixels at UI scale 1
-_handle = None
 _cache = {}  # object name -> (world vertex positions (n, 3), triangle corner indices (m * 3,))
 
 
@@ -64,19 +64,5 @@ def _forget(*_):
     _cache.clear()
 
 
-def register():
-    global _handle
-    if bpy.app.background:
-        return
-    _handle = bpy.types.SpaceView3D.draw_handler_add(_draw, (), 'WINDOW', 'POST_VIEW')
-    bpy.app.handlers.depsgraph_update_post.append(_forget)
-
-
-def unregister():
-    global _handle
-    if _handle is not None:
-        bpy.types.SpaceView3D.draw_handler_remove(_handle, 'WINDOW')
-        _handle = None
-    if _forget in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.remove(_forget)
-    _cache.clear()
+_drawing = ViewportDrawing(_draw, 'POST_VIEW', forget=_forget)
+register, unregister = _drawing.register, _drawing.unregister

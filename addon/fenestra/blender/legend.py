@@ -5,13 +5,13 @@ import blf
 import bpy
 import numpy as np
 
+from .viewport_drawing import ViewportDrawing
 from . import result_display
 
 STEPS = 64                        # colour samples along the bar
 BAR = (240, 14)                   # pixels at UI scale 1
 MARGIN, PADDING, TEXT = 16, 8, 12
 BACKGROUND = (0.0, 0.0, 0.0, 0.55)
-_handle = None
 
 
 def _left(context, scale):
@@ -96,15 +96,5 @@ def _draw():
     blf.draw(0, title)
 
 
-def register():
-    global _handle
-    if bpy.app.background:
-        return
-    _handle = bpy.types.SpaceView3D.draw_handler_add(_draw, (), 'WINDOW', 'POST_PIXEL')
-
-
-def unregister():
-    global _handle
-    if _handle is not None:
-        bpy.types.SpaceView3D.draw_handler_remove(_handle, 'WINDOW')
-        _handle = None
+_drawing = ViewportDrawing(_draw, 'POST_PIXEL')
+register, unregister = _drawing.register, _drawing.unregister

@@ -9,10 +9,10 @@ face under it), in its own colour (`scene.fenestra.display.domain_colour`)."""
 import bpy
 import numpy as np
 
+from .viewport_drawing import ViewportDrawing
 from .export import DOMAIN_ATTRIBUTE
 from .toward_viewer import toward_viewer
 
-_handle = None
 _cache = {}  # object name -> world-space triangle corners (n * 3, 3) or None
 
 
@@ -76,19 +76,5 @@ def _forget(*_):
     _cache.clear()  # geometry, marks or modifiers may have changed
 
 
-def register():
-    global _handle
-    if bpy.app.background:  # nothing to draw without a window
-        return
-    _handle = bpy.types.SpaceView3D.draw_handler_add(_draw, (), 'WINDOW', 'POST_VIEW')
-    bpy.app.handlers.depsgraph_update_post.append(_forget)
-
-
-def unregister():
-    global _handle
-    if _handle is not None:
-        bpy.types.SpaceView3D.draw_handler_remove(_handle, 'WINDOW')
-        _handle = None
-    if _forget in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.remove(_forget)
-    _cache.clear()
+_drawing = ViewportDrawing(_draw, 'POST_VIEW', forget=_forget)
+register, unregister = _drawing.register, _drawing.unregister

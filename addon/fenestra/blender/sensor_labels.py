@@ -11,11 +11,11 @@ import bpy
 from bpy_extras.view3d_utils import location_3d_to_region_2d
 from mathutils import Vector
 
+from .viewport_drawing import ViewportDrawing
 from . import sensor_hover, sensor_results
 
 MAX_LABELS = 24  # more selected vertices than this: only the active one is labelled
 TEXT = 11
-_handle = None
 
 
 def label(goal, achieved):
@@ -92,15 +92,5 @@ def _draw():
     blf.disable(0, blf.SHADOW)
 
 
-def register():
-    global _handle
-    if bpy.app.background:
-        return
-    _handle = bpy.types.SpaceView3D.draw_handler_add(_draw, (), 'WINDOW', 'POST_PIXEL')
-
-
-def unregister():
-    global _handle
-    if _handle is not None:
-        bpy.types.SpaceView3D.draw_handler_remove(_handle, 'WINDOW')
-        _handle = None
+_drawing = ViewportDrawing(_draw, 'POST_PIXEL')
+register, unregister = _drawing.register, _drawing.unregister
