@@ -25,25 +25,6 @@ def goal_error(goals, values):
     return error["relative_rms"], error["max_relative"]
 
 
-def _write_achieved(study, values):
-    """The values as each sensor mesh's 'fenestra_achieved' vertex attribute, as a solve writes them."""
-    start = 0
-    for name, count in study.sensor_objects:
-        obj = bpy.data.objects.get(name)
-        chosen = values[start:start + count]
-        start += count
-        if obj is None or obj.type != 'MESH' or len(obj.data.vertices) != count:
-            continue
-        mesh = obj.data
-        attr = mesh.attributes.get(results.ACHIEVED_ATTRIBUTE)
-        if attr is not None and (attr.domain != 'POINT' or attr.data_type != 'FLOAT'):
-            mesh.attributes.remove(attr)
-            attr = None
-        attr = attr or mesh.attributes.new(results.ACHIEVED_ATTRIBUTE, 'FLOAT', 'POINT')
-        attr.data.foreach_set("value", chosen.astype(np.float32))
-        mesh.update()
-
-
 class FENESTRA_OT_evaluate_openings(bpy.types.Operator):
     """Path-trace the study with the openings where their cutters stand now (moved, scaled or turned in their wall) and show the sensors' values and the error against the goals"""
     bl_idname = "fenestra.evaluate_openings"
@@ -92,7 +73,7 @@ class FENESTRA_OT_evaluate_openings(bpy.types.Operator):
                                    for g, v, e in zip(goals, values, stderr)]}, f, indent=1)
         for item, value in zip(r.sensors, values):
             item.achieved = value
-        _write_achieved(study, np.asarray(values, np.float64))
+        results.write_achieved(study, np.asarray(values, np.float64))
         r.relative_rms, r.max_relative, r.verified_rms = rms, worst, -1.0
         r.openings, r.evaluated = len(cutters), True
         self.report({'INFO'}, "%d openings as they stand: relative RMS error %.1f %% (before: %.1f %%), worst "

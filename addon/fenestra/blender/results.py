@@ -163,6 +163,26 @@ def _objects_reached(context, cutters, exclude):
     return reached
 
 
+def write_achieved(study, achieved):
+    """Each sensor mesh's vertex attribute ACHIEVED_ATTRIBUTE (lux), from the values of all sensors
+    in study order."""
+    start = 0
+    for name, count in study.sensor_objects:
+        obj = bpy.data.objects.get(name)
+        values = np.asarray(achieved[start:start + count], np.float64)
+        start += count
+        if obj is None or obj.type != 'MESH' or len(obj.data.vertices) != count:
+            continue  # a modifier changed the vertex count: nothing to attach the values to
+        mesh = obj.data
+        attr = mesh.attributes.get(ACHIEVED_ATTRIBUTE)
+        if attr is not None and (attr.domain != 'POINT' or attr.data_type != 'FLOAT'):
+            mesh.attributes.remove(attr)
+            attr = None
+        attr = attr or mesh.attributes.new(ACHIEVED_ATTRIBUTE, 'FLOAT', 'POINT')
+        attr.data.foreach_set("value", values.astype(np.float32))
+        mesh.update()
+
+
 def apply(context, study, result):
     """Replaces the previous result with this one (a dict as fenestra.solve returns)."""
     from .opening_cutters import remember  # (it reads this module's names)
@@ -205,21 +225,7 @@ def apply(context, study, result):
 
     # Per sensor: goal and achieved lux, on the results and as a vertex attribute for false colour.
     achieved = np.array([s["predicted"] for s in result["sensors"]], np.float64)
-    start = 0
-    for name, count in study.sensor_objects:
-        obj = bpy.data.objects.get(name)
-        values = achieved[start:start + count]
-        start += count
-        if obj is None or obj.type != 'MESH' or len(obj.data.vertices) != count:
-            continue  # a modifier changed the vertex count: nothing to attach the values to
-        mesh = obj.data
-        attr = mesh.attributes.get(ACHIEVED_ATTRIBUTE)
-        if attr is not None and (attr.domain != 'POINT' or attr.data_type != 'FLOAT'):
-            mesh.attributes.remove(attr)
-            attr = None
-        attr = attr or mesh.attributes.new(ACHIEVED_ATTRIBUTE, 'FLOAT', 'POINT')
-        attr.data.foreach_set("value", values.astype(np.float32))
-        mesh.update()
+    write_achieved(study, achieved)
 
     r = settings.results
     r.sensors.clear()
