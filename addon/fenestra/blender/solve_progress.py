@@ -1,0 +1,68 @@
+"""A running solve in the Solve panel: its progress bar and its Cancel button.
+
+The bar is a read-only window-manager property whose getter reads the job: nothing is written to
+Blender's data while a solve runs, so the progress makes no undo step and no scene update."""
+
+import bpy
+
+from . import solve_job
+
+
+def _percent(wm):
+    job = solve_job.running()
+    return 100.0 * job.fraction if job is not None else 0.0
+
+
+class FENESTRA_OT_cancel_solve(bpy.types.Operator):
+    """Stop the running solve: the model and the study folder stay as they were"""
+    bl_idname = "fenestra.cancel_solve"
+    bl_label = "Cancel"
+
+    @classmethod
+    def poll(cls, context):
+        if solve_job.running() is None:
+            cls.poll_message_set("No solve is running")
+            return False
+        return True
+
+    def execute(self, context):
+        solve_job.cancel_running("Solve cancelled")
+        return {'FINISHED'}
+
+
+def status_line(job):
+    return "%s %d %%" % (job.status[:1].upper() + job.status[1:], int(100 * job.fraction))
+
+
+def draw(layout):
+    """The bar and Cancel when a solve runs (returns True), nothing otherwise."""
+    job = solve_job.running()
+    if job is None:
+        return False
+    col = layout.column(align=True)
+    col.prop(bpy.context.window_manager, "fenestra_solve_progress", text=status_line(job), slider=True)
+    col.operator(FENESTRA_OT_cancel_solve.bl_idname, icon='CANCEL')
+    return True
+
+
+def redraw_panels(context):
+    """The sidebars show the bar: redrawn on every progress tick (the status bar lags otherwise)."""
+    for window in context.window_manager.windows:
+        for area in window.screen.areas:
+            if area.type == 'VIEW_3D':
+                for region in area.regions:
+                    if region.type == 'UI':
+                        region.tag_redraw()
+
+
+classes = (FENESTRA_OT_cancel_solve,)
+
+
+def register():
+    bpy.types.WindowManager.fenestra_solve_progress = bpy.props.FloatProperty(
+        name="Solve Progress", subtype='PERCENTAGE', min=0.0, max=100.0, get=_percent,
+        description="The running stage of the solve, done")
+
+
+def unregister():
+    del bpy.types.WindowManager.fenestra_solve_progress
