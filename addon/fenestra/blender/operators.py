@@ -182,7 +182,7 @@ class FENESTRA_OT_preview_sky(bpy.types.Operator):
 
 # Solve ------------------------------------------------------------------------------------------
 
-PROGRESS_INTERVAL_S = 0.1  # the panel's bar and the end of a solve are seen within this
+PROGRESS_INTERVAL_S = 0.1  # the end of a solve is seen within this
 
 
 class FENESTRA_OT_solve_openings(bpy.types.Operator):
@@ -234,15 +234,12 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
         if job.error is not None:
             self._staging.discard()
             if job.cancelled:
-                self.report({'WARNING'}, job.cancel_reason or "Solve cancelled")
-            else:
-                self.report({'ERROR'}, str(job.error))
-            return {'CANCELLED'}
+                return self._tell(job, 'WARNING', job.cancel_reason or "Solve cancelled")
+            return self._tell(job, 'ERROR', str(job.error))
         if check_scene and solve_guard.current_fingerprint(context) != job.fingerprint:
             self._staging.discard()
-            self.report({'WARNING'}, "The scene changed during the solve: its result was discarded, the model and "
-                        "the study folder are as they were. Solve again")
-            return {'CANCELLED'}
+            return self._tell(job, 'WARNING', "The scene changed during the solve: its result was discarded, the "
+                              "model and the study folder are as they were. Solve again")
         result = job.result
         try:
             with open(os.path.join(self._staging.path, "result.json"), "w") as f:
@@ -250,8 +247,7 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
             leftover = self._staging.commit()
         except OSError as exc:
             self._staging.discard()
-            self.report({'ERROR'}, "The study folder could not be replaced: %s" % exc)
-            return {'CANCELLED'}
+            return self._tell(job, 'ERROR', "The study folder could not be replaced: %s" % exc)
         self._study.directory = self._staging.final
         results.apply(context, self._study, result)
         r = context.scene.fenestra.results
@@ -260,9 +256,13 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
         if leftover:
             self.report({'WARNING'}, "Files of the previous study folder stayed in %s" % leftover)
         reused = " (contributions reused)" if job.given_contributions is not None else ""
-        self.report({'INFO'}, "%d openings, relative RMS error %.1f %%, %.1f s%s (study in %s)"
-                    % (r.openings, 100 * r.relative_rms, r.seconds_total, reused, self._study.directory))
-        return {'FINISHED'}
+        return self._tell(job, 'INFO', "%d openings, relative RMS error %.1f %%, %.1f s%s (study in %s)"
+                          % (r.openings, 100 * r.relative_rms, r.seconds_total, reused, self._study.directory))
+
+    def _tell(self, job, kind, message):
+        self.report({kind}, message)
+        job.outcome = message
+        return {'FINISHED'} if kind == 'INFO' else {'CANCELLED'}
 
     def execute(self, context):
         """Solves on this thread (scripts and background mode)."""
@@ -285,13 +285,13 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
         wm = context.window_manager
         self._timer = wm.event_timer_add(PROGRESS_INTERVAL_S, window=context.window)
         wm.modal_handler_add(self)
-        solve_progress.redraw_panels(context)
+        self._display = solve_progress.Display()
+        self._display.update(context, self._job)
         return {'RUNNING_MODAL'}
 
     def _end(self, context):
         context.window_manager.event_timer_remove(self._timer)
-        context.workspace.status_text_set(None)
-        solve_progress.redraw_panels(context)
+        self._display.clear(context)
 
     def modal(self, context, event):
         job = self._job
@@ -302,8 +302,7 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
             job.cancel("Solve cancelled")
             return {'RUNNING_MODAL'}
         if event.type == 'TIMER':
-            context.workspace.status_text_set("Fenestra: %s (Esc to cancel)" % solve_progress.status_line(job))
-            solve_progress.redraw_panels(context)
+            self._display.update(context, job)
         return {'PASS_THROUGH'}
 
     def cancel(self, context):

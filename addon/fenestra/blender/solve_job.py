@@ -9,7 +9,7 @@ import atexit
 import threading
 import time
 
-_current = None  # the job on a worker thread, while it runs
+_current = None  # the job last started on a worker thread
 
 CANCEL_WAIT_AT_EXIT_S = 5.0
 
@@ -32,7 +32,8 @@ class SolveJob:
         self.result = None
         self.error = None
         self.cancel_reason = None
-        self.started = self.ended = None  # time.monotonic()
+        self.outcome = None  # what Blender's side made of it, in the words it reported
+        self.started = self.cancel_requested = self.ended = None  # time.monotonic()
         self.done = threading.Event()
         self._thread = None
 
@@ -84,7 +85,7 @@ class SolveJob:
     def cancel(self, reason="Solve cancelled"):
         """Asks every stage to stop; the first reason given is the one reported."""
         if self.cancel_reason is None:
-            self.cancel_reason = reason
+            self.cancel_reason, self.cancel_requested = reason, time.monotonic()
         self.progress.cancel()
 
     @property
@@ -109,6 +110,11 @@ def running():
     """The job running on a worker thread, or None."""
     job = _current
     return job if job is not None and not job.done.is_set() else None
+
+
+def last():
+    """The job last started on a worker thread (running or ended), or None."""
+    return _current
 
 
 def cancel_running(reason):

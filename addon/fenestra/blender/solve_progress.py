@@ -3,6 +3,8 @@
 The bar is a read-only window-manager property whose getter reads the job: nothing is written to
 Blender's data while a solve runs, so the progress makes no undo step and no scene update."""
 
+import time
+
 import bpy
 
 from . import solve_job
@@ -46,13 +48,38 @@ def draw(layout):
 
 
 def redraw_panels(context):
-    """The sidebars show the bar: redrawn on every progress tick (the status bar lags otherwise)."""
     for window in context.window_manager.windows:
         for area in window.screen.areas:
             if area.type == 'VIEW_3D':
                 for region in area.regions:
                     if region.type == 'UI':
                         region.tag_redraw()
+
+
+class Display:
+    """Shows a running job: its stage in the status bar, its bar in the sidebars. Redraws are
+    rationed: the status bar's redraws the whole window, and the sidebar's the 3D View beneath it
+    (region overlap), which takes a good part of a second with software OpenGL."""
+
+    REDRAW_S = 0.25
+
+    def __init__(self):
+        self.stage = self.line = None
+        self.drawn_at = 0.0
+
+    def update(self, context, job):
+        if job.status != self.stage:
+            self.stage = job.status
+            context.workspace.status_text_set("Fenestra: %s (Esc to cancel)" % self.stage)
+        line, now = status_line(job), time.monotonic()
+        if line != self.line and now - self.drawn_at >= self.REDRAW_S:
+            self.line, self.drawn_at = line, now
+            redraw_panels(context)
+
+    def clear(self, context):
+        if context.workspace is not None:
+            context.workspace.status_text_set(None)
+        redraw_panels(context)
 
 
 classes = (FENESTRA_OT_cancel_solve,)
