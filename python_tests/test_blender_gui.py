@@ -27,14 +27,16 @@ KEY_TO_STOP_BOUND_S = 3.0
 
 pytestmark = pytest.mark.skipif(None in (BLENDER, XVFB, XDOTOOL), reason="needs Blender, Xvfb and xdotool")
 
-# A study quick to reach each stage, and long in it.
+# A study quick to reach each stage, and long in it: 256 paths per sensor, 0.5 m elements.
 QUICK = {"solve.quality": 'CUSTOM', "solve.paths": 256, "solve.generations": 20, "solve.population": 16,
-         "solve.element_size": 0.5, "sky.type": 'CIE_OVERCAST', "sky.use_date_end": False}
+         "solve.element_size": 0.5, "sky.type": 'CIE_OVERCAST', "sky.use_date_end": False, "goals.level": 0.5}
 LONG_SKY = {"sky.type": 'PREETHAM', "sky.month": 1, "sky.day": 1, "sky.use_date_end": True, "sky.end_year": 2026,
             "sky.end_month": 3, "sky.end_day": 31, "sky.start_time": 6.0, "sky.end_time": 18.0}
 LONG_TRACING = {"solve.paths": 1 << 16}
-REUSED_PATHS = {"solve.paths": 2048}  # contributions of a few seconds, reused below
 LONG_GENETIC = {"solve.generations": 200000, "solve.population": 64}
+# The check with real cutters traces as many paths as the contributions: a second of it, and no
+# openings (a goal of 0), so that the refinement of their edges does not come first.
+LONG_VERIFICATION = {"solve.paths": 4096, "goals.level": 0.0}
 
 
 class Gui:
@@ -101,27 +103,29 @@ class Gui:
         self.xvfb.terminate()
         self.xvfb.wait(10)
 
-    def read_state(self):
+    def read_state(self, name="state.json"):
+        """The driver's state (state.json), or the running job's alone, more promptly (job.json)."""
         failed = os.path.join(self.channel, "failed.json")
         if os.path.exists(failed):
             raise AssertionError("the driver failed:\n" + json.load(open(failed))["traceback"])
         try:
-            with open(os.path.join(self.channel, "state.json")) as f:
+            with open(os.path.join(self.channel, name)) as f:
                 return json.load(f)
         except (FileNotFoundError, json.JSONDecodeError):
             return None
 
-    def wait_for(self, condition, timeout=60, what="the condition"):
+    def wait_for(self, condition, timeout=60, what="the condition", name="state.json"):
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             if hasattr(self, "blender"):
                 assert self.blender.poll() is None, "Blender exited (%d)" % self.blender.returncode
-            s = self.read_state()
+            s = self.read_state(name)
             if s is not None and condition(s):
-                self.state = s
+                if name == "state.json":
+                    self.state = s
                 return s
-            time.sleep(0.005)
-        raise AssertionError("waited %.0f s for %s; last state %r" % (timeout, what, self.read_state()))
+            time.sleep(0.002)
+        raise AssertionError("waited %.0f s for %s; last state %r" % (timeout, what, self.read_state(name)))
 
     def command(self, what, timeout=60, **args):
         number = self.commands
@@ -156,24 +160,26 @@ class Gui:
     # -- solves --------------------------------------------------------------------------------
 
     def job_number(self):
-        s = self.read_state()
+        s = self.read_state("job.json")
         return s["job"]["number"] if s and s["job"] else 0
 
     def press_solve(self):
         """F5, and waits for its job to start; returns the job's number."""
         before = self.job_number()
         self.key("F5")
-        s = self.wait_for(lambda s: s["job"] is not None and s["job"]["number"] > before and s["running"],
-                          timeout=30, what="a solve to start")
+        s = self.wait_for(lambda s: s["job"] is not None and s["job"]["number"] > before,
+                          timeout=30, what="a solve to start", name="job.json")
         return s["job"]["number"]
 
     def wait_for_stage(self, number, stage, timeout=120):
-        return self.wait_for(lambda s: s["job"]["number"] == number and s["job"]["status"].startswith(stage),
-                             timeout=timeout, what="stage %r" % stage)
+        return self.wait_for(lambda s: s["job"] is not None and s["job"]["number"] == number
+                             and s["job"]["status"].startswith(stage),
+                             timeout=timeout, what="stage %r" % stage, name="job.json")
 
     def wait_until_ended(self, number, timeout=120):
         """Until Blender has made something of the job's end (applied, discarded, reported)."""
-        return self.wait_for(lambda s: s["job"]["number"] == number and s["job"]["outcome"] is not None,
+        return self.wait_for(lambda s: s["job"] is not None and s["job"]["number"] == number
+                             and s["job"]["outcome"] is not None,
                              timeout=timeout, what="the solve to end")
 
 
@@ -228,30 +234,19 @@ def test_esc_before_the_solver(gui, solved, stage, settings):
     assert latency < CANCEL_BOUND_S
 
 
-@pytest.fixture(scope="module")
-def reusable(gui, solved):
-    """Contributions of a few seconds, kept for the solves below (which only change solver settings)."""
-    gui.command("set", values=dict(QUICK, **REUSED_PATHS))
-    number = gui.press_solve()
-    s = gui.wait_until_ended(number, timeout=300)
-    assert s["job"]["error"] is None and not s["job"]["reused"], s["job"]
-    return gui.command("snapshot")
-
-
-@pytest.mark.parametrize("stage,settings", [
-    ("genetic algorithm", LONG_GENETIC),
-    ("tracing the scene with its openings", {}),
+@pytest.mark.parametrize("stage,settings,settle", [
+    ("genetic algorithm", LONG_GENETIC, 0.3),
+    ("tracing the scene with its openings", LONG_VERIFICATION, 0.05),
 ], ids=["genetic", "verification"])
-def test_esc_in_the_solver(gui, reusable, stage, settings):
-    gui.command("set", values=dict(QUICK, **REUSED_PATHS, **settings))
-    s, latency = esc_in(gui, stage, settle=0.3 if settings else 0.05)
-    assert s["job"]["reused"]
-    assert_cancelled_and_unchanged(gui, s, reusable)
+def test_esc_in_the_solver(gui, solved, stage, settings, settle):
+    gui.command("set", values=dict(QUICK, **settings))
+    s, latency = esc_in(gui, stage, settle)
+    assert_cancelled_and_unchanged(gui, s, solved)
     assert latency < CANCEL_BOUND_S
 
 
-def test_ctrl_z_during_a_solve_cancels_it(gui, reusable):
-    gui.command("set", values=dict(QUICK, **REUSED_PATHS, **LONG_GENETIC))
+def test_ctrl_z_during_a_solve_cancels_it(gui, solved):
+    gui.command("set", values=dict(QUICK, **LONG_GENETIC))
     level = gui.command("set", values={"goals.level": 0.3}, undo_step="Goal 0.3")["goal_level"]
     assert abs(level - 0.3) < 1e-6
     number = gui.press_solve()
@@ -260,11 +255,11 @@ def test_ctrl_z_during_a_solve_cancels_it(gui, reusable):
     s = gui.wait_until_ended(number)
     print("Ctrl-Z: the solve stopped %.3f s after the key" % (s["job"]["ended"] - sent))
     assert abs(s["goal_level"] - 0.3) > 1e-3  # the goal went back
-    assert_cancelled_and_unchanged(gui, s, reusable, reason="Solve cancelled: undo")
+    assert_cancelled_and_unchanged(gui, s, solved, reason="Solve cancelled: undo")
 
 
-def test_solve_twice_is_refused_and_one_esc_stops_it(gui, reusable):
-    gui.command("set", values=dict(QUICK, **REUSED_PATHS, **LONG_GENETIC))
+def test_solve_twice_is_refused_and_one_esc_stops_it(gui, solved):
+    gui.command("set", values=dict(QUICK, **LONG_GENETIC))
     number = gui.press_solve()
     gui.wait_for_stage(number, "genetic algorithm")
     gui.key("F5")  # refused: Solve's poll says a solve runs
@@ -276,31 +271,32 @@ def test_solve_twice_is_refused_and_one_esc_stops_it(gui, reusable):
     s = gui.wait_until_ended(number)
     assert s["job"]["ended"] - s["job"]["cancel_requested"] < CANCEL_BOUND_S
     assert s["job"]["ended"] - sent < KEY_TO_STOP_BOUND_S
-    assert_cancelled_and_unchanged(gui, s, reusable)
+    assert_cancelled_and_unchanged(gui, s, solved)
     time.sleep(1.0)  # and nothing lands later
     assert gui.job_number() == number
-    assert gui.command("snapshot") == reusable
+    assert gui.command("snapshot") == solved
 
 
-def test_an_edit_during_a_solve_cancels_it(gui, reusable):
-    gui.command("set", values=dict(QUICK, **REUSED_PATHS, **LONG_GENETIC))
+def test_an_edit_during_a_solve_cancels_it(gui, solved):
+    gui.command("set", values=dict(QUICK, **LONG_GENETIC))
     gui.command("select", name="Sensors")
     number = gui.press_solve()
     gui.wait_for_stage(number, "genetic algorithm")
     for key in ("g", "z", "0", "period", "1", "Return"):  # move the sensors up by 0.1 m
         gui.key(key)
     s = gui.wait_until_ended(number, timeout=10)
-    assert_cancelled_and_unchanged(gui, s, reusable, reason="Solve cancelled: the scene changed")
+    assert_cancelled_and_unchanged(gui, s, solved, reason="Solve cancelled: the scene changed")
     gui.key("ctrl+z")  # the sensors back where they were
     gui.command("select", name="Room")
 
 
-def test_new_goals_solve_at_once_with_the_contributions_kept(gui, reusable):
-    gui.command("set", values=dict(QUICK, **REUSED_PATHS, **{"goals.level": 0.35}))
+def test_new_goals_solve_with_the_contributions_kept(gui, solved):
+    gui.command("set", values=dict(QUICK, **{"goals.level": 0.35}))
     number = gui.press_solve()
     s = gui.wait_until_ended(number)
     assert s["job"]["error"] is None and s["job"]["reused"], s["job"]
     after = gui.command("snapshot")
-    assert after["model"]["results"] != reusable["model"]["results"]
-    assert after["folder"]["scene.json"] != reusable["folder"]["scene.json"]
+    assert after["model"]["results"] != solved["model"]["results"]
+    assert after["folder"]["scene.json"] != solved["folder"]["scene.json"]
+    assert after["folder"]["scene.obj"] == solved["folder"]["scene.obj"]
     assert after["staging"] == []

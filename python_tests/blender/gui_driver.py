@@ -5,7 +5,7 @@
 Builds the room example (examples/build_blend_examples.py) with the add-on, study folder
 CHANNEL/study, maps F5 to Solve Openings in the Window keymap (as a user's shortcut would), and
 then, while the test drives Blender with real key events, reports its state to CHANNEL/state.json
-every few milliseconds and follows the test's commands (CHANNEL/command-N.json, answered in
+every few milliseconds (the running solve's also to CHANNEL/job.json, from a thread) and follows the test's commands (CHANNEL/command-N.json, answered in
 CHANNEL/reply-N.json): "set" scene.fenestra settings (optionally as an undo step), "snapshot" of
 the model and the study folder, "solve_from_script" (an operator call, to read a refusal),
 "quit". The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
@@ -14,6 +14,7 @@ import hashlib
 import json
 import os
 import sys
+import threading
 import time
 import traceback
 
@@ -26,11 +27,12 @@ import build_blend_examples as examples  # noqa: E402
 CHANNEL = sys.argv[sys.argv.index("--") + 1]
 STUDY = os.path.join(CHANNEL, "study")
 TICK_S = 0.01
+JOBS_LOCK = threading.Lock()
 state = {"next_command": 0, "jobs": 0, "last_job": None}
 
 
 def write_json(path, value):
-    part = path + ".part"
+    part = "%s.%d.part" % (path, threading.get_ident())
     with open(part, "w") as f:
         json.dump(value, f)
     os.replace(part, path)
@@ -70,16 +72,31 @@ def view3d_centre():
 
 
 def job_state():
+    """The last job, numbered in the order jobs started (no bpy: the monitor thread calls it too)."""
     from fenestra.blender import solve_job
-    job = solve_job.last()
-    if job is None:
-        return None
-    if job is not state["last_job"]:
-        state["last_job"] = job
-        state["jobs"] += 1
-    return {"number": state["jobs"], "status": job.status, "fraction": job.fraction, "started": job.started,
-            "ended": job.ended, "cancel_requested": job.cancel_requested, "cancel_reason": job.cancel_reason, "outcome": job.outcome, "cancelled": job.done.is_set() and job.cancelled,
+    with JOBS_LOCK:
+        job = solve_job.last()
+        if job is None:
+            return None
+        if job is not state["last_job"]:
+            state["last_job"] = job
+            state["jobs"] += 1
+        number = state["jobs"]
+    return {"number": number, "status": job.status, "fraction": job.fraction, "started": job.started,
+            "ended": job.ended, "cancel_requested": job.cancel_requested, "cancel_reason": job.cancel_reason,
+            "outcome": job.outcome, "cancelled": job.done.is_set() and job.cancelled,
             "error": None if job.error is None else str(job.error), "reused": job.given_contributions is not None}
+
+
+def monitor_jobs():
+    """CHANNEL/job.json every few milliseconds from a thread of its own: Blender's main thread, which
+    writes state.json, can be held up by redraws for a good part of a second."""
+    while True:
+        try:
+            write_json(os.path.join(CHANNEL, "job.json"), {"now": time.monotonic(), "job": job_state()})
+        except Exception:
+            traceback.print_exc()
+        time.sleep(0.003)
 
 
 def report_state():
@@ -185,6 +202,7 @@ def start():
         write_json(os.path.join(CHANNEL, "failed.json"), {"traceback": traceback.format_exc()})
         return None
     bpy.app.timers.register(tick, first_interval=TICK_S, persistent=True)
+    threading.Thread(target=monitor_jobs, name="gui-test-monitor", daemon=True).start()
     return None
 
 
