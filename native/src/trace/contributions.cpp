@@ -9,6 +9,7 @@
 #include "trace/parallel.h"
 #include "trace/path_tracer.h"
 #include "trace/replicates.h"
+#include "trace/transport_matrix.h"
 
 namespace fenestra {
 namespace {
@@ -99,23 +100,6 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
   open.estimate(n_paths, &out->all_open.value[sensor], &out->all_open.standard_error[sensor]);
 }
 
-// Light leaving through element n on paths that reflected off element m before, summed.
-void accumulate_transport(const SensorRecord& rec, Eigen::MatrixXd* transport, const Progress* progress) {
-  for (size_t p = 0; p < rec.path_count(); ++p) {
-    if (progress && p % kPollPaths == 0) progress->throw_if_cancelled();
-    const uint32_t b = rec.path_begin[p], e = rec.path_begin[p + 1];
-    for (uint32_t j = b; j < e; ++j) {
-      const PathEvent& first = rec.events[j];
-      if (!first.is_escape()) continue;  // escapes, not their parts, start a transport
-      for (uint32_t l = j + 1; l < e; ++l) {
-        const PathEvent& later = rec.events[l];
-        if (!later.is_light() && later.element != first.element)
-          (*transport)(first.element, later.element) += later.value;
-      }
-    }
-  }
-}
-
 }  // namespace
 
 namespace {
@@ -200,9 +184,7 @@ Contributions compute_contributions(const Scene& scene, Progress* progress) {
     }
     analyse_sensor(rec, i, elements, &c, progress);
   });
-  c.T.setZero(elements, elements);
-  for (const auto& rec : c.records) accumulate_transport(rec, &c.T, progress);
-  c.T = (c.T + c.T.transpose()).eval() / static_cast<double>(paths * sensors);
+  c.T = transport_matrix(c.records, elements, paths, scene.render.threads, progress);
   for (const auto& r : c.records) c.events += r.events.size();
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return c;
