@@ -8,8 +8,8 @@ import bpy
 import numpy as np
 from mathutils import Vector
 
-from . import (contributions_cache, export, native, results, sky, solve_guard, solve_job, solve_progress,
-               study_fingerprint, study_folder)
+from . import (contributions_cache, export, native, native_messages, results, sky, solve_guard, solve_job,
+               solve_progress, study_fingerprint, study_folder)
 
 
 def _native_or_report(op):
@@ -235,7 +235,7 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
             self._staging.discard()
             if job.cancelled:
                 return self._tell(job, 'WARNING', job.cancel_reason or "Solve cancelled")
-            return self._tell(job, 'ERROR', str(job.error))
+            return self._tell(job, 'ERROR', native_messages.for_the_panel(str(job.error), job.scene_path))
         if check_scene and solve_guard.current_fingerprint(context) != job.fingerprint:
             self._staging.discard()
             return self._tell(job, 'WARNING', "The scene changed during the solve: its result was discarded, the "
