@@ -1,7 +1,8 @@
 """The contributions of the last solve, kept in memory for the next one. They cost nearly all of a
 solve's time and depend only on what study_fingerprint.contributions_fingerprint digests, so a
 re-solve after repainting goals or changing constraints reuses them. One study is kept: taking
-others frees these first, so that two sets never hold memory together. No bpy here."""
+others frees these first, so that two sets never hold memory together; and none that holds more
+than the memory still available. No bpy here."""
 
 _kept = {"fingerprint": None, "contributions": None}
 
@@ -16,7 +17,14 @@ def take(fingerprint):
 
 
 def keep(fingerprint, contributions):
+    """Keeps them, unless they hold more memory than the system still has available: the rest of
+    Blender (a render, another study) comes first, and a re-solve then computes them again."""
+    from .. import api as fenestra
+    if int(contributions.memory_bytes) > fenestra.available_memory()["bytes"]:
+        clear()
+        return False
     _kept["fingerprint"], _kept["contributions"] = fingerprint, contributions
+    return True
 
 
 def clear():

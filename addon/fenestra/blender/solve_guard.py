@@ -3,12 +3,12 @@ scene it was computed for: an undo or a redo, another file loaded, and any chang
 exported (goals, opening domain, sensors, geometry, materials, sky or solve settings). A change is
 found by exporting the study again and comparing fingerprints (study_fingerprint.py), once a burst
 of updates (a paint stroke, a drag) has settled; the solve operator compares them once more before
-it applies a result."""
+it applies a result. (A file loaded also frees the contributions kept for a re-solve.)"""
 
 import bpy
 from bpy.app.handlers import persistent
 
-from . import export, solve_job, study_fingerprint
+from . import contributions_cache, export, solve_job, study_fingerprint
 
 CHECK_DELAY_S = 0.25
 
@@ -70,6 +70,7 @@ def _on_redo(*args):
 @persistent
 def _on_load(*args):
     solve_job.cancel_running(LOADED)
+    contributions_cache.clear()  # another model: their memory is better free
 
 
 _HANDLERS = (

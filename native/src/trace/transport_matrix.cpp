@@ -1,6 +1,7 @@
 #include "trace/transport_matrix.h"
 
 #include <algorithm>
+#include <thread>
 
 #include "trace/parallel.h"
 
@@ -55,17 +56,24 @@ Eigen::MatrixXd transport_matrix(const std::vector<SensorRecord>& records, size_
   const Eigen::Index n = static_cast<Eigen::Index>(elements), blocks = blocks_of(n);
   if (progress) progress->start("assembling the transport matrix", 2 * blocks + records.size());
   Eigen::MatrixXd T(n, n);
-  parallel_tasks(blocks, threads, progress, [&](size_t block) {
-    const Eigen::Index j0 = static_cast<Eigen::Index>(block) * kBlock;
-    T.middleCols(j0, std::min(kBlock, n - j0)).setZero();
-  });
-  for (const SensorRecord& rec : records) {
-    accumulate(rec, &T, progress);
-    if (progress) progress->advance();
+  try {
+    parallel_tasks(blocks, threads, progress, [&](size_t block) {
+      const Eigen::Index j0 = static_cast<Eigen::Index>(block) * kBlock;
+      T.middleCols(j0, std::min(kBlock, n - j0)).setZero();
+    });
+    for (const SensorRecord& rec : records) {
+      accumulate(rec, &T, progress);
+      if (progress) progress->advance();
+    }
+    const double norm = static_cast<double>(static_cast<size_t>(paths_per_sensor) * records.size());
+    parallel_tasks(blocks, threads, progress,
+                   [&](size_t block) { symmetrise_block_row(static_cast<Eigen::Index>(block), norm, &T); });
+  } catch (const Cancelled&) {
+    // Returning gigabytes to the system takes a good part of a second: on a thread of its own,
+    // so that the cancel lands at once.
+    std::thread([freed = std::move(T)]() {}).detach();
+    throw;
   }
-  const double norm = static_cast<double>(static_cast<size_t>(paths_per_sensor) * records.size());
-  parallel_tasks(blocks, threads, progress,
-                 [&](size_t block) { symmetrise_block_row(static_cast<Eigen::Index>(block), norm, &T); });
   return T;
 }
 
