@@ -10,6 +10,7 @@
 #include "trace/path_tracer.h"
 #include "trace/replicates.h"
 #include "trace/transport_matrix.h"
+#include "util/release_in_background.h"
 
 namespace fenestra {
 namespace {
@@ -154,37 +155,43 @@ Contributions compute_contributions(const Scene& scene, Progress* progress) {
   const int paths = scene.render.paths_per_sensor;
   const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
   std::vector<SensorRecord> chunks(sensors * tasks_per_sensor);
-  if (progress) progress->start("tracing contribution paths", chunks.size());
-  parallel_tasks(chunks.size(), scene.render.threads, progress, [&](size_t task) {
-    const size_t sensor = task / tasks_per_sensor;
-    const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
-    const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
-    SensorRecord& rec = chunks[task];
-    for (size_t p = first; p < last; ++p) {
-      Rng rng = path_rng(scene.render.seed, sensor, p);
-      tracer.record_sensor_path(sensor, p, rng, &rec);
-    }
-  });
-
   Contributions c;
-  c.paths_per_sensor = paths;
-  c.records.resize(sensors);
-  c.E.setZero(sensors, elements);
-  c.E_stderr.setZero(sensors, elements);
-  c.A.setZero(sensors, elements);
-  c.closed.value.setZero(sensors), c.closed.standard_error.setZero(sensors);
-  c.all_open.value.setZero(sensors), c.all_open.standard_error.setZero(sensors);
-  if (progress) progress->start("assembling the contribution matrix", sensors);
-  parallel_tasks(sensors, scene.render.threads, progress, [&](size_t i) {
-    SensorRecord& rec = c.records[i];
-    for (size_t t = 0; t < tasks_per_sensor; ++t) {
-      if (progress && t % 64 == 0) progress->throw_if_cancelled();  // a sensor's paths may be many chunks
-      rec.append(chunks[i * tasks_per_sensor + t]);
-      chunks[i * tasks_per_sensor + t] = SensorRecord();  // frees the chunk
-    }
-    analyse_sensor(rec, i, elements, &c, progress);
-  });
-  c.T = transport_matrix(c.records, elements, paths, scene.render.threads, progress);
+  try {
+    if (progress) progress->start("tracing contribution paths", chunks.size());
+    parallel_tasks(chunks.size(), scene.render.threads, progress, [&](size_t task) {
+      const size_t sensor = task / tasks_per_sensor;
+      const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
+      const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
+      SensorRecord& rec = chunks[task];
+      for (size_t p = first; p < last; ++p) {
+        Rng rng = path_rng(scene.render.seed, sensor, p);
+        tracer.record_sensor_path(sensor, p, rng, &rec);
+      }
+    });
+
+    c.paths_per_sensor = paths;
+    c.records.resize(sensors);
+    c.E.setZero(sensors, elements);
+    c.E_stderr.setZero(sensors, elements);
+    c.A.setZero(sensors, elements);
+    c.closed.value.setZero(sensors), c.closed.standard_error.setZero(sensors);
+    c.all_open.value.setZero(sensors), c.all_open.standard_error.setZero(sensors);
+    if (progress) progress->start("assembling the contribution matrix", sensors);
+    parallel_tasks(sensors, scene.render.threads, progress, [&](size_t i) {
+      SensorRecord& rec = c.records[i];
+      for (size_t t = 0; t < tasks_per_sensor; ++t) {
+        if (progress && t % 64 == 0) progress->throw_if_cancelled();  // a sensor's paths may be many chunks
+        rec.append(chunks[i * tasks_per_sensor + t]);
+        chunks[i * tasks_per_sensor + t] = SensorRecord();  // frees the chunk
+      }
+      analyse_sensor(rec, i, elements, &c, progress);
+    });
+    c.T = transport_matrix(c.records, elements, paths, scene.render.threads, progress);
+  } catch (const Cancelled&) {
+    release_in_background(std::move(chunks));  // the path records: hundreds of megabytes
+    release_in_background(std::move(c));
+    throw;
+  }
   for (const auto& r : c.records) c.events += r.events.size();
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return c;

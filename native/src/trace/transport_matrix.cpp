@@ -1,9 +1,9 @@
 #include "trace/transport_matrix.h"
 
 #include <algorithm>
-#include <thread>
 
 #include "trace/parallel.h"
+#include "util/release_in_background.h"
 
 namespace fenestra {
 namespace {
@@ -69,9 +69,7 @@ Eigen::MatrixXd transport_matrix(const std::vector<SensorRecord>& records, size_
     parallel_tasks(blocks, threads, progress,
                    [&](size_t block) { symmetrise_block_row(static_cast<Eigen::Index>(block), norm, &T); });
   } catch (const Cancelled&) {
-    // Returning gigabytes to the system takes a good part of a second: on a thread of its own,
-    // so that the cancel lands at once.
-    std::thread([freed = std::move(T)]() {}).detach();
+    release_in_background(std::move(T));
     throw;
   }
   return T;
