@@ -32,8 +32,12 @@ class FENESTRA_OT_cancel_solve(bpy.types.Operator):
         return {'FINISHED'}
 
 
+def stage(job):
+    return job.status[:1].upper() + job.status[1:]
+
+
 def status_line(job):
-    return "%s %d %%" % (job.status[:1].upper() + job.status[1:], int(100 * job.fraction))
+    return "%s %d %%" % (stage(job), int(100 * job.fraction))
 
 
 def draw(layout):
@@ -42,7 +46,7 @@ def draw(layout):
     if job is None:
         return False
     col = layout.column(align=True)
-    col.prop(bpy.context.window_manager, "fenestra_solve_progress", text=status_line(job), slider=True)
+    col.prop(bpy.context.window_manager, "fenestra_solve_progress", text=stage(job), slider=True)
     col.operator(FENESTRA_OT_cancel_solve.bl_idname, icon='CANCEL')
     return True
 
@@ -87,7 +91,7 @@ classes = (FENESTRA_OT_cancel_solve,)
 
 def register():
     bpy.types.WindowManager.fenestra_solve_progress = bpy.props.FloatProperty(
-        name="Solve Progress", subtype='PERCENTAGE', min=0.0, max=100.0, get=_percent,
+        name="Solve Progress", subtype='PERCENTAGE', min=0.0, max=100.0, precision=0, get=_percent,
         description="The running stage of the solve, done")
 
 
