@@ -11,6 +11,7 @@ The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestr
 
 import hashlib
 import os
+import re
 import sys
 import time
 import unittest
@@ -79,7 +80,7 @@ class Refusals(unittest.TestCase):
         with self.assertRaises(RuntimeError) as failure:
             bpy.ops.fenestra.solve_openings()
         message = str(failure.exception)
-        for words in ("paths per sensor", "fewer paths (Solve > Quality)"):
+        for words in ("paths per sensor", "fewer paths", "Quality"):
             self.assertIn(words, message)
         for words in ("--max-memory", ".solving-", "scene.json"):
             self.assertNotIn(words, message)
@@ -106,11 +107,11 @@ class Refusals(unittest.TestCase):
         with self.assertRaises(RuntimeError) as failure:
             bpy.ops.fenestra.solve_openings()
         message = str(failure.exception)
-        for words in ("element_size 0.04 m gives about 47 500 elements", "GB", "available", "m or more: Solve > Element Size"):
+        for words in ("0.04 m gives about 47 500 elements", "GB", "available", "m or more", "Element Size"):
             self.assertIn(words, message)
         for words in ("--max-memory", ".solving-"):
             self.assertNotIn(words, message)
-        suggested = float(message.split("(")[-1].split(" m or more")[0])
+        suggested = float(re.search(r"([\d.]+) m or more", message).group(1))
         print("refused: %s" % message)
         self.assertGreater(suggested, 0.04)
         self.assertLessEqual(suggested, 0.1)
