@@ -85,7 +85,7 @@ def job_state():
     return {"number": number, "status": job.status, "fraction": job.fraction, "started": job.started,
             "ended": job.ended, "cancel_requested": job.cancel_requested, "cancel_reason": job.cancel_reason,
             "outcome": job.outcome, "cancelled": job.done.is_set() and job.cancelled,
-            "error": None if job.error is None else str(job.error), "reused": job.given_contributions is not None}
+            "error": None if job.error is None else str(job.error), "reused": job.reused}
 
 
 def monitor_jobs():

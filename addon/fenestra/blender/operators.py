@@ -255,13 +255,14 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
             self.report({'WARNING'}, warning)
         if leftover:
             self.report({'WARNING'}, "Files of the previous study folder stayed in %s" % leftover)
-        reused = " (contributions reused)" if job.given_contributions is not None else ""
+        reused = " (contributions reused)" if job.reused else ""
         return self._tell(job, 'INFO', "%d openings, relative RMS error %.1f %%, %.1f s%s (study in %s)"
                           % (r.openings, 100 * r.relative_rms, r.seconds_total, reused, self._study.directory))
 
     def _tell(self, job, kind, message):
         self.report({kind}, message)
         job.outcome = message
+        job.release()
         return {'FINISHED'} if kind == 'INFO' else {'CANCELLED'}
 
     def execute(self, context):
@@ -309,6 +310,7 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
         """Blender ends the operator (a file is loaded, the window closes): the job stops too."""
         self._job.cancel("Solve cancelled")
         self._job.wait(solve_job.CANCEL_WAIT_AT_EXIT_S)
+        self._job.release()
         self._staging.discard()
         self._end(context)
 

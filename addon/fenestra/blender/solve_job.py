@@ -26,6 +26,7 @@ class SolveJob:
         self.fingerprint = fingerprint
         self.contributions_fingerprint = contributions_fingerprint
         self.given_contributions = contributions
+        self.reused = contributions is not None
         self.computed_contributions = None  # by this job, for the next solve to reuse
         self.progress = fenestra.Progress()
         self.phase = "reading the study"
@@ -104,6 +105,11 @@ class SolveJob:
 
     def wait(self, timeout=None):
         return self.done.wait(timeout)
+
+    def release(self):
+        """Drops what it holds in memory (the contributions, the result): an ended job stays
+        reachable as the last one, and its contributions must not outlive the kept ones."""
+        self.given_contributions = self.computed_contributions = self.result = None
 
 
 def running():
