@@ -8,7 +8,7 @@ packages=(
   nlohmann-json3-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
   libhowardhinnant-date-dev
   python3-dev python3-numpy python3-scipy python3-pytest python3-astropy python3-matplotlib
-  blender xvfb
+  blender xvfb xdotool
 )
 
 missing=()

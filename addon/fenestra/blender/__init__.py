@@ -10,15 +10,20 @@ the selected or pointed-at sensors). user_messages (the core's messages in the u
 visibility (hidden marked objects), goal_bounds (the goal fields' ranges), setup_checks and
 check_setup (warnings before a solve), opening_cutters and evaluate_openings (the cutters as the
 user moved them, path-traced).
+A solve: solve_job (the worker), solve_progress (its bar and Cancel button), solve_guard (what
+cancels it), study_folder (replaced only on success), study_fingerprint and contributions_cache
+(the contributions reused when only goals or solver settings changed).
 """
 
 import bpy
 
-from . import (check_setup, evaluate_openings, false_colour_overlay, legend, operators, overlay, panels, properties,
-               result_operators, result_panels, sensor_hover, sensor_labels)
+from . import (check_setup, contributions_cache, evaluate_openings, false_colour_overlay, legend, operators, overlay,
+               panels, properties, result_operators, result_panels, sensor_hover, sensor_labels, solve_guard, solve_job,
+               solve_progress)
 
 classes = (properties.classes + operators.classes + result_operators.classes + sensor_hover.classes
-           + evaluate_openings.classes + panels.classes + result_panels.classes + check_setup.classes)
+           + evaluate_openings.classes + solve_progress.classes + panels.classes + result_panels.classes
+           + check_setup.classes)
 DRAWN = (overlay, false_colour_overlay, legend, sensor_labels)
 
 
@@ -28,9 +33,17 @@ def register():
     properties.register()
     for module in DRAWN:
         module.register()
+    solve_progress.register()
+    solve_guard.register()
 
 
 def unregister():
+    job = solve_job.cancel_running("Solve cancelled: the add-on was disabled")
+    if job is not None:
+        job.wait(solve_job.CANCEL_WAIT_AT_EXIT_S)
+    contributions_cache.clear()
+    solve_guard.unregister()
+    solve_progress.unregister()
     for module in reversed(DRAWN):
         module.unregister()
     properties.unregister()

@@ -2,13 +2,13 @@
 
 import json
 import os
-import threading
 
 import bpy
 import numpy as np
 from mathutils import Vector
 
-from . import check_setup, export, native, results, setup_checks, sky_preview, user_messages
+from . import (check_setup, contributions_cache, export, native, native_messages, results, setup_checks, sky_preview,
+               solve_guard, solve_job, solve_progress, study_fingerprint, study_folder, user_messages)
 
 
 def _native_or_report(op):
@@ -175,6 +175,9 @@ class FENESTRA_OT_preview_sky(bpy.types.Operator):
 
 # Solve ------------------------------------------------------------------------------------------
 
+PROGRESS_INTERVAL_S = 0.1  # the end of a solve is seen within this
+
+
 class FENESTRA_OT_solve_openings(bpy.types.Operator):
     """Compute the openings that meet the sensors' daylight goals and cut them into the domain"""
     bl_idname = "fenestra.solve_openings"
@@ -182,108 +185,130 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
     bl_options = {'REGISTER', 'UNDO'}
 
     _timer = None
-    _thread = None
+    _job = None
 
     @classmethod
     def poll(cls, context):
-        return context.mode == 'OBJECT'
-
-    def _prepare(self, context):
-        """Exports and loads the study; reports and returns False on a bad setup."""
-        if not _native_or_report(self):
+        if solve_job.running() is not None:
+            cls.poll_message_set("A solve is running: wait for it, or cancel it (Esc, or Cancel in the Solve panel)")
             return False
-        from .. import api as fenestra
-        try:
-            self._study = export.build(context)
-            check_setup.show(self, context, setup_checks.run(context, self._study))
-            path = self._study.write(export.study_directory(context.scene))
-            self._scene = fenestra.load_scene(path)
-            # The cost model (docs/cost.md): refuse here, before the worker thread starts, what
-            # would not fit in memory or take too long (a Blender killed by the OOM killer loses work).
-            fenestra.check_cost(self._scene, "solve")
-        except (ValueError, OSError) as exc:
-            self.report({'ERROR'}, user_messages.for_user(exc, getattr(self, "_study", None)))
+        if context.mode != 'OBJECT':
+            cls.poll_message_set("Solve needs Object Mode")
             return False
         return True
 
-    def _finish(self, context, result):
-        with open(os.path.join(self._study.directory, "result.json"), "w") as f:
-            json.dump(result, f, indent=1)
+    def _prepare(self, context):
+        """Exports the study into a staging folder beside the study folder (study_folder.py) and
+        makes its job, with the previous solve's contributions when they still apply; reports and
+        returns False on a bad setup."""
+        if not _native_or_report(self):
+            return False
+        staging = None
+        try:
+            self._study = solve_guard.export_quietly(context)
+            check_setup.show(self, context, setup_checks.run(context, self._study))
+            staging = study_folder.StagingFolder(export.study_directory(context.scene))
+            path = self._study.write(staging.path)
+        except (ValueError, OSError) as exc:
+            if staging is not None:
+                staging.discard()
+            self.report({'ERROR'}, user_messages.for_user(native_messages.for_the_panel(str(exc), ""),
+                                                          getattr(self, "_study", None)))
+            return False
+        self._staging = staging
+        reusable = study_fingerprint.contributions_fingerprint(self._study)
+        self._job = solve_job.SolveJob(path, study_fingerprint.fingerprint(self._study), reusable,
+                                       contributions_cache.take(reusable))
+        return True
+
+    def _finish(self, context, check_scene):
+        """Applies the job's result, or reports why not; the staging folder goes either way."""
+        job = self._job
+        if job.computed_contributions is not None:  # valid for what they were computed from, whatever followed
+            contributions_cache.keep(job.contributions_fingerprint, job.computed_contributions)
+        if job.error is not None:
+            self._staging.discard()
+            if job.cancelled:
+                return self._tell(job, 'WARNING', job.cancel_reason or "Solve cancelled")
+            return self._tell(job, 'ERROR', user_messages.for_user(native_messages.for_the_panel(str(job.error), job.scene_path),
+                                                                   self._study))
+        if check_scene and solve_guard.current_fingerprint(context) != job.fingerprint:
+            self._staging.discard()
+            return self._tell(job, 'WARNING', "The scene changed during the solve: its result was discarded, the "
+                              "model and the study folder are as they were. Solve again")
+        result = job.result
+        try:
+            with open(os.path.join(self._staging.path, "result.json"), "w") as f:
+                json.dump(result, f, indent=1)
+            leftover = self._staging.commit()
+        except OSError as exc:
+            self._staging.discard()
+            return self._tell(job, 'ERROR', "The study folder could not be replaced: %s" % exc)
+        self._study.directory = self._staging.final
         results.apply(context, self._study, result)
         r = context.scene.fenestra.results
         for warning in result.get("warnings", []):
             self.report({'WARNING'}, warning)
-        self.report({'INFO'}, "%d openings, relative RMS error %.1f %%, %.1f s (study in %s)"
-                    % (r.openings, 100 * r.relative_rms, r.seconds_total, self._study.directory))
-        return {'FINISHED'}
+        if leftover:
+            self.report({'WARNING'}, "Files of the previous study folder stayed in %s" % leftover)
+        reused = " (contributions reused)" if job.reused else ""
+        return self._tell(job, 'INFO', "%d openings, relative RMS error %.1f %%, %.1f s%s (study in %s)"
+                          % (r.openings, 100 * r.relative_rms, r.seconds_total, reused, self._study.directory))
+
+    def _tell(self, job, kind, message):
+        self.report({kind}, message)
+        job.outcome = message
+        job.release()
+        return {'FINISHED'} if kind == 'INFO' else {'CANCELLED'}
 
     def execute(self, context):
         """Solves on this thread (scripts and background mode)."""
         if not self._prepare(context):
             return {'CANCELLED'}
-        from .. import api as fenestra
         try:
-            result = fenestra.solve(self._scene)
+            self._job.result = self._job.run()
         except Exception as exc:  # the native message, for the user
-            self.report({'ERROR'}, user_messages.for_user(exc, self._study))
-            return {'CANCELLED'}
-        return self._finish(context, result)
+            self._job.error = exc
+        return self._finish(context, check_scene=False)
 
     def invoke(self, context, event):
-        """Solves on a worker thread; a timer shows progress, Esc cancels."""
+        """Solves on a worker thread; the panel shows progress, Esc or Cancel stops it, and any
+        change to the scene meanwhile stops it too (solve_guard.py)."""
         if bpy.app.background:
             return self.execute(context)
         if not self._prepare(context):
             return {'CANCELLED'}
-        from .. import api as fenestra
-        self._progress = fenestra.Progress()
-        self._outcome = {}
-        scene, progress, outcome = self._scene, self._progress, self._outcome
-
-        def work():  # no bpy here
-            try:
-                outcome["result"] = fenestra.solve(scene, progress=progress)
-            except BaseException as exc:
-                outcome["error"] = exc
-
-        self._thread = threading.Thread(target=work, daemon=True)
-        self._thread.start()
+        self._job.start()
         wm = context.window_manager
-        self._timer = wm.event_timer_add(0.2, window=context.window)
-        wm.progress_begin(0, 100)
+        self._timer = wm.event_timer_add(PROGRESS_INTERVAL_S, window=context.window)
         wm.modal_handler_add(self)
+        self._display = solve_progress.Display()
+        self._display.update(context, self._job)
         return {'RUNNING_MODAL'}
 
-    def _status(self, context, text):
-        context.workspace.status_text_set(text)
-
     def _end(self, context):
-        wm = context.window_manager
-        wm.event_timer_remove(self._timer)
-        wm.progress_end()
-        self._status(context, None)
+        context.window_manager.event_timer_remove(self._timer)
+        self._display.clear(context)
 
     def modal(self, context, event):
+        job = self._job
+        if job.done.is_set():
+            self._end(context)
+            return self._finish(context, check_scene=True)
         if event.type == 'ESC' and event.value == 'PRESS':
-            self._progress.cancel()
+            job.cancel("Solve cancelled")
             return {'RUNNING_MODAL'}
-        if event.type != 'TIMER':
-            return {'PASS_THROUGH'}
-        if self._thread.is_alive():
-            fraction = self._progress.fraction
-            context.window_manager.progress_update(int(100 * fraction))
-            self._status(context, "Fenestra: %s %d %% (Esc to cancel)" % (self._progress.status, 100 * fraction))
-            return {'RUNNING_MODAL'}
+        if event.type == 'TIMER':
+            self._display.update(context, job)
+        return {'PASS_THROUGH'}
+
+    def cancel(self, context):
+        """Blender ends the operator (a file is loaded, the window closes): the job stops too."""
+        self._job.cancel("Solve cancelled")
+        self._job.wait(solve_job.CANCEL_WAIT_AT_EXIT_S)
+        self._job.release()
+        self._staging.discard()
         self._end(context)
-        from .. import api as fenestra
-        error = self._outcome.get("error")
-        if isinstance(error, fenestra.Cancelled):
-            self.report({'WARNING'}, "Solve cancelled")
-            return {'CANCELLED'}
-        if error is not None:
-            self.report({'ERROR'}, user_messages.for_user(error, self._study))
-            return {'CANCELLED'}
-        return self._finish(context, self._outcome["result"])
 
 
 class FENESTRA_OT_clear_results(bpy.types.Operator):

@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import export, native, sensor_results, sky, visibility
+from . import export, native, sensor_results, sky, solve_progress, visibility
 
 SHOWN = 12  # sensors listed in the Results panel
 
@@ -158,7 +158,8 @@ class FENESTRA_PT_solve(FenestraPanel, bpy.types.Panel):
         layout.prop(s, "use_booleans")
         layout.prop(s, "study_directory")
         layout.separator()
-        layout.operator("fenestra.solve_openings", icon='MOD_BOOLEAN')
+        if not solve_progress.draw(layout):  # while a solve runs: its progress and Cancel
+            layout.operator("fenestra.solve_openings", icon='MOD_BOOLEAN')
 
 
 class FENESTRA_PT_constraints(FenestraPanel, bpy.types.Panel):

@@ -7,6 +7,8 @@
 #include <thread>
 
 #include "cost/byte_size.h"
+#include "cost/element_size_hint.h"
+#include "cost/load_checks.h"
 #include "daylight/daylight.h"
 #include "scene/scene.h"
 #include "solve/genetic.h"
@@ -76,7 +78,7 @@ std::string element_size_text(const Scene& scene) {
 
 void add_contributions(const Scene& scene, long long paths, CostEstimate* e) {
   const double S = static_cast<double>(e->sensors), N = static_cast<double>(e->elements);
-  const std::string fewer_elements = "a larger element_size (opening_domain.element_size or solver.element_size)";
+  const std::string fewer_elements = kLargerElementSize;
   const std::string fewer_paths = e->command == CostCommand::Solve ? "fewer paths (solver.paths, render.paths_per_sensor, --paths)"
                                                                    : "fewer paths (render.paths_per_sensor, --paths)";
   e->memory.push_back({"E", "the contribution matrix E (sensors x elements)", 8 * S * N, "",
@@ -90,7 +92,10 @@ void add_contributions(const Scene& scene, long long paths, CostEstimate* e) {
   e->memory.push_back({"path_records", "the path records (sensors x paths)", records, "", fewer_paths});
   e->memory.push_back({"path_records_assembly", "the path records while they are assembled",
                        kRecordAssembly * records, "tracing", fewer_paths, true});
-  e->memory.push_back({"T_symmetrised", "T while it is symmetrised", 8 * N * N, "tracing", fewer_elements, true});
+  // T is symmetrised in place (trace/transport_matrix.h); a second T stays counted while it is
+  // assembled: the margin of the largest studies, whose T dominates everything else.
+  e->memory.push_back({"T_symmetrised", "a margin of T's size while it is assembled", 8 * N * N, "tracing",
+                       fewer_elements, true});
   e->memory.push_back({"analysis", "per-thread analysis buffers", kAnalysisBytesPerElement * N * worker_threads(scene),
                        "tracing", fewer_elements});
   e->time.push_back({"tracing", "tracing the contribution paths",
@@ -105,7 +110,7 @@ void add_solver(const Scene& scene, CostEstimate* e) {
   const double S = static_cast<double>(e->sensors), N = static_cast<double>(e->elements);
   const double pop = s.population, gens = s.generations;
   e->memory.push_back({"solver_copies", "the solver's copies of E", kSolverCopiesOfE * 8 * S * N, "solving",
-                       "fewer sensors or a larger element_size"});
+                       "fewer sensors or " + std::string(kLargerElementSize)});
   if (s.verify)
     e->memory.push_back({"verification_scene", "the ray-tracing scene of the verification",
                          kRaySceneBytesPerTriangle * static_cast<double>(e->triangles), "solving", "fewer triangles"});
@@ -138,7 +143,7 @@ void add_solver(const Scene& scene, CostEstimate* e) {
 void add_output(CostEstimate* e) {
   const double S = static_cast<double>(e->sensors), N = static_cast<double>(e->elements);
   e->memory.push_back({"npz_buffers", "the .npz file's buffers", 8 * (3 * S * N + N * N) + 8 * std::max(S * N, N * N),
-                       "writing", "fewer sensors or a larger element_size", true});
+                       "writing", "fewer sensors or " + std::string(kLargerElementSize), true});
 }
 
 std::string describe_sizes(const Scene& scene, const CostEstimate& e, const MemoryItem& item) {
@@ -190,7 +195,7 @@ const MemoryItem* CostEstimate::largest_to_name() const {
     const MemoryItem*& best = m.phase.empty() ? kept : transient;
     if (!best || m.bytes > best->bytes) best = &m;
   }
-  // A stage's working copies of kept items (records while assembled, T while symmetrised, the
+  // A stage's working copies of kept items (records while assembled, T's margin while assembled, the
   // file's buffers) are named through what is kept; other transient items when they dominate.
   if (!kept || (transient && transient->bytes > 2.0 * kept->bytes)) return transient;
   return kept;
@@ -217,11 +222,11 @@ std::string cost_command_name(CostCommand command) {
   }
 }
 
-CostEstimate estimate_cost(const Scene& scene, CostCommand command) {
+CostEstimate estimate_cost(const Scene& scene, CostCommand command, double elements) {
   CostEstimate e;
   e.command = command;
   e.sensors = scene.sensors.size();
-  e.elements = scene.domain.element_count();
+  e.elements = elements >= 0.0 ? static_cast<size_t>(std::llround(elements)) : scene.domain.element_count();
   e.triangles = scene.mesh.triangle_count();
   e.paths_per_sensor = scene.render.paths_per_sensor;
   if ((command == CostCommand::Solve || command == CostCommand::Solver) && scene.solver.paths_per_sensor > 0)
@@ -274,9 +279,18 @@ void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limi
   const double peak = e.peak_bytes();
   if (peak > static_cast<double>(limit.bytes)) {
     const MemoryItem& big = *e.largest_to_name();
+    std::string setting = big.setting;
+    const size_t generic = setting.find(kLargerElementSize);
+    if (generic != std::string::npos) {  // name the element size that fits
+      const double fits = element_size_that_fits(
+          scene.domain.element_size(), static_cast<double>(e.elements),
+          [&](double n) { return estimate_cost(scene, command, n).peak_bytes(); }, static_cast<double>(limit.bytes),
+          kMaxElements);
+      setting.replace(generic, std::string(kLargerElementSize).size(), larger_element_size(fits));
+    }
     throw CostError(prefix + describe_sizes(scene, e, big) + "; " +
                     memory_refusal(big.description + (peak > 1.05 * big.bytes ? " alone" : ""), big.bytes, peak, limit,
-                                   big.setting));
+                                   setting));
   }
   for (const TimeItem& t : e.time) {
     if (t.limit_seconds <= 0.0 || t.seconds <= t.limit_seconds) continue;

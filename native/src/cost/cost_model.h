@@ -60,7 +60,8 @@ double path_record_bytes(const Scene& scene);
 CostCommand cost_command(const std::string& name);  // "contributions", "evaluate", "solve", "solver", "sky", "any"
 std::string cost_command_name(CostCommand command);
 
-CostEstimate estimate_cost(const Scene& scene, CostCommand command);
+// `elements` >= 0 stands in for the domain's element count (what another element size would give).
+CostEstimate estimate_cost(const Scene& scene, CostCommand command, double elements = -1.0);
 
 // Throws CostError when the estimate's peak exceeds `limit` or a stage exceeds its time limit.
 void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limit);

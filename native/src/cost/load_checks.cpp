@@ -8,6 +8,7 @@
 #include "cost/byte_size.h"
 #include "cost/cost_context.h"
 #include "cost/cost_model.h"
+#include "cost/element_size_hint.h"
 #include "cost/memory_limit.h"
 #include "daylight/daylight.h"
 #include "scene/mesh.h"
@@ -82,16 +83,23 @@ void check_domain_cost(const DomainEstimate& estimate, float element_size) {
   const double domain = kDomainBytesPerElement * N + kDomainBytesPerCell * estimate.grid_cells;
   const bool matrices = needs_element_matrices(cost_context().command);
   const double t = matrices ? 8.0 * N * N : 0.0;
-  const double total = domain + 2.0 * t;  // T and its symmetrised copy
+  const double total = domain + 2.0 * t;  // T, and as much again as a margin (cost_model.cpp)
   const bool too_many = N > kMaxElements;
   if (!(total > static_cast<double>(limit.bytes)) && !too_many) return;
+  const double cells_per_element = N > 0.0 ? estimate.grid_cells / N : 0.0;
+  const double fits = element_size_that_fits(
+      element_size, N,
+      [&](double n) {
+        return (kDomainBytesPerElement + kDomainBytesPerCell * cells_per_element) * n + (matrices ? 16.0 * n * n : 0.0);
+      },
+      static_cast<double>(limit.bytes), kMaxElements);
   std::ostringstream s;
   s << "element_size " << element_size << " m gives about " << format_count(N, 3) << " elements";
   if (estimate.largest_side > kSuspiciousSide)
     s << " (a panel of the opening domain is " << format_count(estimate.largest_side, 3)
       << " m long: is the geometry in millimetres? OBJ coordinates are read as meters)";
   s << "; ";
-  const std::string setting = "a larger element_size (opening_domain.element_size or solver.element_size)";
+  const std::string setting = larger_element_size(fits);
   if (too_many && !(total > static_cast<double>(limit.bytes)))
     s << "at most " << format_count(kMaxElements) << " elements are diced (about 1 us each; their matrix T alone would need "
       << format_bytes(8.0 * kMaxElements * kMaxElements) << "): use " << setting;

@@ -25,7 +25,7 @@ struct DomainEstimate {
 };
 DomainEstimate estimate_domain(const Mesh& mesh, const std::vector<std::vector<uint32_t>>& panels, float element_size);
 // The domain's own arrays, and, when the command computes them (cost/cost_context.h), the matrix
-// T (elements x elements doubles, twice while it is symmetrised). Whatever the command, at most
+// T (elements x elements doubles, counted twice: the margin of the largest studies). Whatever the command, at most
 // kMaxElements: dicing takes about 1 us per element (an OBJ in millimetres gave 48 million
 // elements, 57 s and 6.9 GB before an evaluate that does not use them), and T alone would need
 // 8 TB: such a domain can never be solved.

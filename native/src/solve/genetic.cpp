@@ -43,6 +43,7 @@ constexpr double kCrossoverRate = 0.9;
 constexpr int kMaxMutations = 2;
 constexpr int kMaxSeedMutations = 8;     // per mutated copy of a seed in the first population
 constexpr int kMaxPolishSweeps = 100;
+constexpr int kPollElements = 256;  // elements of a polishing sweep between two polls of cancellation
 constexpr uint64_t kFirstPopulation = ~uint64_t{0};  // generation index of the seeds' copies
 
 double squared_excess(double x) { return x > 0.0 ? x * x : 0.0; }
@@ -337,12 +338,13 @@ class Search {
   // Greedy local search: sweeps of single-element flips, then of flips of two N-8 neighbours
   // (an element moved to the next cell, a pair added or removed), each taken as soon as it
   // lowers the fitness, until a sweep finds none.
-  void polish(Individual* x) const {
+  void polish(Individual* x, const Progress* progress) const {
     std::vector<int> labels;
     rescore(x, &labels);
     for (int sweep = 0; sweep < kMaxPolishSweeps; ++sweep) {
       bool improved = false;
       for (int j = 0; j < grid_.size(); ++j) {
+        if (progress && j % kPollElements == 0) progress->throw_if_cancelled();  // a sweep is O(elements^2) at worst
         if (flip_change(*x, labels, j) < -tolerance(*x)) {
           flip(x, j);
           rescore(x, &labels);
@@ -351,6 +353,7 @@ class Search {
       }
       std::vector<int> window;
       for (int j = 0; j < grid_.size(); ++j) {
+        if (progress && j % kPollElements == 0) progress->throw_if_cancelled();
         if (!on_edge(x->open, j)) continue;
         nearby(j, &window);
         for (int k : window)
@@ -723,7 +726,7 @@ GeneticResult run_genetic(const LinearObjective& objective, const ElementGrid& g
 
   if (settings.polish) {
     Individual polished = population.front();
-    search.polish(&polished);
+    search.polish(&polished, progress);
     best.offer(polished);
   }
   best.fill(&result);

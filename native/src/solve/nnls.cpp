@@ -198,6 +198,8 @@ NnlsResult nnls(const MatrixXd& A, const VectorXd& b, int max_iterations, double
       }
       if (result.iterations == max_iterations) break;
       ++result.iterations;
+      // Refused candidates can follow one another by thousands, each O(rows x free columns).
+      if (progress) progress->throw_if_cancelled();
       if (!qr.append(static_cast<int>(t))) {
         refused[t] = 1;
         continue;

@@ -9,6 +9,8 @@
 #include "trace/parallel.h"
 #include "trace/path_tracer.h"
 #include "trace/replicates.h"
+#include "trace/transport_matrix.h"
+#include "util/release_in_background.h"
 
 namespace fenestra {
 namespace {
@@ -99,23 +101,6 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
   open.estimate(n_paths, &out->all_open.value[sensor], &out->all_open.standard_error[sensor]);
 }
 
-// Light leaving through element n on paths that reflected off element m before, summed.
-void accumulate_transport(const SensorRecord& rec, Eigen::MatrixXd* transport, const Progress* progress) {
-  for (size_t p = 0; p < rec.path_count(); ++p) {
-    if (progress && p % kPollPaths == 0) progress->throw_if_cancelled();
-    const uint32_t b = rec.path_begin[p], e = rec.path_begin[p + 1];
-    for (uint32_t j = b; j < e; ++j) {
-      const PathEvent& first = rec.events[j];
-      if (!first.is_escape()) continue;  // escapes, not their parts, start a transport
-      for (uint32_t l = j + 1; l < e; ++l) {
-        const PathEvent& later = rec.events[l];
-        if (!later.is_light() && later.element != first.element)
-          (*transport)(first.element, later.element) += later.value;
-      }
-    }
-  }
-}
-
 }  // namespace
 
 namespace {
@@ -170,39 +155,43 @@ Contributions compute_contributions(const Scene& scene, Progress* progress) {
   const int paths = scene.render.paths_per_sensor;
   const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
   std::vector<SensorRecord> chunks(sensors * tasks_per_sensor);
-  if (progress) progress->start("tracing contribution paths", chunks.size());
-  parallel_tasks(chunks.size(), scene.render.threads, progress, [&](size_t task) {
-    const size_t sensor = task / tasks_per_sensor;
-    const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
-    const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
-    SensorRecord& rec = chunks[task];
-    for (size_t p = first; p < last; ++p) {
-      Rng rng = path_rng(scene.render.seed, sensor, p);
-      tracer.record_sensor_path(sensor, p, rng, &rec);
-    }
-  });
-
   Contributions c;
-  c.paths_per_sensor = paths;
-  c.records.resize(sensors);
-  c.E.setZero(sensors, elements);
-  c.E_stderr.setZero(sensors, elements);
-  c.A.setZero(sensors, elements);
-  c.closed.value.setZero(sensors), c.closed.standard_error.setZero(sensors);
-  c.all_open.value.setZero(sensors), c.all_open.standard_error.setZero(sensors);
-  if (progress) progress->start("assembling the contribution matrix", sensors);
-  parallel_tasks(sensors, scene.render.threads, progress, [&](size_t i) {
-    SensorRecord& rec = c.records[i];
-    for (size_t t = 0; t < tasks_per_sensor; ++t) {
-      if (progress && t % 64 == 0) progress->throw_if_cancelled();  // a sensor's paths may be many chunks
-      rec.append(chunks[i * tasks_per_sensor + t]);
-      chunks[i * tasks_per_sensor + t] = SensorRecord();  // frees the chunk
-    }
-    analyse_sensor(rec, i, elements, &c, progress);
-  });
-  c.T.setZero(elements, elements);
-  for (const auto& rec : c.records) accumulate_transport(rec, &c.T, progress);
-  c.T = (c.T + c.T.transpose()).eval() / static_cast<double>(paths * sensors);
+  try {
+    if (progress) progress->start("tracing contribution paths", chunks.size());
+    parallel_tasks(chunks.size(), scene.render.threads, progress, [&](size_t task) {
+      const size_t sensor = task / tasks_per_sensor;
+      const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
+      const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
+      SensorRecord& rec = chunks[task];
+      for (size_t p = first; p < last; ++p) {
+        Rng rng = path_rng(scene.render.seed, sensor, p);
+        tracer.record_sensor_path(sensor, p, rng, &rec);
+      }
+    });
+
+    c.paths_per_sensor = paths;
+    c.records.resize(sensors);
+    c.E.setZero(sensors, elements);
+    c.E_stderr.setZero(sensors, elements);
+    c.A.setZero(sensors, elements);
+    c.closed.value.setZero(sensors), c.closed.standard_error.setZero(sensors);
+    c.all_open.value.setZero(sensors), c.all_open.standard_error.setZero(sensors);
+    if (progress) progress->start("assembling the contribution matrix", sensors);
+    parallel_tasks(sensors, scene.render.threads, progress, [&](size_t i) {
+      SensorRecord& rec = c.records[i];
+      for (size_t t = 0; t < tasks_per_sensor; ++t) {
+        if (progress && t % 64 == 0) progress->throw_if_cancelled();  // a sensor's paths may be many chunks
+        rec.append(chunks[i * tasks_per_sensor + t]);
+        chunks[i * tasks_per_sensor + t] = SensorRecord();  // frees the chunk
+      }
+      analyse_sensor(rec, i, elements, &c, progress);
+    });
+    c.T = transport_matrix(c.records, elements, paths, scene.render.threads, progress);
+  } catch (const Cancelled&) {
+    release_in_background(std::move(chunks));  // the path records: hundreds of megabytes
+    release_in_background(std::move(c));
+    throw;
+  }
   for (const auto& r : c.records) c.events += r.events.size();
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return c;

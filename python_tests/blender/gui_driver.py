@@ -1,0 +1,209 @@
+"""Blender's side of the GUI tests (python_tests/test_blender_gui.py), in a Blender with a window:
+
+    blender --window-geometry 0 0 W H EMPTY.blend --python gui_driver.py -- CHANNEL
+
+Builds the room example (examples/build_blend_examples.py) with the add-on, study folder
+CHANNEL/study, maps F5 to Solve Openings in the Window keymap (as a user's shortcut would), and
+then, while the test drives Blender with real key events, reports its state to CHANNEL/state.json
+every few milliseconds (the running solve's also to CHANNEL/job.json, from a thread) and follows the test's commands (CHANNEL/command-N.json, answered in
+CHANNEL/reply-N.json): "set" scene.fenestra settings (optionally as an undo step), "snapshot" of
+the model and the study folder, "solve_from_script" (an operator call, to read a refusal),
+"quit". The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
+
+import hashlib
+import json
+import os
+import sys
+import threading
+import time
+import traceback
+
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "examples"))
+import build_blend_examples as examples  # noqa: E402
+
+CHANNEL = sys.argv[sys.argv.index("--") + 1]
+STUDY = os.path.join(CHANNEL, "study")
+TICK_S = 0.01
+JOBS_LOCK = threading.Lock()
+state = {"next_command": 0, "jobs": 0, "last_job": None}
+
+
+def write_json(path, value):
+    part = "%s.%d.part" % (path, threading.get_ident())
+    with open(part, "w") as f:
+        json.dump(value, f)
+    os.replace(part, path)
+
+
+def setup():
+    examples.enable_addon()
+    with in_view3d():  # the operators that build it need a window's context
+        examples.build_room()
+    f = bpy.context.scene.fenestra
+    f.solve.study_directory = STUDY
+    km = bpy.context.window_manager.keyconfigs.addon.keymaps.new(name="Window", space_type='EMPTY')
+    km.keymap_items.new("fenestra.solve_openings", 'F5', 'PRESS')
+    for o in bpy.context.view_layer.objects:
+        o.select_set(False)
+    undo_push("Fenestra GUI test set up")
+
+
+def in_view3d():
+    """A context with the window and its 3D View, as an operator run from the viewport sees."""
+    window = bpy.context.window_manager.windows[0]
+    area = next(a for a in window.screen.areas if a.type == 'VIEW_3D')
+    return bpy.context.temp_override(window=window, area=area)
+
+
+def undo_push(message):
+    with in_view3d():
+        bpy.ops.ed.undo_push(message=message)
+
+
+def view3d_centre():
+    """The 3D View's centre in X screen coordinates (origin top left)."""
+    window = bpy.context.window_manager.windows[0]
+    area = max((a for a in window.screen.areas if a.type == 'VIEW_3D'), key=lambda a: a.width * a.height)
+    region = next(r for r in area.regions if r.type == 'WINDOW')
+    return [window.x + region.x + region.width // 2, window.height - (region.y + region.height // 2)]
+
+
+def job_state():
+    """The last job, numbered in the order jobs started (no bpy: the monitor thread calls it too)."""
+    from fenestra.blender import solve_job
+    with JOBS_LOCK:
+        job = solve_job.last()
+        if job is None:
+            return None
+        if job is not state["last_job"]:
+            state["last_job"] = job
+            state["jobs"] += 1
+        number = state["jobs"]
+    return {"number": number, "status": job.status, "fraction": job.fraction, "started": job.started,
+            "ended": job.ended, "cancel_requested": job.cancel_requested, "cancel_reason": job.cancel_reason,
+            "outcome": job.outcome, "cancelled": job.done.is_set() and job.cancelled,
+            "error": None if job.error is None else str(job.error), "reused": job.reused}
+
+
+def monitor_jobs():
+    """CHANNEL/job.json every few milliseconds from a thread of its own: Blender's main thread, which
+    writes state.json, can be held up by redraws for a good part of a second."""
+    while True:
+        try:
+            write_json(os.path.join(CHANNEL, "job.json"), {"now": time.monotonic(), "job": job_state()})
+        except Exception:
+            traceback.print_exc()
+        time.sleep(0.003)
+
+
+def report_state():
+    from fenestra.blender import solve_job
+    f = bpy.context.scene.fenestra
+    write_json(os.path.join(CHANNEL, "state.json"), {
+        "now": time.monotonic(), "running": solve_job.running() is not None, "job": job_state(),
+        "mode": bpy.context.mode, "goal_level": f.goals.level, "results_valid": f.results.valid,
+        "relative_rms": f.results.relative_rms, "seconds_total": f.results.seconds_total,
+        "solve_polls": bpy.ops.fenestra.solve_openings.poll(), "view3d": view3d_centre()})
+
+
+def digest_of_file(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def snapshot():
+    """What a cancelled or discarded solve must leave alone: the result in the model and the study folder."""
+    f = bpy.context.scene.fenestra
+    model = {
+        "objects": sorted(o.name for o in bpy.data.objects),
+        "modifiers": sorted([o.name, m.name] for o in bpy.data.objects for m in o.modifiers),
+        "cutters": sorted([o.name, [list(map(lambda x: round(x, 6), o.location))]] for o in bpy.data.objects
+                          if o.fenestra.is_opening),
+        "results": [f.results.valid, f.results.openings, f.results.relative_rms, f.results.study_path,
+                    [[s.goal, s.achieved] for s in f.results.sensors]],
+    }
+    folder = {}
+    if os.path.isdir(STUDY):
+        folder = {name: digest_of_file(os.path.join(STUDY, name)) for name in sorted(os.listdir(STUDY))}
+    siblings = sorted(n for n in os.listdir(CHANNEL) if n.startswith(".study"))  # staging folders left behind
+    return {"model": model, "folder": folder, "staging": siblings}
+
+
+def set_settings(values, undo_step=None):
+    f = bpy.context.scene.fenestra
+    for path, value in values.items():
+        owner, _, name = path.rpartition(".")
+        target = f
+        for part in filter(None, owner.split(".")):
+            target = getattr(target, part)
+        setattr(target, name, value)
+    if undo_step:
+        undo_push(undo_step)
+    return {"goal_level": f.goals.level}
+
+
+def solve_from_script():
+    with in_view3d():
+        try:
+            return {"result": sorted(bpy.ops.fenestra.solve_openings('INVOKE_DEFAULT'))}
+        except RuntimeError as exc:
+            return {"error": str(exc)}
+
+
+def follow_commands():
+    path = os.path.join(CHANNEL, "command-%d.json" % state["next_command"])
+    if not os.path.exists(path):
+        return
+    with open(path) as f:
+        command = json.load(f)
+    name, args = command["do"], command.get("args", {})
+    try:
+        if name == "set":
+            reply = set_settings(**args)
+        elif name == "snapshot":
+            reply = snapshot()
+        elif name == "solve_from_script":
+            reply = solve_from_script()
+        elif name == "select":
+            for o in bpy.context.view_layer.objects:
+                o.select_set(o.name == args["name"])
+            bpy.context.view_layer.objects.active = bpy.data.objects[args["name"]]
+            reply = {}
+        elif name == "quit":
+            write_json(os.path.join(CHANNEL, "reply-%d.json" % state["next_command"]), {})
+            bpy.ops.wm.quit_blender()
+            return
+        else:
+            reply = {"failed": "unknown command %r" % name}
+    except Exception:
+        reply = {"failed": traceback.format_exc()}
+    write_json(os.path.join(CHANNEL, "reply-%d.json" % state["next_command"]), reply)
+    state["next_command"] += 1
+
+
+def tick():
+    try:
+        follow_commands()
+        report_state()
+    except Exception:
+        traceback.print_exc()
+        write_json(os.path.join(CHANNEL, "failed.json"), {"traceback": traceback.format_exc()})
+        return None
+    return TICK_S
+
+
+def start():
+    try:
+        setup()
+    except Exception:
+        write_json(os.path.join(CHANNEL, "failed.json"), {"traceback": traceback.format_exc()})
+        return None
+    bpy.app.timers.register(tick, first_interval=TICK_S, persistent=True)
+    threading.Thread(target=monitor_jobs, name="gui-test-monitor", daemon=True).start()
+    return None
+
+
+bpy.app.timers.register(start, first_interval=0.5)

@@ -1,0 +1,302 @@
+"""The solve in a real Blender window (under Xvfb), driven by real key events (xdotool): Esc in each
+stage of a solve, Ctrl-Z during one, Solve pressed twice, an edit during one; after each, the model
+and the study folder are as they were. Blender runs python_tests/blender/gui_driver.py, which sets
+up the room example, maps F5 to Solve Openings and reports its state to a folder.
+
+Skipped without Blender, Xvfb or xdotool (`make deps` installs them). FENESTRA_TEST_DISPLAY
+(e.g. ":61") picks the X display; by default Xvfb takes a free one."""
+
+import json
+import os
+import shutil
+import subprocess
+import time
+
+import pytest
+
+BLENDER, XVFB, XDOTOOL = shutil.which("blender"), shutil.which("Xvfb"), shutil.which("xdotool")
+HERE = os.path.dirname(os.path.abspath(__file__))
+ADDON = os.path.join(os.path.dirname(HERE), "addon", "fenestra")
+SIZE = (1400, 1000)
+
+# Once Blender has the key, the solve must stop within this (measured, stage by stage: docs/blender.md).
+CANCEL_BOUND_S = 0.5
+# From the key to the stop: Blender's own event handling too, which with software OpenGL on a busy
+# machine waits for redraws of a good part of a second.
+KEY_TO_STOP_BOUND_S = 3.0
+
+pytestmark = pytest.mark.skipif(None in (BLENDER, XVFB, XDOTOOL), reason="needs Blender, Xvfb and xdotool")
+
+# A study quick to reach each stage, and long in it: 256 paths per sensor, 0.5 m elements.
+QUICK = {"solve.quality": 'CUSTOM', "solve.paths": 256, "solve.generations": 20, "solve.population": 16,
+         "solve.element_size": 0.5, "sky.type": 'CIE_OVERCAST', "sky.use_date_end": False, "goals.level": 0.5}
+LONG_SKY = {"sky.type": 'PREETHAM', "sky.month": 1, "sky.day": 1, "sky.use_date_end": True, "sky.end_year": 2026,
+            "sky.end_month": 3, "sky.end_day": 31, "sky.start_time": 6.0, "sky.end_time": 18.0}
+LONG_TRACING = {"solve.paths": 1 << 16}
+LONG_GENETIC = {"solve.generations": 200000, "solve.population": 64}
+# The check with real cutters traces as many paths as the contributions: a second of it, and no
+# openings (a goal of 0), so that the refinement of their edges does not come first.
+LONG_VERIFICATION = {"solve.paths": 4096, "goals.level": 0.0}
+
+
+class Gui:
+    """A Blender window under Xvfb, its driver's state and commands, and real input through xdotool."""
+
+    def __init__(self, tmp):
+        self.channel = str(tmp / "channel")
+        os.makedirs(self.channel)
+        self.commands = 0
+        self.env = dict(os.environ)
+        self.xvfb = self._start_xvfb()
+        scripts = tmp / "scripts"
+        (scripts / "addons").mkdir(parents=True)
+        os.symlink(ADDON, scripts / "addons" / "fenestra")
+        empty = str(tmp / "empty.blend")  # a file to open: no splash screen
+        subprocess.run([BLENDER, "-b", "--factory-startup", "--python-expr",
+                        "import bpy; bpy.ops.wm.read_homefile(use_empty=True); "
+                        "bpy.ops.wm.save_as_mainfile(filepath=%r)" % empty],
+                       check=True, capture_output=True, timeout=120)
+        config = tmp / "config"
+        config.mkdir()
+        self.env.update(BLENDER_USER_SCRIPTS=str(scripts), BLENDER_USER_CONFIG=str(config))
+        self.log = open(tmp / "blender.log", "w")
+        self.blender = subprocess.Popen(
+            [BLENDER, "--factory-startup", "--window-geometry", "0", "0", str(SIZE[0]), str(SIZE[1]), empty,
+             "--python", os.path.join(HERE, "blender", "gui_driver.py"), "--", self.channel],
+            env=self.env, stdin=subprocess.DEVNULL, stdout=self.log, stderr=subprocess.STDOUT)
+        try:
+            self.state = self.wait_for(lambda s: s["view3d"] is not None, timeout=120, what="Blender's window")
+            self.point_at_view()
+        except BaseException:
+            self.close()
+            raise
+
+    def _start_xvfb(self):
+        chosen = os.environ.get("FENESTRA_TEST_DISPLAY")
+        screen = ["-screen", "0", "%dx%dx24" % SIZE, "-nolisten", "tcp"]
+        if chosen:
+            proc = subprocess.Popen([XVFB, chosen] + screen, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            display = chosen
+        else:
+            read, write = os.pipe()
+            proc = subprocess.Popen([XVFB, "-displayfd", str(write)] + screen, pass_fds=(write,),
+                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            os.close(write)
+            with os.fdopen(read) as f:
+                display = ":" + f.readline().strip()
+        self.env["DISPLAY"] = display
+        for _ in range(100):
+            if subprocess.run([XDOTOOL, "getmouselocation"], env=self.env, capture_output=True).returncode == 0:
+                return proc
+            time.sleep(0.05)
+        proc.kill()
+        raise RuntimeError("Xvfb did not start on %s" % display)
+
+    def close(self):
+        try:
+            self.command("quit", timeout=10)
+            self.blender.wait(20)
+        except Exception:
+            self.blender.kill()
+            self.blender.wait(20)
+        self.log.close()
+        self.xvfb.terminate()
+        self.xvfb.wait(10)
+
+    def read_state(self, name="state.json"):
+        """The driver's state (state.json), or the running job's alone, more promptly (job.json)."""
+        failed = os.path.join(self.channel, "failed.json")
+        if os.path.exists(failed):
+            raise AssertionError("the driver failed:\n" + json.load(open(failed))["traceback"])
+        try:
+            with open(os.path.join(self.channel, name)) as f:
+                return json.load(f)
+        except (FileNotFoundError, json.JSONDecodeError):
+            return None
+
+    def wait_for(self, condition, timeout=60, what="the condition", name="state.json"):
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if hasattr(self, "blender"):
+                assert self.blender.poll() is None, "Blender exited (%d)" % self.blender.returncode
+            s = self.read_state(name)
+            if s is not None and condition(s):
+                if name == "state.json":
+                    self.state = s
+                return s
+            time.sleep(0.002)
+        raise AssertionError("waited %.0f s for %s; last state %r" % (timeout, what, self.read_state(name)))
+
+    def command(self, what, timeout=60, **args):
+        number = self.commands
+        self.commands += 1
+        reply = os.path.join(self.channel, "reply-%d.json" % number)
+        part = os.path.join(self.channel, "command-%d.part" % number)
+        with open(part, "w") as f:
+            json.dump({"do": what, "args": args}, f)
+        os.replace(part, os.path.join(self.channel, "command-%d.json" % number))
+        deadline = time.monotonic() + timeout
+        while not os.path.exists(reply):
+            assert time.monotonic() < deadline, "no reply to %r" % what
+            self.read_state()  # raises if the driver failed
+            time.sleep(0.005)
+        value = json.load(open(reply))
+        assert "failed" not in value, value["failed"]
+        return value
+
+    def point_at_view(self):
+        x, y = self.state["view3d"]
+        self.xdotool("mousemove", str(x), str(y))
+
+    def xdotool(self, *args):
+        subprocess.run([XDOTOOL, *args], env=self.env, check=True, timeout=10)
+
+    def key(self, name):
+        """Presses a key; returns the time (time.monotonic) just before it was sent."""
+        sent = time.monotonic()
+        self.xdotool("key", name)
+        return sent
+
+    # -- solves --------------------------------------------------------------------------------
+
+    def job_number(self):
+        s = self.read_state("job.json")
+        return s["job"]["number"] if s and s["job"] else 0
+
+    def press_solve(self):
+        """F5, and waits for its job to start; returns the job's number."""
+        before = self.job_number()
+        self.key("F5")
+        s = self.wait_for(lambda s: s["job"] is not None and s["job"]["number"] > before,
+                          timeout=30, what="a solve to start", name="job.json")
+        return s["job"]["number"]
+
+    def wait_for_stage(self, number, stage, timeout=120):
+        return self.wait_for(lambda s: s["job"] is not None and s["job"]["number"] == number
+                             and s["job"]["status"].startswith(stage),
+                             timeout=timeout, what="stage %r" % stage, name="job.json")
+
+    def wait_until_ended(self, number, timeout=120):
+        """Until Blender has made something of the job's end (applied, discarded, reported)."""
+        return self.wait_for(lambda s: s["job"] is not None and s["job"]["number"] == number
+                             and s["job"]["outcome"] is not None,
+                             timeout=timeout, what="the solve to end")
+
+
+@pytest.fixture(scope="module")
+def gui(tmp_path_factory):
+    g = Gui(tmp_path_factory.mktemp("gui"))
+    try:
+        yield g
+    finally:
+        g.close()
+
+
+@pytest.fixture(scope="module")
+def solved(gui):
+    """A first, quick solve: a result in the model and a study folder that cancels must leave alone."""
+    gui.command("set", values=QUICK)
+    number = gui.press_solve()
+    s = gui.wait_until_ended(number)
+    assert s["job"]["error"] is None and s["results_valid"], s
+    return gui.command("snapshot")
+
+
+def esc_in(gui, stage, settle=0.3):
+    """Starts a solve, presses Esc once it is `stage`; returns (end state, latency)."""
+    number = gui.press_solve()
+    gui.wait_for_stage(number, stage)
+    time.sleep(settle)
+    sent = gui.key("Escape")
+    s = gui.wait_until_ended(number)
+    latency = s["job"]["ended"] - s["job"]["cancel_requested"]
+    print("Esc in %r: the solve stopped %.3f s after Blender had the key (%.3f s after the key)"
+          % (stage, latency, s["job"]["ended"] - sent))
+    assert s["job"]["ended"] - sent < KEY_TO_STOP_BOUND_S
+    return s, latency
+
+
+def assert_cancelled_and_unchanged(gui, s, before, reason="Solve cancelled"):
+    assert s["job"]["cancelled"], s["job"]
+    assert s["job"]["outcome"].startswith(reason), s["job"]  # as reported
+    assert s["solve_polls"]  # Solve can be pressed again
+    assert gui.command("snapshot") == before
+
+
+@pytest.mark.parametrize("stage,settings", [
+    ("building the daylight sky", LONG_SKY),
+    ("tracing contribution paths", LONG_TRACING),
+], ids=["reading", "contributions"])
+def test_esc_before_the_solver(gui, solved, stage, settings):
+    gui.command("set", values=dict(QUICK, **settings))
+    s, latency = esc_in(gui, stage)
+    assert_cancelled_and_unchanged(gui, s, solved)
+    assert latency < CANCEL_BOUND_S
+
+
+@pytest.mark.parametrize("stage,settings,settle", [
+    ("genetic algorithm", LONG_GENETIC, 0.3),
+    ("tracing the scene with its openings", LONG_VERIFICATION, 0.05),
+], ids=["genetic", "verification"])
+def test_esc_in_the_solver(gui, solved, stage, settings, settle):
+    gui.command("set", values=dict(QUICK, **settings))
+    s, latency = esc_in(gui, stage, settle)
+    assert_cancelled_and_unchanged(gui, s, solved)
+    assert latency < CANCEL_BOUND_S
+
+
+def test_ctrl_z_during_a_solve_cancels_it(gui, solved):
+    gui.command("set", values=dict(QUICK, **LONG_GENETIC))
+    level = gui.command("set", values={"goals.level": 0.3}, undo_step="Goal 0.3")["goal_level"]
+    assert abs(level - 0.3) < 1e-6
+    number = gui.press_solve()
+    gui.wait_for_stage(number, "genetic algorithm")
+    sent = gui.key("ctrl+z")
+    s = gui.wait_until_ended(number)
+    print("Ctrl-Z: the solve stopped %.3f s after the key" % (s["job"]["ended"] - sent))
+    assert abs(s["goal_level"] - 0.3) > 1e-3  # the goal went back
+    assert_cancelled_and_unchanged(gui, s, solved, reason="Solve cancelled: undo")
+
+
+def test_solve_twice_is_refused_and_one_esc_stops_it(gui, solved):
+    gui.command("set", values=dict(QUICK, **LONG_GENETIC))
+    number = gui.press_solve()
+    gui.wait_for_stage(number, "genetic algorithm")
+    gui.key("F5")  # refused: Solve's poll says a solve runs
+    refusal = gui.command("solve_from_script")
+    assert "A solve is running" in refusal.get("error", ""), refusal
+    time.sleep(0.3)
+    assert gui.job_number() == number  # no second job
+    sent = gui.key("Escape")
+    s = gui.wait_until_ended(number)
+    assert s["job"]["ended"] - s["job"]["cancel_requested"] < CANCEL_BOUND_S
+    assert s["job"]["ended"] - sent < KEY_TO_STOP_BOUND_S
+    assert_cancelled_and_unchanged(gui, s, solved)
+    time.sleep(1.0)  # and nothing lands later
+    assert gui.job_number() == number
+    assert gui.command("snapshot") == solved
+
+
+def test_an_edit_during_a_solve_cancels_it(gui, solved):
+    gui.command("set", values=dict(QUICK, **LONG_GENETIC))
+    gui.command("select", name="Sensors")
+    number = gui.press_solve()
+    gui.wait_for_stage(number, "genetic algorithm")
+    for key in ("g", "z", "0", "period", "1", "Return"):  # move the sensors up by 0.1 m
+        gui.key(key)
+    s = gui.wait_until_ended(number, timeout=10)
+    assert_cancelled_and_unchanged(gui, s, solved, reason="Solve cancelled: the scene changed")
+    gui.key("ctrl+z")  # the sensors back where they were
+    gui.command("select", name="Room")
+
+
+def test_new_goals_solve_with_the_contributions_kept(gui, solved):
+    gui.command("set", values=dict(QUICK, **{"goals.level": 0.35}))
+    number = gui.press_solve()
+    s = gui.wait_until_ended(number)
+    assert s["job"]["error"] is None and s["job"]["reused"], s["job"]
+    after = gui.command("snapshot")
+    assert after["model"]["results"] != solved["model"]["results"]
+    assert after["folder"]["scene.json"] != solved["folder"]["scene.json"]
+    assert after["folder"]["scene.obj"] == solved["folder"]["scene.obj"]
+    assert after["staging"] == []
