@@ -13,9 +13,10 @@ import re
 import sys
 import unittest
 
-import addon_utils
-import bmesh
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from addon_holes import mesh_object, reset  # noqa: E402
 
 OUT = sys.argv[sys.argv.index("--") + 1] if "--" in sys.argv else "/tmp/fenestra_checks_test"
 BOX_FACES = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
@@ -23,30 +24,6 @@ BOTTOM, TOP, SOUTH = 0, 1, 2
 # What a message must not show: a scene-file key (dotted, indexed or snake_case) or a file path.
 KEY = re.compile(r"\b[a-z]+_[a-z_]+\b|\b[a-z_]+\.[a-z_]+|\[\d+\]\.|\bgoals\[")
 PATH = re.compile(r"(?<![\w.])/\w")
-
-
-def reset():
-    bpy.ops.wm.read_homefile(use_empty=True)
-    addon_utils.enable("fenestra", default_set=True, handle_error=None)
-
-
-def mesh_object(name, verts, faces, domain=(), flip=False, collection=None):
-    mesh = bpy.data.meshes.new(name)
-    mesh.from_pydata([tuple(map(float, v)) for v in verts], [], [tuple(f) for f in faces])
-    bm = bmesh.new()
-    bm.from_mesh(mesh)
-    bmesh.ops.recalc_face_normals(bm, faces=bm.faces)
-    if flip:
-        bmesh.ops.reverse_faces(bm, faces=bm.faces)
-    bm.to_mesh(mesh)
-    bm.free()
-    if domain:
-        flags = [i in domain for i in range(len(faces))]
-        mesh.attributes.new("fenestra_domain", 'BOOLEAN', 'FACE').data.foreach_set("value", flags)
-    mesh.update()
-    obj = bpy.data.objects.new(name, mesh)
-    (collection or bpy.context.scene.collection).objects.link(obj)
-    return obj
 
 
 def room(name="Room", origin=(0.0, 0.0), size=(4.0, 4.0), height=2.7, faces=range(6), domain=(SOUTH,),

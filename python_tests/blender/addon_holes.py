@@ -38,13 +38,16 @@ def box_verts(lo, hi):
             (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
 
 
-def mesh_object(name, verts, faces, domain=()):
-    """A mesh object, normals made consistent; the faces listed in domain marked as opening domain."""
+def mesh_object(name, verts, faces, domain=(), flip=False, collection=None):
+    """A mesh object, normals made consistent (all turned over with flip); the faces listed in
+    domain marked as opening domain; linked to collection (the scene's by default)."""
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata([tuple(map(float, v)) for v in verts], [], [tuple(f) for f in faces])
     bm = bmesh.new()
     bm.from_mesh(mesh)
     bmesh.ops.recalc_face_normals(bm, faces=bm.faces)
+    if flip:
+        bmesh.ops.reverse_faces(bm, faces=bm.faces)
     bm.to_mesh(mesh)
     bm.free()
     if domain:
@@ -52,7 +55,7 @@ def mesh_object(name, verts, faces, domain=()):
         mesh.attributes.new("fenestra_domain", 'BOOLEAN', 'FACE').data.foreach_set("value", flags)
     mesh.update()
     obj = bpy.data.objects.new(name, mesh)
-    bpy.context.scene.collection.objects.link(obj)
+    (collection or bpy.context.scene.collection).objects.link(obj)
     return obj
 
 
