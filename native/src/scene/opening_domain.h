@@ -4,6 +4,7 @@
 // joined along edges at less than kSmoothAngle) in its chart (surface_chart.h), so that its
 // elements are patches of the surface. No geometry is modified.
 #include <array>
+#include <utility>
 #include <memory>
 #include <optional>
 #include <string>
@@ -29,7 +30,11 @@ struct Panel {
   float chart_side = 1.0f;      // outward = chart_side * the chart's normal, on curved panels
   Vec2 parameter_lower = Vec2::Zero(), parameter_upper = Vec2::Zero();  // the faces' extent, grid coordinates
   int rows = 0, cols = 0;
-  std::vector<int> grid;        // rows * cols: element index, or -1 where the square leaves the panel
+  std::vector<int> grid;        // rows * cols: element index, or -1 where the cell leaves the panel
+  // Grid lines in grid coordinates: cols + 1 along u, rows + 1 along v. Multiples of the element
+  // size, except on a refined grid (OpeningDomain::refined), whose cells are parts of elements.
+  std::vector<float> u_lines, v_lines;
+  bool uniform = true;          // the lines are multiples of the element size
   std::vector<uint32_t> triangles;
   int material = -1;            // material of the panel's faces (reveals use it)
   std::string label;            // material and group names, for messages
@@ -64,8 +69,19 @@ struct DomainSurfacePoint {
 
 struct Element {
   int panel = 0, row = 0, col = 0;
+  float u0 = 0, u1 = 0, v0 = 0, v1 = 0;  // its cell [u0, u1] x [v0, v1] in panel coordinates
   std::array<Vec3, 4> corners;  // counter-clockwise about the panel normal
   Vec3 center;
+  float width() const { return u1 - u0; }
+  float height() const { return v1 - v0; }
+};
+
+// Part of a panel to cut into elements for a local search (OpeningDomain::refined): the
+// rectangle [u0, u1] x [v0, v1] and grid lines within it (panel coordinates, meters).
+struct RefinedRegion {
+  int panel = 0;
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  std::vector<float> u_lines, v_lines;
 };
 
 struct OpeningDomainSelection {
@@ -94,8 +110,23 @@ class OpeningDomain {
   // Side faces of the elements' tubes through thick walls, as triangles (two per face, in order).
   Mesh reveal_grid(std::vector<RevealGridFace>* faces) const;
 
+  // A domain for a local search: elements only inside the given regions, cut along the regions'
+  // lines. Each panel's grid lines are its regions' edges and lines (nothing else), and a cell is
+  // an element when it lies in one of the panel's regions and on this domain's elements; the rest
+  // of the panel is wall. Rectangles with edges on the lines, within the regions, are unions of
+  // elements. Panels, walls and triangles are unchanged; flat panels only. Portal sampling keeps
+  // aiming at this domain's elements (those the regions overlap): portals(), portal_at().
+  OpeningDomain refined(const std::vector<RefinedRegion>& regions) const;
+
   const std::vector<Panel>& panels() const { return panels_; }
   const std::vector<Element>& elements() const { return elements_; }
+  // What portal sampling aims at: the elements, or on a refined domain the unrefined elements its
+  // regions overlap (squares, however the regions are cut); and the portal at a panel point, or -1.
+  const std::vector<Element>& portals() const { return unrefined_ ? portals_ : elements_; }
+  int portal_at(int panel, const PanelPoint& q) const;
+  bool is_refined() const { return unrefined_ != nullptr; }
+  // The domain a refined one refines (this one otherwise): where openings' limits are judged.
+  const OpeningDomain& unrefined() const { return unrefined_ ? *unrefined_ : *this; }
   size_t element_count() const { return elements_.size(); }
   float element_size() const { return element_size_; }
   bool has_thick_walls() const;
@@ -106,6 +137,18 @@ class OpeningDomain {
   int outer_panel_of_triangle(size_t tri) const { return tri < outer_panel_.size() ? outer_panel_[tri] : -1; }
   // Element containing panel point q of panel `panel`, or -1 (the panel's margin).
   int element_at(int panel, const PanelPoint& q) const;
+  // Element of a panel's cell, or -1 outside the grid or where the cell leaves the panel.
+  int cell(int panel, int row, int col) const;
+  // The cells [first, last] along u (columns) or v (rows) that the open interval (a, b) of grid
+  // coordinates overlaps (within 1e-6 of the element size); first < 0 or last >= cols (rows)
+  // when it reaches beyond the grid.
+  std::pair<int, int> columns_overlapping(int panel, double a, double b) const;
+  std::pair<int, int> rows_overlapping(int panel, double a, double b) const;
+  // Grid lines of a flat thick panel that the straight line from p (in its wall) along dir crosses
+  // before it leaves the wall through its inner or outer face; a line through p is not counted.
+  int lines_ahead(int panel, const Vec3& p, const Vec3& dir) const;
+  // Whether x lies on one of the given grid lines (within 1e-6 of the element size).
+  bool on_line(const std::vector<float>& lines, double x) const;
   // Point p of a flat panel in panel coordinates: meters along its u and v axes from its grid corner.
   PanelPoint panel_point(int panel, const Vec3& p) const {
     const Vec3 d = p - panels_[panel].origin;
@@ -125,7 +168,7 @@ class OpeningDomain {
     const SurfaceChart* chart = panels_[panel].chart.get();
     return chart ? chart->area_ratio(triangle) : 1.0f;
   }
-  // The cutter that opens one element: its square, through the wall thickness.
+  // The cutter that opens one element: its cell, through the wall thickness.
   Cutter element_cutter(int element) const;
   // Cutter of the panel rectangle [u0, u1] x [v0, v1].
   Cutter panel_rectangle_cutter(int panel, double u0, double u1, double v0, double v1) const;
@@ -135,6 +178,10 @@ class OpeningDomain {
  private:
   std::vector<Panel> panels_;
   std::vector<Element> elements_;
+  // A refined domain's: the domain it refines, the portals, and each unrefined element's portal.
+  std::shared_ptr<const OpeningDomain> unrefined_;
+  std::vector<Element> portals_;
+  std::vector<int> portal_of_unrefined_;
   std::vector<int> triangle_panel_;
   std::vector<int> outer_panel_;
   float element_size_ = 0.25f;

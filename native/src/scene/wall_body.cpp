@@ -115,8 +115,7 @@ struct Measured {
   float spread = 0.0f;        // max - min offset
 };
 
-Measured measure(const Panel& panel, const std::vector<Element>& elements, const std::vector<Candidate>& faces,
-                 float element_size) {
+Measured measure(const Panel& panel, const std::vector<Element>& elements, const std::vector<Candidate>& faces) {
   Measured m;
   std::vector<int> cells;
   for (int e : panel.grid)
@@ -126,7 +125,7 @@ Measured measure(const Panel& panel, const std::vector<Element>& elements, const
   size_t probed = 0;
   for (size_t i = 0; i < cells.size(); i += stride, ++probed) {
     const Element& e = elements[cells[i]];
-    const Vec2 p((e.col + 0.5f) * element_size, (e.row + 0.5f) * element_size);
+    const Vec2 p(0.5f * (e.u0 + e.u1), 0.5f * (e.v0 + e.v1));
     float nearest = std::numeric_limits<float>::infinity();
     for (const Candidate& c : faces)
       if (c.offset < nearest && c.flat.contains(p)) nearest = c.offset;
@@ -213,10 +212,9 @@ double curved_solid_coverage(const Mesh& mesh, const OpeningDomain& domain, int 
     if (e >= 0) cells.push_back(e);
   const size_t stride = std::max<size_t>(1, cells.size() / 32);
   size_t probed = 0, behind = 0;
-  const float s = domain.element_size();
   for (size_t i = 0; i < cells.size(); i += stride, ++probed) {
     const Element& e = domain.elements()[cells[i]];
-    const DomainSurfacePoint at = domain.surface_at(panel_index, (e.col + 0.5) * s, (e.row + 0.5) * s);
+    const DomainSurfacePoint at = domain.surface_at(panel_index, 0.5 * (e.u0 + e.u1), 0.5 * (e.v0 + e.v1));
     const Vec3 org = at.position + 1e-4f * at.outward;
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
       if (domain.panel_of_triangle(t) == panel_index) continue;
@@ -260,8 +258,8 @@ void OpeningDomain::build_walls(Mesh* mesh) {
     Panel& panel = panels_[p];
     if (panel.curved()) continue;  // a single surface (check_curved_walls)
     const std::vector<Candidate> faces =
-        parallel_faces_behind(*mesh, panel, index, panel.cols * element_size_, panel.rows * element_size_);
-    const Measured m = measure(panel, elements_, faces, element_size_);
+        parallel_faces_behind(*mesh, panel, index, panel.u_lines.back(), panel.v_lines.back());
+    const Measured m = measure(panel, elements_, faces);
     if (m.coverage >= kIgnored && m.coverage < kModelled) {
       std::ostringstream msg;
       msg << "the wall behind the opening-domain panel of " << panel.label << " is modelled in part only: "
@@ -301,7 +299,6 @@ void OpeningDomain::build_walls(Mesh* mesh) {
 Mesh OpeningDomain::reveal_grid(std::vector<RevealGridFace>* faces) const {
   Mesh mesh;
   faces->clear();
-  const float s = element_size_;
   for (size_t p = 0; p < panels_.size(); ++p) {
     const Panel& panel = panels_[p];
     if (!(panel.thickness > 0.0f)) continue;
@@ -309,7 +306,7 @@ Mesh OpeningDomain::reveal_grid(std::vector<RevealGridFace>* faces) const {
     auto cell = [&](int r, int c) {
       return r < 0 || c < 0 || r >= panel.rows || c >= panel.cols ? -1 : panel.grid[static_cast<size_t>(r) * panel.cols + c];
     };
-    auto corner = [&](int r, int c) { return panel.origin + (c * s) * panel.u_axis + (r * s) * panel.v_axis; };
+    auto corner = [&](int r, int c) { return panel.origin + panel.u_lines[c] * panel.u_axis + panel.v_lines[r] * panel.v_axis; };
     auto add = [&](int lower, int upper, const Vec3& normal, const Vec3& a, const Vec3& b) {
       if (lower < 0 && upper < 0) return;
       add_quad(&mesh, a, b, b + back, a + back, panel.material);

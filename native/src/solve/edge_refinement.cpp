@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include "solve/region_search.h"
@@ -15,18 +16,12 @@ constexpr double kTolerance = 1e-6;  // meters (and relative, for ratios): limit
 constexpr double kMinClearance = 0.01;  // meters between two openings of a panel, whatever min_gap says
 constexpr int kMaxSweeps = 16;          // over all edges, per step size
 
-// Element squares [first, last] along one axis overlapped by the interval (a, b) of the grid.
-std::pair<int, int> cells(double a, double b, double s) {
-  return {static_cast<int>(std::floor(a / s + kTolerance)), static_cast<int>(std::ceil(b / s - kTolerance)) - 1};
-}
-
-bool covers_elements(const Panel& panel, double u0, double u1, double v0, double v1, double s) {
-  const auto [c0, c1] = cells(u0, u1, s);
-  const auto [r0, r1] = cells(v0, v1, s);
+bool covers_elements(const OpeningDomain& domain, int panel, double u0, double u1, double v0, double v1) {
+  const auto [c0, c1] = domain.columns_overlapping(panel, u0, u1);
+  const auto [r0, r1] = domain.rows_overlapping(panel, v0, v1);
   for (int r = r0; r <= r1; ++r)
     for (int c = c0; c <= c1; ++c)
-      if (r < 0 || c < 0 || r >= panel.rows || c >= panel.cols || panel.grid[static_cast<size_t>(r) * panel.cols + c] < 0)
-        return false;
+      if (domain.cell(panel, r, c) < 0) return false;
   return true;
 }
 
@@ -36,22 +31,29 @@ std::string meters(double x) {
   return s.str();
 }
 
-// The elements whose squares overlap the strip between two positions of one edge of `r`.
-std::vector<int> strip_elements(const Panel& panel, const PanelRectangle& r, int edge, double from, double to,
-                                double s) {
+// The elements whose cells overlap the strip between two positions of one edge of `r`, and their neighbours.
+std::vector<int> strip_elements(const OpeningDomain& domain, const PanelRectangle& r, int edge, double from, double to) {
   double u0 = r.u0, u1 = r.u1, v0 = r.v0, v1 = r.v1;
   const double lo = std::min(from, to), hi = std::max(from, to);
   if (edge < 2) u0 = lo, u1 = hi;
   else v0 = lo, v1 = hi;
   std::vector<int> out;
-  const auto [c0, c1] = cells(u0, u1, s);
-  const auto [r0, r1] = cells(v0, v1, s);
-  for (int row = std::max(0, r0 - 1); row <= std::min(panel.rows - 1, r1 + 1); ++row)
-    for (int col = std::max(0, c0 - 1); col <= std::min(panel.cols - 1, c1 + 1); ++col) {
-      const int k = panel.grid[static_cast<size_t>(row) * panel.cols + col];
+  const auto [c0, c1] = domain.columns_overlapping(r.panel, u0, u1);
+  const auto [r0, r1] = domain.rows_overlapping(r.panel, v0, v1);
+  for (int row = r0 - 1; row <= r1 + 1; ++row)
+    for (int col = c0 - 1; col <= c1 + 1; ++col) {
+      const int k = domain.cell(r.panel, row, col);
       if (k >= 0) out.push_back(k);
     }
   return out;
+}
+
+// Whether every edge of `r` lies on its panel's grid lines: in a thick wall the records follow the
+// tubes of the grid they were traced on, so only such rectangles are evaluated exactly.
+bool on_grid_lines(const OpeningDomain& domain, const PanelRectangle& r) {
+  const Panel& panel = domain.panels()[r.panel];
+  return domain.on_line(panel.u_lines, r.u0) && domain.on_line(panel.u_lines, r.u1) &&
+         domain.on_line(panel.v_lines, r.v0) && domain.on_line(panel.v_lines, r.v1);
 }
 
 double& edge_of(PanelRectangle& r, int edge) {
@@ -65,15 +67,130 @@ double& edge_of(PanelRectangle& r, int edge) {
 
 double snap(double x, double module) { return module > 0.0 ? module * std::round(x / module) : x; }
 
+// Whether opening i of `candidate` may be evaluated and kept: in a thick wall on the lines of the
+// grid the records were traced on, on the records' elements, admissible, apart from the others.
+bool fits(const OpeningDomain& domain, const OpeningConstraints& constraints,
+          const std::vector<PanelRectangle>& candidate, size_t i) {
+  const PanelRectangle& r = candidate[i];
+  if (domain.panels()[r.panel].thickness > 0.0f && !on_grid_lines(domain, r)) return false;
+  if (!covers_elements(domain, r.panel, r.u0, r.u1, r.v0, r.v1) || !admissible(r, domain.unrefined(), constraints))
+    return false;
+  for (size_t j = 0; j < candidate.size(); ++j)
+    if (j != i && !apart(r, candidate[j], constraints)) return false;
+  return true;
+}
+
+// The grid lines of `lines` within `span` of x.
+std::vector<float> lines_near(const std::vector<float>& lines, double x, double span) {
+  std::vector<float> out;
+  for (float l : lines)
+    if (std::abs(l - x) <= span + 1e-6) out.push_back(l);
+  return out;
+}
+
+// Index in `lines` of the line nearest x.
+size_t nearest(const std::vector<float>& lines, double x) {
+  size_t best = 0;
+  for (size_t k = 1; k < lines.size(); ++k)
+    if (std::abs(lines[k] - x) < std::abs(lines[best] - x)) best = k;
+  return best;
+}
+
+// EdgeSearchScope::scan_span: pairs of lines near an opening's two edges along one axis, every
+// other line first, then the lines beside the best pair.
+void scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& constraints, const LinearObjective& objective,
+                     const Eigen::VectorXd& closed, double span, RegionSearch* search, double* error,
+                     EdgeRefinement* out, Progress* progress) {
+  for (size_t i = 0; i < search->rectangles().size(); ++i) {
+    const Panel& panel = domain.panels()[search->rectangles()[i].panel];
+    if (!(panel.thickness > 0.0f)) continue;
+    for (int axis = 0; axis < 2; ++axis) {
+      const PanelRectangle start = search->rectangles()[i];
+      const std::vector<float>& all = axis == 0 ? panel.u_lines : panel.v_lines;
+      const double lo = axis == 0 ? start.u0 : start.v0, hi = axis == 0 ? start.u1 : start.v1;
+      const std::vector<float> low = lines_near(all, lo, span), high = lines_near(all, hi, span);
+      if (low.empty() || high.empty()) continue;
+      const long a0 = static_cast<long>(nearest(low, lo)), b0 = static_cast<long>(nearest(high, hi));
+      std::set<std::pair<long, long>> tried = {{a0, b0}};
+      std::vector<PanelRectangle> best;
+      long best_a = a0, best_b = b0;
+      auto try_pair = [&](long a, long b) {
+        if (a < 0 || b < 0 || a >= static_cast<long>(low.size()) || b >= static_cast<long>(high.size())) return;
+        if (!tried.insert({a, b}).second || !(high[b] > low[a])) return;
+        if (progress) progress->throw_if_cancelled();
+        std::vector<PanelRectangle> candidate = search->rectangles();
+        PanelRectangle& r = candidate[i];
+        (axis == 0 ? r.u0 : r.v0) = low[a];
+        (axis == 0 ? r.u1 : r.v1) = high[b];
+        if (!fits(domain, constraints, candidate, i)) return;
+        std::vector<int> touched = strip_elements(domain, r, 2 * axis, lo, low[a]);
+        const std::vector<int> other = strip_elements(domain, r, 2 * axis + 1, hi, high[b]);
+        touched.insert(touched.end(), other.begin(), other.end());
+        const double e = prediction_error(objective, search->try_region(candidate, touched) - closed);
+        ++out->evaluations;
+        if (e < *error * (1.0 - 1e-9)) *error = e, best = candidate, best_a = a, best_b = b;
+      };
+      for (long a = a0 % 2; a < static_cast<long>(low.size()); a += 2)
+        for (long b = b0 % 2; b < static_cast<long>(high.size()); b += 2) try_pair(a, b);
+      const long ca = best_a, cb = best_b;
+      for (long da = -1; da <= 1; ++da)
+        for (long db = -1; db <= 1; ++db) try_pair(ca + da, cb + db);
+      if (best.empty()) continue;
+      // Evaluated again (the search remembers its last try only), and kept.
+      std::vector<int> touched = strip_elements(domain, best[i], 2 * axis, lo, axis == 0 ? best[i].u0 : best[i].v0);
+      const std::vector<int> other = strip_elements(domain, best[i], 2 * axis + 1, hi, axis == 0 ? best[i].u1 : best[i].v1);
+      touched.insert(touched.end(), other.begin(), other.end());
+      search->try_region(best, touched);
+      search->accept();
+      ++out->moves;
+    }
+  }
+}
+
 }  // namespace
+
+std::vector<double> edge_steps(double s, double module, bool thick) {
+  const double smallest = std::max(module > 0.0 ? module : kContinuousEdgeStep, thick ? kThickWallEdgeStep : 0.0);
+  std::vector<double> steps = {s};
+  for (double step = 0.5 * s; step >= smallest * (1.0 - 1e-9);) {
+    const double snapped = module > 0.0 ? std::max(module, snap(step, module)) : step;
+    if (thick && snapped < kThickWallEdgeStep * (1.0 - 1e-9)) break;
+    if (snapped < steps.back() * (1.0 - 1e-9)) steps.push_back(snapped);
+    if (module > 0.0 && snapped <= module * (1.0 + 1e-9)) break;
+    step = 0.5 * snapped;
+  }
+  return steps;
+}
+
+double thick_wall_edge_span(double s, double module) {
+  const std::vector<double> steps = edge_steps(s, module, true);
+  if (steps.size() < 2) return 0.0;
+  double reach = 0.0;
+  for (size_t i = 1; i < steps.size(); ++i) reach += steps[i];
+  return s + reach;
+}
+
+std::vector<float> edge_positions(double edge, double s, double module, bool thick) {
+  const std::vector<double> steps = edge_steps(s, module, thick);
+  std::vector<float> out;
+  if (steps.size() < 2) return out;
+  const double span = thick ? thick_wall_edge_span(s, module) : s;
+  // Module multiples, or the edge plus multiples of the finest step (halving steps add up to them).
+  const double unit = module > 0.0 ? module : steps.back();
+  const double base = module > 0.0 ? 0.0 : edge;
+  const long first = static_cast<long>(std::ceil((edge - span - base) / unit - 1e-9));
+  const long last = static_cast<long>(std::floor((edge + span - base) / unit + 1e-9));
+  for (long k = first; k <= last; ++k) out.push_back(static_cast<float>(base + k * unit));
+  return out;
+}
 
 PanelRectangle panel_rectangle(const GridRectangle& r, double s) {
   return {r.panel, r.col0 * s, (r.col1 + 1) * s, r.row0 * s, (r.row1 + 1) * s};
 }
 
-bool admissible(const PanelRectangle& r, const Panel& panel, const OpeningConstraints& all, double s,
-                std::string* why) {
+bool admissible(const PanelRectangle& r, const OpeningDomain& domain, const OpeningConstraints& all, std::string* why) {
   const OpeningConstraints& c = all.for_panel(r.panel);
+  const Panel& panel = domain.panels()[r.panel];
   auto fail = [&](const std::string& what) {
     if (why) *why = what;
     return false;
@@ -81,9 +198,9 @@ bool admissible(const PanelRectangle& r, const Panel& panel, const OpeningConstr
   const double w = r.width(), h = r.height();
   if (!(w > kContinuousEdgeStep - kTolerance && h > kContinuousEdgeStep - kTolerance))
     return fail("is narrower than " + meters(kContinuousEdgeStep));
-  if (!covers_elements(panel, r.u0, r.u1, r.v0, r.v1, s)) return fail("leaves the panel's elements");
+  if (!covers_elements(domain, r.panel, r.u0, r.u1, r.v0, r.v1)) return fail("leaves the panel's elements");
   const double m = c.margin;
-  if (m > 0.0 && !covers_elements(panel, r.u0 - m, r.u1 + m, r.v0 - m, r.v1 + m, s))
+  if (m > 0.0 && !covers_elements(domain, r.panel, r.u0 - m, r.u1 + m, r.v0 - m, r.v1 + m))
     return fail("lies closer than margin " + meters(m) + " to the panel's edge");
   if (w < c.min_width - kTolerance || w > c.max_width + kTolerance) return fail("has width " + meters(w) + " out of its limits");
   if (h < c.min_height - kTolerance || h > c.max_height + kTolerance)
@@ -93,7 +210,7 @@ bool admissible(const PanelRectangle& r, const Panel& panel, const OpeningConstr
     return fail("has an aspect ratio out of its limits");
   if (is_wall(panel)) {
     const std::vector<double>& base_z = all.panel_base_z;
-    const double grid_bottom = panel.origin.z() + std::min(0.0, panel.rows * s * static_cast<double>(panel.v_axis.z()));
+    const double grid_bottom = panel.origin.z() + std::min(0.0, panel.v_lines.back() * static_cast<double>(panel.v_axis.z()));
     const double base = base_z.empty() ? grid_bottom : base_z[static_cast<size_t>(r.panel)];
     const double z0 = panel.origin.z() + r.v0 * panel.v_axis.z(), z1 = panel.origin.z() + r.v1 * panel.v_axis.z();
     const double sill = std::min(z0, z1) - base, head = std::max(z0, z1) - base;
@@ -112,31 +229,25 @@ bool apart(const PanelRectangle& a, const PanelRectangle& b, const OpeningConstr
 
 EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
                             const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start,
-                            Progress* progress) {
+                            Progress* progress, const EdgeSearchScope& scope) {
   const double s = domain.element_size();
   EdgeRefinement out;
   RegionSearch search(c, domain, start);
   const Eigen::VectorXd closed = c.closed.value;
   double error = prediction_error(objective, search.values() - closed);
   const double module = constraints.module;
-  const double smallest = module > 0.0 ? module : kContinuousEdgeStep;
-  // Whole elements first (every panel), then halving steps (zero-thickness panels only).
-  std::vector<double> steps = {s};
-  for (double step = 0.5 * s; step >= smallest * (1.0 - 1e-9);) {
-    const double snapped = module > 0.0 ? std::max(module, snap(step, module)) : step;
-    if (snapped < steps.back() * (1.0 - 1e-9)) steps.push_back(snapped);
-    if (module > 0.0 && snapped <= module * (1.0 + 1e-9)) break;
-    step = 0.5 * snapped;
-  }
-  for (const double step : steps) {
+  if (scope.scan_span > 0.0)
+    scan_edge_pairs(domain, constraints, objective, closed, scope.scan_span, &search, &error, &out, progress);
+  for (const double step : edge_steps(s, module, false)) {
     const bool whole_elements = step >= s * (1.0 - 1e-9);
+    if (whole_elements && !scope.whole_elements) continue;
     bool moved = true;
     for (int sweep = 0; moved && sweep < kMaxSweeps; ++sweep) {
       moved = false;
       for (size_t i = 0; i < search.rectangles().size(); ++i) {
         const PanelRectangle& current = search.rectangles()[i];
-        const Panel& panel = domain.panels()[current.panel];
-        if (panel.thickness > 0.0f && !whole_elements) continue;  // the tubes of a thick wall follow the grid
+        const bool thick = domain.panels()[current.panel].thickness > 0.0f;
+        if (!thick && !scope.zero_thickness_panels) continue;
         // One edge at a time, or two opposite edges together (the opening slides along u or v).
         static constexpr std::array<std::array<int, 2>, 6> kMoves = {
             {{0, -1}, {1, -1}, {2, -1}, {3, -1}, {0, 1}, {2, 3}}};
@@ -152,14 +263,10 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
               const double from = edge_of(r, edge);
               edge_of(r, edge) = whole_elements ? from + direction * step : snap(from + direction * step, module);
               changed = changed && edge_of(r, edge) != from;
-              const std::vector<int> strip = strip_elements(panel, r, edge, from, edge_of(r, edge), s);
+              const std::vector<int> strip = strip_elements(domain, r, edge, from, edge_of(r, edge));
               touched.insert(touched.end(), strip.begin(), strip.end());
             }
-            if (!changed || !admissible(r, panel, constraints, s)) continue;
-            bool clear = true;
-            for (size_t j = 0; j < candidate.size() && clear; ++j)
-              if (j != i) clear = apart(r, candidate[j], constraints);
-            if (!clear) continue;
+            if (!changed || !fits(domain, constraints, candidate, i)) continue;
             const Eigen::VectorXd& values = search.try_region(candidate, touched);
             ++out.evaluations;
             const double e = prediction_error(objective, values - closed);

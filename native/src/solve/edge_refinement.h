@@ -1,8 +1,10 @@
 #pragma once
 // Openings' edges, moved (one, or two opposite ones together so that the opening slides) while
-// the exact error from the path records falls and the openings stay admissible: by whole elements on every panel (an exact local search), then in halving steps from
-// half an element down to the module (or 1 cm when edges are continuous) on zero-thickness panels;
-// in thick walls the elements' tubes follow the element grid.
+// the exact error from the path records falls and the openings stay admissible: by whole elements
+// (an exact local search), then in halving steps from half an element down to the module (or 1 cm
+// when edges are continuous). In thick walls the records follow the tubes of the grid they were
+// traced on, so edges move only along its lines: whole elements on the element grid, finer steps
+// (down to kThickWallEdgeStep) on a grid refined about the openings (the solver traces it).
 #include <string>
 #include <vector>
 
@@ -17,12 +19,27 @@ class Progress;
 
 // Smallest step of continuous edges (solver.constraints.module 0), meters.
 constexpr double kContinuousEdgeStep = 0.01;
+// Smallest step of edges in thick walls, meters: each position is a grid line whose tube sides the
+// paths must be traced against (refined_for_edges), so their number is kept small.
+constexpr double kThickWallEdgeStep = 0.05;
+
+// Steps of the edge search, meters: a whole element, then halving steps down to the module
+// (continuous edges: 1 cm; in thick walls at least kThickWallEdgeStep), snapped to the module.
+std::vector<double> edge_steps(double element_size, double module, bool thick);
+// How far an edge in a thick wall is searched from where the element grid left it, meters: an
+// element and the finer steps' sum (a truth between grid lines may lie beyond the nearest line
+// that the grid's records preferred), 0 when the steps stop at whole elements.
+double thick_wall_edge_span(double element_size, double module);
+// Positions (grid coordinates) an edge at `edge` may take below a whole element, within the span
+// (one element on zero-thickness panels): the edge plus multiples of the finest step, or module
+// multiples.
+std::vector<float> edge_positions(double edge, double element_size, double module, bool thick);
 
 PanelRectangle panel_rectangle(const GridRectangle& r, double element_size);
 
 // One opening of panel `panel` off the grid: on existing elements (every element square it
 // overlaps, `margin` around it included), within the size, aspect, sill and head limits.
-bool admissible(const PanelRectangle& r, const Panel& panel, const OpeningConstraints& constraints, double element_size,
+bool admissible(const PanelRectangle& r, const OpeningDomain& domain, const OpeningConstraints& constraints,
                 std::string* why = nullptr);
 // Two openings of one panel at least min_gap (and 1 cm) apart.
 bool apart(const PanelRectangle& a, const PanelRectangle& b, const OpeningConstraints& constraints);
@@ -33,8 +50,19 @@ struct EdgeRefinement {
   int evaluations = 0;   // candidate regions evaluated
 };
 
+// Which moves the search makes: whole-element steps or only the finer ones; on every panel or only
+// in thick walls (the search on a grid refined about them).
+struct EdgeSearchScope {
+  bool whole_elements = true;
+  bool zero_thickness_panels = true;
+  // > 0: first, for each opening in a thick wall and each axis, every pair of grid lines within
+  // this distance of its two edges is tried (its error along a sill or head can have narrow
+  // valleys that single steps do not cross), and the best pair kept.
+  double scan_span = 0.0;
+};
+
 EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
                             const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start,
-                            Progress* progress);
+                            Progress* progress, const EdgeSearchScope& scope = {});
 
 }  // namespace fenestra

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "solve/coarse_grid.h"
@@ -16,6 +17,7 @@
 #include "trace/evaluate.h"
 #include "trace/flip_effects.h"
 #include "solve/edge_refinement.h"
+#include "solve/thick_wall_edges.h"
 
 namespace fenestra {
 namespace {
@@ -275,13 +277,15 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.openings.clear();
   for (const GridRectangle& r : rects) out.openings.push_back(to_world(scene.domain, r));
   out.fitness = best;
-  // Edges below the element size, where the exact error says so (zero-thickness panels).
+  // Edges below the element size, where the exact error says so.
+  double thick_seconds = 0.0;
   if (settings.refine_edges && !rects.empty()) {
     if (progress) progress->start("solving: edges off the element grid", 1);
     std::vector<PanelRectangle> on_grid;
     for (const GridRectangle& r : rects) on_grid.push_back(panel_rectangle(r, scene.domain.element_size()));
     const EdgeRefinement edges = refine_edges(scene.domain, c, objective, constraints, on_grid, progress);
     out.edge_moves = edges.moves;
+    std::vector<PanelRectangle> final_rects = on_grid;
     if (edges.moves > 0) {
       const SensorValues v = c.evaluate(OpenRegion(scene.domain, edges.openings), progress);
       const double grid_error = prediction_error(objective, chosen.value - c.closed.value);
@@ -289,11 +293,27 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
       if (error < grid_error) {
         chosen = v;
         out.fitness = best - grid_error + error;
-        out.openings.clear();
-        for (const PanelRectangle& r : edges.openings) out.openings.push_back(to_world(scene.domain, r));
-        out.open = open_elements(scene.domain, edges.openings);
+        final_rects = edges.openings;
       }
     }
+    // In thick walls, below the element size: the paths traced again on a grid refined about the
+    // openings' edges. Its records then give the prediction, moves or not.
+    std::string skipped;
+    const auto thick_start = Clock::now();
+    const std::optional<ThickWallEdges> thick =
+        refine_thick_wall_edges(scene, c, objective, constraints, final_rects, progress, &skipped);
+    if (!skipped.empty()) out.warnings.push_back(skipped);
+    if (thick) {
+      // Errors within one set of records: the first round's start is these openings.
+      out.edge_moves += thick->edges.moves;
+      out.fitness += thick->error - thick->start_error;
+      chosen = thick->values;
+      final_rects = thick->edges.openings;
+      thick_seconds = since(thick_start);
+    }
+    out.openings.clear();
+    for (const PanelRectangle& r : final_rects) out.openings.push_back(to_world(scene.domain, r));
+    out.open = open_elements(scene.domain, final_rects);
   }
   out.predicted = chosen.value;
   out.predicted_stderr = chosen.standard_error;
@@ -302,7 +322,8 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.error = goal_error(out.goals, out.predicted);
   out.linear_error = goal_error(out.goals, out.linear);
   out.compensated_error = goal_error(out.goals, out.compensated);
-  out.timings.push_back({"constraints", since(t)});
+  out.timings.push_back({"constraints", since(t) - thick_seconds});
+  if (thick_seconds > 0.0) out.timings.push_back({"thick-wall edges", thick_seconds});
   if (progress) progress->throw_if_cancelled();
 
   if (settings.verify) {

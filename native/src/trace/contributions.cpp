@@ -145,7 +145,7 @@ size_t Contributions::memory_bytes() const {
   return bytes;
 }
 
-Contributions compute_contributions(const Scene& scene, Progress* progress) {
+Contributions compute_contributions(const Scene& scene, Progress* progress, bool transport) {
   const auto start = std::chrono::steady_clock::now();
   const PathTracer tracer(scene, {}, Mesh{});
   tracer.check_sensors();
@@ -186,7 +186,7 @@ Contributions compute_contributions(const Scene& scene, Progress* progress) {
       }
       analyse_sensor(rec, i, elements, &c, progress);
     });
-    c.T = transport_matrix(c.records, elements, paths, scene.render.threads, progress);
+    if (transport) c.T = transport_matrix(c.records, elements, paths, scene.render.threads, progress);
   } catch (const Cancelled&) {
     release_in_background(std::move(chunks));  // the path records: hundreds of megabytes
     release_in_background(std::move(c));

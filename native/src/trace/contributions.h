@@ -39,11 +39,12 @@ struct Contributions {
   // With `progress`, polls cancellation every few thousand paths (throws Cancelled).
   SensorValues evaluate(const std::vector<uint8_t>& open, const Progress* progress = nullptr) const;
   // The same for any open region: rectangles whose edges need not lie on the element grid (exact
-  // on zero-thickness panels; in thick walls the tubes follow the element grid).
+  // on zero-thickness panels; in thick walls where the edges lie on the lines of the grid traced).
   SensorValues evaluate(const OpenRegion& region, const Progress* progress = nullptr) const;
   size_t memory_bytes() const;
 };
 
-Contributions compute_contributions(const Scene& scene, Progress* progress = nullptr);
+// With `transport` false, T is left empty (a records-only pass: the edges of thick walls).
+Contributions compute_contributions(const Scene& scene, Progress* progress = nullptr, bool transport = true);
 
 }  // namespace fenestra

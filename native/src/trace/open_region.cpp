@@ -22,29 +22,24 @@ PanelRectangle to_panel_rectangle(const OpeningDomain& domain, const std::array<
 
 void check_on_elements(const OpeningDomain& domain, const PanelRectangle& r) {
   const Panel& panel = domain.panels().at(r.panel);
-  const double a = domain.element_size();
-  constexpr double kTolerance = 1e-6;  // in elements: rounding of edges written on grid lines
-  const int c0 = static_cast<int>(std::floor(r.u0 / a + kTolerance)), c1 = static_cast<int>(std::ceil(r.u1 / a - kTolerance)) - 1;
-  const int r0 = static_cast<int>(std::floor(r.v0 / a + kTolerance)), r1 = static_cast<int>(std::ceil(r.v1 / a - kTolerance)) - 1;
+  const auto [c0, c1] = domain.columns_overlapping(r.panel, r.u0, r.u1);
+  const auto [r0, r1] = domain.rows_overlapping(r.panel, r.v0, r.v1);
   bool covered = c0 <= c1 && r0 <= r1;
   for (int row = r0; row <= r1 && covered; ++row)
-    for (int col = c0; col <= c1 && covered; ++col)
-      covered = row >= 0 && col >= 0 && row < panel.rows && col < panel.cols &&
-                panel.grid[static_cast<size_t>(row) * panel.cols + col] >= 0;
+    for (int col = c0; col <= c1 && covered; ++col) covered = domain.cell(r.panel, row, col) >= 0;
   if (covered) return;
   std::ostringstream m;
-  m << "reaches beyond the elements of panel " << r.panel << " (" << panel.label << "; its grid spans u 0.." << panel.cols * a
-    << " m, v 0.." << panel.rows * a << " m): paths are recorded by element, so the exact evaluation cannot count "
+  m << "reaches beyond the elements of panel " << r.panel << " (" << panel.label << "; its grid spans u 0.." << panel.u_lines.back()
+    << " m, v 0.." << panel.v_lines.back() << " m): paths are recorded by element, so the exact evaluation cannot count "
     << "light through the panel's margin; evaluate() traces it";
   throw std::invalid_argument(m.str());
 }
 
 OpenRegion::OpenRegion(const OpeningDomain& domain, const std::vector<PanelRectangle>& rectangles)
     : by_panel_(domain.panels().size()) {
-  size_ = domain.element_size();
-  inset_ = 1e-5 * size_;  // far above float rounding of panel coordinates, far below any edge step
+  inset_ = 1e-5 * domain.element_size();  // far above float rounding of panel coordinates, far below any edge step
   cells_.reserve(domain.element_count());
-  for (const Element& e : domain.elements()) cells_.push_back({e.panel, e.col * size_, e.row * size_});
+  for (const Element& e : domain.elements()) cells_.push_back({e.panel, e.u0, e.u1, e.v0, e.v1});
   for (const PanelRectangle& r : rectangles) {
     if (r.panel < 0 || static_cast<size_t>(r.panel) >= by_panel_.size())
       throw std::invalid_argument("open rectangle on panel " + std::to_string(r.panel) + ", which does not exist");

@@ -31,13 +31,13 @@ class OpenRegion {
  public:
   OpenRegion(const OpeningDomain& domain, const std::vector<PanelRectangle>& rectangles);
   // Whether the point where a path met element k lies in an open rectangle of k's panel. The point
-  // is taken inside k's square: crossings on its edges (stratified portal samples start at a
+  // is taken inside k's cell: crossings on its edges (stratified portal samples start at a
   // corner; tubes are crossed on grid lines) belong to k, so that rectangles on the grid open
   // exactly the elements they cover.
   bool is_open(int32_t element, const PanelPoint& p) const {
     const Cell& cell = cells_[element];
-    const double u = std::clamp<double>(p.u, cell.u0 + inset_, cell.u0 + size_ - inset_);
-    const double v = std::clamp<double>(p.v, cell.v0 + inset_, cell.v0 + size_ - inset_);
+    const double u = std::clamp<double>(p.u, cell.u0 + inset_, cell.u1 - inset_);
+    const double v = std::clamp<double>(p.v, cell.v0 + inset_, cell.v1 - inset_);
     for (const PanelRectangle& r : by_panel_[cell.panel])
       if (u > r.u0 && u < r.u1 && v > r.v0 && v < r.v1) return true;
     return false;
@@ -47,10 +47,10 @@ class OpenRegion {
  private:
   struct Cell {
     int panel;
-    double u0, v0;  // the element's square: [u0, u0 + size] x [v0, v0 + size]
+    double u0, u1, v0, v1;  // the element's cell
   };
   std::vector<Cell> cells_;
-  double size_ = 0.0, inset_ = 0.0;
+  double inset_ = 0.0;
   std::vector<std::vector<PanelRectangle>> by_panel_;
 };
 

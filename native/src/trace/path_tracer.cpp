@@ -17,7 +17,7 @@ namespace {
 constexpr float kRayEpsilon = 1e-4f;  // meters: offset of new rays from the surface they leave
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr int kRouletteDepth = 3;
-constexpr int kMaxCrossed = 16;
+constexpr int kMaxCrossed = 32;
 constexpr int kOutdoorSkySamples = 4;
 
 // Power heuristic for the strategy with density `pdf` against two others.
@@ -101,7 +101,7 @@ struct PathTracer::Vertex {
 class PathTracer::Sink {
  public:
   // Conditions of one part: an oblique segment through a thick wall crosses several elements' tubes.
-  static constexpr int kMaxConditions = 16;
+  static constexpr int kMaxConditions = 32;
   // Element faces (inner or outer) a sub-path may go on through, beyond its own; crossings from one
   // element's tube into its neighbour's inside the wall are limited by kMaxConditions only.
   static constexpr int kMaxPassed = 3;
@@ -227,12 +227,10 @@ PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals)
   reveal_normals_ = unit_normals(reveals_);
   const Mesh reveal_grid = scene_.domain.reveal_grid(&reveal_grid_faces_);
   rays_ = std::make_unique<RayScene>(scene_.mesh, reveals_, reveal_grid);
-  const float a = scene_.domain.element_size();
-  element_area_ = a * a;
-  for (const Element& e : scene_.domain.elements()) {
+  for (const Element& e : scene_.domain.portals()) {
     const Panel& panel = scene_.domain.panels()[e.panel];
-    portals_.push_back({e.corners[0], a * panel.u_axis, a * panel.v_axis, panel.normal, e.panel, panel.curved(),
-                        {e.col * a, e.row * a}});
+    portals_.push_back({e.corners[0], e.width() * panel.u_axis, e.height() * panel.v_axis, panel.normal, e.panel,
+                        panel.curved(), {e.u0, e.v0}, {e.width(), e.height()}});
   }
 }
 
@@ -289,8 +287,7 @@ PathTracer::PortalPoint PathTracer::portal_point(int k, const Vec2& uv) const {
     out.at = scene_.domain.panel_point(portal.panel, out.position);
     return out;
   }
-  const float a = scene_.domain.element_size();
-  out.at = {portal.cell.u + uv.x() * a, portal.cell.v + uv.y() * a};
+  out.at = {portal.cell.u + uv.x() * portal.size.x(), portal.cell.v + uv.y() * portal.size.y()};
   const DomainSurfacePoint s = scene_.domain.surface_at(portal.panel, out.at.u, out.at.v);
   out.position = s.position;
   out.normal = s.outward;
@@ -299,9 +296,13 @@ PathTracer::PortalPoint PathTracer::portal_point(int k, const Vec2& uv) const {
 }
 
 float PathTracer::portal_pdf(int k, const PanelPoint& at, float distance, const Vec3& dir) const {
-  // Element chosen with probability 1/No, then a uniform point of its square in panel coordinates,
-  // converted to solid angle (on a curved panel, through the surface's area there).
-  const Portal& portal = portals_[k];
+  // Portal chosen with probability 1/No, then a uniform point of its square in panel coordinates,
+  // converted to solid angle (on a curved panel, through the surface's area there). On a refined
+  // domain, the portal is the unrefined element under the point.
+  const int portal_index =
+      scene_.domain.is_refined() ? scene_.domain.portal_at(scene_.domain.elements()[k].panel, at) : k;
+  if (portal_index < 0) return 0.0f;
+  const Portal& portal = portals_[portal_index];
   Vec3 normal = portal.normal;
   float area_ratio = 1.0f;
   if (portal.curved) {
@@ -311,7 +312,8 @@ float PathTracer::portal_pdf(int k, const PanelPoint& at, float distance, const 
   }
   const float cos = std::abs(dir.dot(normal));
   if (!(cos > 1e-6f)) return 0.0f;
-  return distance * distance / (element_area_ * area_ratio * cos) / static_cast<float>(portals_.size());
+  const float element_area = portal.size.x() * portal.size.y();
+  return distance * distance / (element_area * area_ratio * cos) / static_cast<float>(portals_.size());
 }
 
 template <typename BsdfOfDirection>
@@ -329,7 +331,8 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   if (!(f > 0.0f).any()) return;
   const float cos_y = std::abs(dir.dot(portal.normal));
   if (!(cos_y > 1e-6f)) return;
-  const float pdf = selection * dist * dist / (element_area_ * portal.area_ratio * cos_y);
+  const Vec2& size = portals_[k].size;
+  const float pdf = selection * dist * dist / (size.x() * size.y() * portal.area_ratio * cos_y);
   // Everything that arrives through k along dir: sky, and light from outdoor surfaces.
   PathState through_state = st;
   through_state.beta = st.beta * f / pdf;
@@ -343,10 +346,18 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   through_state.beyond_element = true;
   through_state.must_reach = dist;  // portals only reach what lies beyond the element met first
   through_state.branch_both_depth = st.depth;
-  const CutterSet through{scene_.domain.element_cutter(k)};
+  // On a refined grid the point lies in one of the portal's cells: that one is gone through.
+  const int element = scene_.domain.is_refined() ? cell_of_portal(k, uv) : k;
+  if (element < 0) return;
+  const CutterSet through{scene_.domain.element_cutter(element)};
   Sink outside = Sink::outside();
   trace(x, dir, through_state, &through, rng, outside);
-  sink.light_through({k, portal.at}, outside);
+  sink.light_through({element, portal.at}, outside);
+}
+
+int PathTracer::cell_of_portal(int k, const Vec2& uv) const {
+  const Portal& portal = portals_[k];
+  return scene_.domain.element_at(portal.panel, {portal.cell.u + uv.x() * portal.size.x(), portal.cell.v + uv.y() * portal.size.y()});
 }
 
 PathTracer::Surface PathTracer::surface(const Hit& hit) const {
@@ -506,7 +517,8 @@ void PathTracer::sample_interior_portal(const Vertex& v, const PathState& st, Rn
                 sink);
 }
 
-bool PathTracer::meet_element_outside(const Crossing& j, bool through_face, const Vec3& org, const Vec3& dir, PathState& st,
+bool PathTracer::meet_element_outside(const Crossing& j, bool through_face, const Vec3& org, const Vec3& dir,
+                                      const Vec3& at, PathState& st,
                                       const CutterSet* cutters, Rng& rng, Sink& sink) const {
   if (!sink.can_pass(through_face)) return sink.reflect_off(j);
   auto pass = [&](const PathState& state) {
@@ -518,13 +530,24 @@ bool PathTracer::meet_element_outside(const Crossing& j, bool through_face, cons
   };
   // Inside a thick wall, after the first vertex beyond the element, both ways would multiply at every
   // tube side: one is followed, chosen at random and weighted by the inverse of its probability, so
-  // that the records stay unbiased for every set of open elements.
-  if (!through_face && st.depth != st.branch_both_depth) {
-    st.beta *= 2.0f;
-    if (rng.uniform() < 0.5f) {
-      pass(st);
+  // that the records stay unbiased for every set of open elements. Along one straight line the
+  // sides met end where it reflects (a closed cell) or leaves the wall: with m sides left on it,
+  // this one included, reflecting here has probability 1 / (m + 1), which makes each of the m + 1
+  // ends equally likely and weighs every one m + 1 (an even choice at each side would weigh the
+  // last 2^m: heavy tails on fine grids). On a refined grid (a local search's, cut every few
+  // centimetres) the segment entering the wall crosses many sides too: following both ways at
+  // each would trace a reveal sub-path per side, so it chooses as well.
+  if (!through_face && (st.depth != st.branch_both_depth || scene_.domain.is_refined())) {
+    const int panel = scene_.domain.elements()[j.element].panel;
+    const int m = 1 + scene_.domain.lines_ahead(panel, at, dir);
+    const float reflect = 1.0f / static_cast<float>(m + 1);
+    if (rng.uniform() >= reflect) {
+      PathState passing = st;
+      passing.beta /= 1.0f - reflect;
+      pass(passing);
       return false;
     }
+    st.beta /= reflect;
     return sink.reflect_off(j);
   }
   // Were j open, the sub-path would go on through it: follow that too.
@@ -555,7 +578,7 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
       if (met.element >= 0 && sink.recording()) record_escape(met, s.inner_face(), org, dir, h.t, st, rng, sink);
       const bool through_face = s.reveal_grid_face < 0;
       if (met.element >= 0 && sink.outside_element() &&
-          !meet_element_outside(met, through_face, org, dir, st, cutters, rng, sink))
+          !meet_element_outside(met, through_face, org, dir, v.p, st, cutters, rng, sink))
         return;
     }
     if (st.portal_pdf > 0.0f) {

@@ -49,13 +49,15 @@ class PathTracer {
   struct Vertex;
   class Sink;
 
+  // What portal sampling aims at: the elements of the unrefined grid (OpeningDomain::portals()).
   struct Portal {
     Vec3 corner, u, v, normal;  // element square: corner + s u + t v, s, t in [0, 1) (flat panels)
     int panel = 0;
-    bool curved = false;         // a patch of a curved panel: the chart square at `cell`
+    bool curved = false;         // a patch of a curved panel: the chart cell at `cell`
     PanelPoint cell;             // the element's grid corner in panel coordinates
+    Vec2 size;                   // its width and height, meters
   };
-  // The point of element k at uv (in [0, 1)^2 over its square), its panel point, its unit normal
+  // The point of portal k at uv (in [0, 1)^2 over its square), its panel point, its unit normal
   // and its surface area per square meter of panel coordinates.
   struct PortalPoint {
     Vec3 position, normal;
@@ -63,13 +65,16 @@ class PathTracer {
     float area_ratio = 1.0f;
   };
   PortalPoint portal_point(int k, const Vec2& uv) const;
+  // The element (cell of a refined grid) at uv of portal k, or -1.
+  int cell_of_portal(int k, const Vec2& uv) const;
 
   void trace_sensor(size_t sensor, size_t path, Rng& rng, const CutterSet* cutters, Sink& sink) const;
   // Solid-angle density with which portal sampling at a vertex yields `dir`, which meets element k
-  // first, at `distance`, at panel point `at`.
+  // first (in its portal), at `distance`, at panel point `at`.
   float portal_pdf(int k, const PanelPoint& at, float distance, const Vec3& dir) const;
-  // Portal sample through point uv of element k from vertex x (normal n, path state st): a direction through a
-  // random point of k, followed outside with k cut; recorded as light that needs k open.
+  // Portal sample through point uv of portal k from vertex x (normal n, path state st): a direction
+  // through a random point of k, followed outside with the element there cut; recorded as light
+  // that needs that element open.
   // f_and_pdf(dir, &pdf) gives the vertex's BSDF times cosine and BSDF density toward dir.
   template <typename BsdfOfDirection>
   // `selection` is the expected number of samples aimed at k per path (the element's pdf).
@@ -86,10 +91,10 @@ class PathTracer {
   // MIS weight of light found along the current direction (sky_pdf 0 for an outdoor surface).
   static float strategy_weight(const PathState& st, float sky_pdf);
   // A sub-path beyond an element meets element j (its face, or its tube's side from an open
-  // neighbour inside a thick wall): branches for j open; returns false when the sub-path must stop
-  // (too many conditions).
-  bool meet_element_outside(const Crossing& j, bool through_face, const Vec3& org, const Vec3& dir, PathState& st,
-                            const CutterSet* cutters, Rng& rng, Sink& sink) const;
+  // neighbour inside a thick wall) at `at`: branches for j open; returns false when the sub-path
+  // must stop (too many conditions).
+  bool meet_element_outside(const Crossing& j, bool through_face, const Vec3& org, const Vec3& dir, const Vec3& at,
+                            PathState& st, const CutterSet* cutters, Rng& rng, Sink& sink) const;
   // Records what arrives through element k, met at distance t along (org, dir) on its inner face
   // (portals aim there) or its wall's outer face.
   void record_escape(const Crossing& met, bool inner_face, const Vec3& org, const Vec3& dir, float t, const PathState& st, Rng& rng,
@@ -116,7 +121,6 @@ class PathTracer {
   std::vector<RevealGridFace> reveal_grid_faces_;
   std::unique_ptr<RayScene> rays_;
   std::vector<Portal> portals_;
-  float element_area_ = 0.0f;
 };
 
 }  // namespace fenestra
