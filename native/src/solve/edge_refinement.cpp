@@ -15,6 +15,7 @@ namespace {
 constexpr double kTolerance = 1e-6;  // meters (and relative, for ratios): limits met within rounding
 constexpr double kMinClearance = 0.01;  // meters between two openings of a panel, whatever min_gap says
 constexpr int kMaxSweeps = 16;          // over all edges, per step size
+constexpr int kMaxScanPasses = 3;       // of EdgeSearchScope::scan_span over both axes
 
 bool covers_elements(const OpeningDomain& domain, int panel, double u0, double u1, double v0, double v1) {
   const auto [c0, c1] = domain.columns_overlapping(panel, u0, u1);
@@ -67,6 +68,29 @@ double& edge_of(PanelRectangle& r, int edge) {
 
 double snap(double x, double module) { return module > 0.0 ? module * std::round(x / module) : x; }
 
+// One edge (u0, u1, v0, v1: 0-3; the other -1), or two moved together, each by its sign times the
+// step (times +-1).
+struct EdgeMove {
+  std::array<int, 2> edges;
+  std::array<int, 2> signs;
+};
+
+// One edge at a time, or two opposite edges together (the opening slides along u or v); with
+// `diagonal`, also an edge of each axis, either way each: width traded for height, along the
+// valley of nearly equal light that coordinate moves cannot follow.
+const std::vector<EdgeMove>& edge_moves(bool diagonal) {
+  static const std::vector<EdgeMove> straight = {{{0, -1}, {1, 1}}, {{1, -1}, {1, 1}}, {{2, -1}, {1, 1}},
+                                                 {{3, -1}, {1, 1}}, {{0, 1}, {1, 1}},  {{2, 3}, {1, 1}}};
+  static const std::vector<EdgeMove> all = [] {
+    std::vector<EdgeMove> m = straight;
+    for (int eu : {0, 1})
+      for (int ev : {2, 3})
+        for (int sign : {1, -1}) m.push_back({{eu, ev}, {1, sign}});
+    return m;
+  }();
+  return diagonal ? all : straight;
+}
+
 // Whether opening i of `candidate` may be evaluated and kept: in a thick wall on the lines of the
 // grid the records were traced on, on the records' elements, admissible, apart from the others.
 bool fits(const OpeningDomain& domain, const OpeningConstraints& constraints,
@@ -97,10 +121,11 @@ size_t nearest(const std::vector<float>& lines, double x) {
 }
 
 // EdgeSearchScope::scan_span: pairs of lines near an opening's two edges along one axis, every
-// other line first, then the lines beside the best pair.
-void scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& constraints, const LinearObjective& objective,
+// other line first, then the lines beside the best pair. Returns whether a pair was kept.
+bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& constraints, const LinearObjective& objective,
                      const Eigen::VectorXd& closed, double span, RegionSearch* search, double* error,
                      EdgeRefinement* out, Progress* progress) {
+  bool kept = false;
   for (size_t i = 0; i < search->rectangles().size(); ++i) {
     const Panel& panel = domain.panels()[search->rectangles()[i].panel];
     if (!(panel.thickness > 0.0f)) continue;
@@ -143,8 +168,10 @@ void scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& cons
       search->try_region(best, touched);
       search->accept();
       ++out->moves;
+      kept = true;
     }
   }
+  return kept;
 }
 
 }  // namespace
@@ -236,8 +263,11 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
   const Eigen::VectorXd closed = c.closed.value;
   double error = prediction_error(objective, search.values() - closed);
   const double module = constraints.module;
-  if (scope.scan_span > 0.0)
-    scan_edge_pairs(domain, constraints, objective, closed, scope.scan_span, &search, &error, &out, progress);
+  // Width and height trade against each other (a valley of nearly equal light): the axes are
+  // scanned in turn while either improves.
+  for (int pass = 0; scope.scan_span > 0.0 && pass < kMaxScanPasses; ++pass)
+    if (!scan_edge_pairs(domain, constraints, objective, closed, scope.scan_span, &search, &error, &out, progress))
+      break;
   for (const double step : edge_steps(s, module, false)) {
     const bool whole_elements = step >= s * (1.0 - 1e-9);
     if (whole_elements && !scope.whole_elements) continue;
@@ -248,20 +278,19 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
         const PanelRectangle& current = search.rectangles()[i];
         const bool thick = domain.panels()[current.panel].thickness > 0.0f;
         if (!thick && !scope.zero_thickness_panels) continue;
-        // One edge at a time, or two opposite edges together (the opening slides along u or v).
-        static constexpr std::array<std::array<int, 2>, 6> kMoves = {
-            {{0, -1}, {1, -1}, {2, -1}, {3, -1}, {0, 1}, {2, 3}}};
-        for (const auto& move : kMoves)
+        for (const EdgeMove& move : edge_moves(scope.scan_span > 0.0))
           for (double direction : {-1.0, 1.0}) {
             if (progress) progress->throw_if_cancelled();
             std::vector<PanelRectangle> candidate = search.rectangles();
             PanelRectangle& r = candidate[i];
             std::vector<int> touched;
             bool changed = true;
-            for (int edge : move) {
+            for (int k = 0; k < 2; ++k) {
+              const int edge = move.edges[k];
               if (edge < 0) continue;
               const double from = edge_of(r, edge);
-              edge_of(r, edge) = whole_elements ? from + direction * step : snap(from + direction * step, module);
+              const double by = direction * move.signs[k] * step;
+              edge_of(r, edge) = whole_elements ? from + by : snap(from + by, module);
               changed = changed && edge_of(r, edge) != from;
               const std::vector<int> strip = strip_elements(domain, r, edge, from, edge_of(r, edge));
               touched.insert(touched.end(), strip.begin(), strip.end());

@@ -9,7 +9,7 @@
 namespace fenestra {
 namespace {
 
-constexpr int kMaxRounds = 3;
+constexpr int kMaxRounds = 2;
 
 bool on_thick_panel(const OpeningDomain& domain, const PanelRectangle& r) {
   return domain.panels()[r.panel].thickness > 0.0f;
