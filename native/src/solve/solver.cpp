@@ -58,6 +58,17 @@ LinearObjective linear_objective(const Contributions& c, const SolverGoals& goal
   return o;
 }
 
+// Whether the openings `refined` meet the goals better than `start` when both are really cut.
+bool refined_edges_verified_better(const Scene& scene, const std::vector<PanelRectangle>& start,
+                                   const std::vector<PanelRectangle>& refined, const SolverGoals& goals,
+                                   Progress* progress) {
+  auto verified_error = [&](const std::vector<PanelRectangle>& openings) {
+    std::vector<OpeningInput> cutters(openings.begin(), openings.end());
+    return goal_error(goals, evaluate_openings(scene, cutters, progress).value).relative_rms;
+  };
+  return verified_error(refined) < verified_error(start);
+}
+
 struct LinearStart {
   std::vector<uint8_t> open;
   double relative_rms = 0.0;  // of the continuous solution
@@ -297,20 +308,27 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
       }
     }
     // In thick walls, below the element size: the paths traced again on a grid refined about the
-    // openings' edges. Its records then give the prediction, moves or not.
+    // openings' edges. Its records then give the prediction, unless its openings are refused.
     std::string skipped;
     const auto thick_start = Clock::now();
-    const std::optional<ThickWallEdges> thick =
+    std::optional<ThickWallEdges> thick =
         refine_thick_wall_edges(scene, c, objective, constraints, final_rects, progress, &skipped);
     if (!skipped.empty()) out.warnings.push_back(skipped);
+    const bool traced_thick = thick.has_value();
+    // The refined records are noisier than the element grid's (one way at each tube side), and a
+    // search over many candidates picks their noise too: with verification on, real cutters
+    // decide between the openings before and after (the same random numbers for both).
+    if (thick && thick->edges.moves > 0 && settings.verify &&
+        !refined_edges_verified_better(scene, final_rects, thick->edges.openings, out.goals, progress))
+      thick.reset();
     if (thick) {
       // Errors within one set of records: the first round's start is these openings.
       out.edge_moves += thick->edges.moves;
       out.fitness += thick->error - thick->start_error;
       chosen = thick->values;
       final_rects = thick->edges.openings;
-      thick_seconds = since(thick_start);
     }
+    if (traced_thick) thick_seconds = since(thick_start);
     out.openings.clear();
     for (const PanelRectangle& r : final_rects) out.openings.push_back(to_world(scene.domain, r));
     out.open = open_elements(scene.domain, final_rects);
