@@ -224,3 +224,20 @@ def test_python_functions_refuse_before_any_work(tmp_path):
         fenestra.load_scene(REFERENCE, max_memory=1000)
     # The limit applies to that call only.
     assert fenestra.load_scene(REFERENCE).element_count == 192
+
+
+def test_solve_estimate_counts_the_thick_walls_refined_grids(tmp_path):
+    """A solve in a thick wall traces again about its openings' edges (docs/solver.md, step 7): its
+    records and time are in the estimate, and not without a thickness or with refine_edges off."""
+    path = write_room(tmp_path)
+    d = json.loads(path.read_text())
+    d["opening_domain"]["thickness"] = 0.3
+    path.write_text(json.dumps(d))
+    scene = fenestra.load_scene(str(path))
+    e = fenestra.estimate_cost(scene, "solve")
+    assert e["memory"]["thick_wall_edge_records"] == e["memory"]["path_records"] > 0
+    assert e["seconds"]["thick_wall_edges"] > 0
+    scene.solver.refine_edges = False
+    assert "thick_wall_edge_records" not in fenestra.estimate_cost(scene, "solve")["memory"]
+    thin = fenestra.load_scene(str(write_room(tmp_path)))
+    assert "thick_wall_edge_records" not in fenestra.estimate_cost(thin, "solve")["memory"]

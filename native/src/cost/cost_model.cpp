@@ -26,6 +26,8 @@ constexpr double kBytesPerEvent = 56.0, kBytesPerPath = 8.0;
 // thick_walls_study (0.3 m walls, 0.25 m elements) records were 3.1x and tracing 5.7x the
 // zero-thickness wall's for the same paths.
 constexpr double kThickWallRecordFactor = 3.5, kThickWallTraceFactor = 6.0;
+// Passes over the refined grids of thick walls' openings in a solve (at most; usually one).
+constexpr double kThickWallEdgeRounds = 2.0;
 constexpr double kEventsAtSensor = 3.0, kEventsPerVertex = 1.75;
 // While the per-task records are merged into one per sensor, both exist (peak RSS measured at
 // 2.3x the records kept on the paper-scale scene).
@@ -116,6 +118,18 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                          kRaySceneBytesPerTriangle * static_cast<double>(e->triangles), "solving", "fewer triangles"});
   e->memory.push_back({"population", "the genetic algorithm's populations", 3 * pop * (N + 8 * S + 64), "solving",
                        "a smaller solver.population"});
+  if (s.refine_edges && scene.domain.has_thick_walls()) {
+    // Edges in thick walls: the paths traced again on a grid refined about the openings
+    // (solve/thick_wall_edges.h), choosing one way at each tube side (about the time of a
+    // zero-thickness wall's pass), up to twice; their records beside the first pass's.
+    const double records = S * static_cast<double>(e->paths_per_sensor) * e->bytes_per_path;
+    e->memory.push_back({"thick_wall_edge_records", "the path records of the thick walls' refined grids", records,
+                         "solving", "fewer solver paths, or solver.refine_edges off"});
+    e->time.push_back({"thick_wall_edges", "tracing the thick walls' refined grids",
+                       kThickWallEdgeRounds * S * static_cast<double>(e->paths_per_sensor) *
+                           expected_vertices(scene) * kTraceSecondsPerVertex,
+                       0.0, "fewer solver paths, or solver.refine_edges off"});
+  }
   // Children bred: the fine-grid run and its defect-corrected rerun (a quarter as long), and
   // with coarse_to_fine two coarse levels at half the generations each.
   const double child = kChildSeconds + kChildSecondsPerUnit * (N + 4 * S);

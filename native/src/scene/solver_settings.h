@@ -30,7 +30,7 @@ struct SolverSettings {
   int elite = 8;               // best genetic states re-ranked with the exact evaluation
   OpeningConstraints constraints;  // what an opening may be (docs/solver.md)
   int improve_iterations = 20000;  // local search over whole openings after the refinement; 0: none
-  bool refine_edges = true;        // move openings' edges off the element grid (zero-thickness panels)
+  bool refine_edges = true;        // move openings' edges off the element grid (thick walls: on a refined grid)
   bool verify = true;              // path-trace the final openings with real cutters (evaluate)
 };
 
