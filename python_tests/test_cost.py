@@ -237,7 +237,9 @@ def test_solve_estimate_counts_the_thick_walls_refined_grids(tmp_path):
     e = fenestra.estimate_cost(scene, "solve")
     assert e["memory"]["thick_wall_edge_records"] == e["memory"]["path_records"] > 0
     assert e["seconds"]["thick_wall_edges"] > 0
-    scene.solver.refine_edges = False
-    assert "thick_wall_edge_records" not in fenestra.estimate_cost(scene, "solve")["memory"]
+    d["solver"] = {"refine_edges": False}
+    path.write_text(json.dumps(d))
+    off = fenestra.load_scene(str(path))
+    assert "thick_wall_edge_records" not in fenestra.estimate_cost(off, "solve")["memory"]
     thin = fenestra.load_scene(str(write_room(tmp_path)))
     assert "thick_wall_edge_records" not in fenestra.estimate_cost(thin, "solve")["memory"]
