@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import fenestra
-from conftest import CLI
+from conftest import CLI, box_obj
 
 
 def run(*args):
@@ -190,3 +190,24 @@ def test_cli_solve_with_enough_paths_has_no_warning(small_room, tmp_path):
     r = run("solve", scene, "-o", out, "--paths", 2048, "--quiet")
     assert r.returncode == 0, r.stderr
     assert json.loads(out.read_text())["warnings"] == []
+
+
+def test_records_refuse_edges_between_grid_lines_in_a_thick_wall(tmp_path):
+    """In a thick wall the records follow the elements' tubes: an opening with an edge between the
+    element grid's lines gets a clear error from evaluate_openings, not a wrong value; on the
+    lines it is evaluated."""
+    (tmp_path / "room.obj").write_text(
+        box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey"))
+    d = {"fenestra": 1, "geometry": "room.obj",
+         "materials": {"grey": {"reflectance": 0.5}, "facade": {"reflectance": 0.5}},
+         "opening_domain": {"materials": ["facade"], "element_size": 0.25, "thickness": 0.3},
+         "sensors": {"points": [[1.5, 1.5, 0.8]]}, "sky": {"type": "uniform", "radiance": 100},
+         "render": {"paths_per_sensor": 256, "seed": 3}}
+    scene = fenestra.scene_from_dict(d, tmp_path)
+    c = fenestra.contributions(scene)
+    on_grid = [{"panel": 0, "parameter_rectangle": {"u0": 1.0, "u1": 2.0, "v0": 0.75, "v1": 1.75}}]
+    value, _ = c.evaluate_openings(scene, json.dumps({"openings": on_grid}))
+    assert value[0] > 0
+    off_grid = [{"panel": 0, "parameter_rectangle": {"u0": 1.1, "u1": 2.0, "v0": 0.75, "v1": 1.75}}]
+    with pytest.raises(ValueError, match=r"opening 0 has an edge between the element grid's lines.*0\.3 m thick"):
+        c.evaluate_openings(scene, json.dumps({"openings": off_grid}))

@@ -318,6 +318,7 @@ PYBIND11_MODULE(_core, m) {
               try {
                 rects.push_back(to_panel_rectangle(scene.domain, given[i]));
                 check_on_elements(scene.domain, rects.back());
+                check_on_grid_lines_in_thick_walls(scene.domain, rects.back());
               } catch (const std::invalid_argument& e) {
                 throw std::invalid_argument("opening " + std::to_string(i) + " " + e.what());
               }
@@ -332,8 +333,8 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
           "Exact (value, stderr) per sensor with the openings open (an (n, 4, 3) array of corners, or the JSON "
-          "text of an openings file), their edges anywhere on their panels (exact on zero-thickness panels), from "
-          "the recorded paths.")
+          "text of an openings file), their edges anywhere on their panels (in thick walls on the element grid's "
+          "lines), from the recorded paths.")
       .def("save", [](const Contributions& c, const Scene& s, const std::string& out) { return write_contributions(s, c, out); },
            py::arg("scene"), py::arg("path"), "Writes PATH.npz and PATH.json; returns both paths.")
       .def("__repr__", [](const Contributions& c) {

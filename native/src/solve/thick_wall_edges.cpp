@@ -92,6 +92,7 @@ std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, const 
   std::vector<PanelRectangle> from = start;
   for (out.rounds = 1;; ++out.rounds) {
     Scene refined = scene;
+    refined.render.paths_per_sensor = coarse.paths_per_sensor;  // as many as the element grid's records
     refined.domain = scene.domain.refined(thick_wall_edge_regions(scene.domain, from, constraints.module));
     if (progress) progress->start("solving: edges in thick walls, tracing a finer grid", 1);
     Contributions c = compute_contributions(refined, progress, false);

@@ -35,6 +35,20 @@ void check_on_elements(const OpeningDomain& domain, const PanelRectangle& r) {
   throw std::invalid_argument(m.str());
 }
 
+void check_on_grid_lines_in_thick_walls(const OpeningDomain& domain, const PanelRectangle& r) {
+  const Panel& panel = domain.panels().at(r.panel);
+  if (!(panel.thickness > 0.0f)) return;
+  if (domain.on_line(panel.u_lines, r.u0) && domain.on_line(panel.u_lines, r.u1) &&
+      domain.on_line(panel.v_lines, r.v0) && domain.on_line(panel.v_lines, r.v1))
+    return;
+  std::ostringstream m;
+  m << "has an edge between the element grid's lines (u " << r.u0 << ".." << r.u1 << " m, v " << r.v0 << ".." << r.v1
+    << " m; lines every " << domain.element_size() << " m) on panel " << r.panel << " (" << panel.label
+    << "), whose wall is " << panel.thickness << " m thick: there the records follow the elements' tubes through "
+    << "the wall and cannot count it; evaluate() cuts it";
+  throw std::invalid_argument(m.str());
+}
+
 OpenRegion::OpenRegion(const OpeningDomain& domain, const std::vector<PanelRectangle>& rectangles)
     : by_panel_(domain.panels().size()) {
   inset_ = 1e-5 * domain.element_size();  // far above float rounding of panel coordinates, far below any edge step
