@@ -70,30 +70,42 @@ def test_solver_recovers_the_light_of_a_known_window(tmp_path):
             100 * error, 100 * noise, 100 * result["error"]["relative_rms"], len(result["open_elements"])))
 
 
+def shifted_window_goals(d, tmp_path, half=0.175):
+    """The room's window shifted by half an element along the wall and up (no edge on the grid),
+    path-traced: its values become d's lux goals. Returns the scene with them, and the goals with
+    their standard errors."""
+    scene = fenestra.scene_from_dict(d, tmp_path)
+    truth = [np.asarray(grid_window(scene, (2, 5), (2, 5))) + np.array([half, 0.0, half])]
+    goals, goals_stderr = fenestra.evaluate(scene, truth)
+    d["sensors"]["goals"] = [float(g) for g in goals]
+    d["sensors"]["goal_units"] = "lux"
+    return fenestra.scene_from_dict(d, tmp_path), goals, goals_stderr
+
+
+def checked_error(scene, openings, goals, goals_stderr):
+    """The openings path-traced with other random numbers: relative RMS error against the goals,
+    the noise of that comparison, and the values."""
+    scene.render.seed = 22
+    values, stderr = fenestra.evaluate(scene, openings)
+    error = np.sqrt(np.sum((values - goals) ** 2) / np.sum(goals ** 2))
+    noise = np.sqrt(np.sum(stderr ** 2 + goals_stderr ** 2) / np.sum(goals ** 2))
+    return error, noise, values
+
+
 def test_solver_recovers_a_window_between_grid_lines(tmp_path):
     """The same room with the window shifted by half an element along the wall and up: no edge lies
     on the grid. The solver refines the edges off the grid (solver step 7); on the grid alone it
     cannot meet the goals."""
     d = small_scene(tmp_path)
-    scene = fenestra.scene_from_dict(d, tmp_path)
-    half = 0.175
-    truth = [np.asarray(grid_window(scene, (2, 5), (2, 5))) + np.array([half, 0.0, half])]
-    goals, goals_stderr = fenestra.evaluate(scene, truth)
-
-    d["sensors"]["goals"] = [float(g) for g in goals]
-    d["sensors"]["goal_units"] = "lux"
-    scene = fenestra.scene_from_dict(d, tmp_path)
+    scene, goals, goals_stderr = shifted_window_goals(d, tmp_path)
     result = fenestra.solve(scene)
     d["solver"]["refine_edges"] = False
     on_grid = fenestra.solve(fenestra.scene_from_dict(d, tmp_path))
     assert result["edge_moves"] > 0 and on_grid["edge_moves"] == 0
 
-    scene.render.seed = 22
     errors = {}
     for name, r in (("refined", result), ("grid", on_grid)):
-        values, stderr = fenestra.evaluate(scene, r["openings"])
-        errors[name] = np.sqrt(np.sum((values - goals) ** 2) / np.sum(goals ** 2))
-        noise = np.sqrt(np.sum(stderr ** 2 + goals_stderr ** 2) / np.sum(goals ** 2))
+        errors[name], noise, _ = checked_error(scene, r["openings"], goals, goals_stderr)
         assert noise < 0.005, noise
     assert errors["refined"] - 3 * noise <= TARGET, errors
     assert errors["grid"] > TARGET + 3 * noise, errors  # the test can tell: the grid alone misses
@@ -111,23 +123,14 @@ def test_solver_recovers_a_window_between_grid_lines_in_a_thick_wall(tmp_path):
     d["sensors"]["points"] = [[x, y, 0.8] for y in (0.4, 0.9, 1.5, 2.1, 2.7, 3.2)
                               for x in (0.3, 0.78, 1.26, 1.74, 2.22, 2.7)]
     d["solver"]["constraints"] = {"max_openings": 1}
-    scene = fenestra.scene_from_dict(d, tmp_path)
-    half = 0.175
-    truth = [np.asarray(grid_window(scene, (2, 5), (2, 5))) + np.array([half, 0.0, half])]
-    goals, goals_stderr = fenestra.evaluate(scene, truth)
-
-    d["sensors"]["goals"] = [float(g) for g in goals]
-    d["sensors"]["goal_units"] = "lux"
-    result = fenestra.solve(fenestra.scene_from_dict(d, tmp_path))
+    scene, goals, goals_stderr = shifted_window_goals(d, tmp_path)
+    result = fenestra.solve(scene)
     assert "thick-wall edges" in result["timings_s"], result["timings_s"]
     assert result["edge_moves"] > 0
     for o in result["openings"]:
         assert abs(o["depth"] - 0.3) < 1e-6
 
-    scene.render.seed = 22
-    values, stderr = fenestra.evaluate(scene, result["openings"])
-    error = np.sqrt(np.sum((values - goals) ** 2) / np.sum(goals ** 2))
-    noise = np.sqrt(np.sum(stderr ** 2 + goals_stderr ** 2) / np.sum(goals ** 2))
+    error, noise, values = checked_error(scene, result["openings"], goals, goals_stderr)
     assert noise < 0.005, noise
     assert error - 3 * noise <= TARGET, (
         "relative RMS %.2f %% (noise %.2f %%), solver predicted %.2f %%" % (
