@@ -336,7 +336,7 @@ int OpeningDomain::element_at(int panel_index, const PanelPoint& q) const {
   const Panel& panel = panels_[panel_index];
   if (!(q.u >= 0.0f && q.v >= 0.0f)) return -1;
   int c, r;
-  if (panel.uniform) {
+  if (!unrefined_) {  // lines every element_size_
     c = static_cast<int>(q.u / element_size_), r = static_cast<int>(q.v / element_size_);
   } else {
     c = cell_of(panel.u_lines, q.u), r = cell_of(panel.v_lines, q.v);
@@ -432,7 +432,6 @@ OpeningDomain OpeningDomain::refined(const std::vector<RefinedRegion>& regions) 
                    lines->end());
       if (lines->empty()) lines->push_back(0.0f);  // no region: a grid of no cells
     }
-    panel.uniform = false;
     panel.cols = static_cast<int>(panel.u_lines.size()) - 1;
     panel.rows = static_cast<int>(panel.v_lines.size()) - 1;
     panel.grid.assign(static_cast<size_t>(panel.rows) * panel.cols, -1);

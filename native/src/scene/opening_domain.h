@@ -34,7 +34,6 @@ struct Panel {
   // Grid lines in grid coordinates: cols + 1 along u, rows + 1 along v. Multiples of the element
   // size, except on a refined grid (OpeningDomain::refined), whose cells are parts of elements.
   std::vector<float> u_lines, v_lines;
-  bool uniform = true;          // the lines are multiples of the element size
   std::vector<uint32_t> triangles;
   int material = -1;            // material of the panel's faces (reveals use it)
   std::string label;            // material and group names, for messages

@@ -49,14 +49,6 @@ std::vector<int> strip_elements(const OpeningDomain& domain, const PanelRectangl
   return out;
 }
 
-// Whether every edge of `r` lies on its panel's grid lines: in a thick wall the records follow the
-// tubes of the grid they were traced on, so only such rectangles are evaluated exactly.
-bool on_grid_lines(const OpeningDomain& domain, const PanelRectangle& r) {
-  const Panel& panel = domain.panels()[r.panel];
-  return domain.on_line(panel.u_lines, r.u0) && domain.on_line(panel.u_lines, r.u1) &&
-         domain.on_line(panel.v_lines, r.v0) && domain.on_line(panel.v_lines, r.v1);
-}
-
 double& edge_of(PanelRectangle& r, int edge) {
   switch (edge) {
     case 0: return r.u0;
@@ -96,7 +88,7 @@ const std::vector<EdgeMove>& edge_moves(bool diagonal) {
 bool fits(const OpeningDomain& domain, const OpeningConstraints& constraints,
           const std::vector<PanelRectangle>& candidate, size_t i) {
   const PanelRectangle& r = candidate[i];
-  if (domain.panels()[r.panel].thickness > 0.0f && !on_grid_lines(domain, r)) return false;
+  if (domain.panels()[r.panel].thickness > 0.0f && !edges_on_grid_lines(domain, r)) return false;
   if (!covers_elements(domain, r.panel, r.u0, r.u1, r.v0, r.v1) || !admissible(r, domain.unrefined(), constraints))
     return false;
   for (size_t j = 0; j < candidate.size(); ++j)

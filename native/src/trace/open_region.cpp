@@ -35,12 +35,15 @@ void check_on_elements(const OpeningDomain& domain, const PanelRectangle& r) {
   throw std::invalid_argument(m.str());
 }
 
+bool edges_on_grid_lines(const OpeningDomain& domain, const PanelRectangle& r) {
+  const Panel& panel = domain.panels().at(r.panel);
+  return domain.on_line(panel.u_lines, r.u0) && domain.on_line(panel.u_lines, r.u1) &&
+         domain.on_line(panel.v_lines, r.v0) && domain.on_line(panel.v_lines, r.v1);
+}
+
 void check_on_grid_lines_in_thick_walls(const OpeningDomain& domain, const PanelRectangle& r) {
   const Panel& panel = domain.panels().at(r.panel);
-  if (!(panel.thickness > 0.0f)) return;
-  if (domain.on_line(panel.u_lines, r.u0) && domain.on_line(panel.u_lines, r.u1) &&
-      domain.on_line(panel.v_lines, r.v0) && domain.on_line(panel.v_lines, r.v1))
-    return;
+  if (!(panel.thickness > 0.0f) || edges_on_grid_lines(domain, r)) return;
   std::ostringstream m;
   m << "has an edge between the element grid's lines (u " << r.u0 << ".." << r.u1 << " m, v " << r.v0 << ".." << r.v1
     << " m; lines every " << domain.element_size() << " m) on panel " << r.panel << " (" << panel.label

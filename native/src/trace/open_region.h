@@ -27,6 +27,9 @@ PanelRectangle to_panel_rectangle(const OpeningDomain& domain, const std::array<
 // light through such parts is not in the records (`evaluate` cuts them).
 void check_on_elements(const OpeningDomain& domain, const PanelRectangle& rectangle);
 
+// Whether every edge of the rectangle lies on one of its panel's grid lines.
+bool edges_on_grid_lines(const OpeningDomain& domain, const PanelRectangle& rectangle);
+
 // Throws std::invalid_argument when the rectangle lies on a thick panel with an edge between the
 // lines of the grid the records were traced on: there the records follow the elements' tubes, so
 // they cannot evaluate it (evaluate() cuts it; the solver traces a grid refined about such edges).
