@@ -14,6 +14,7 @@
 #include <xmmintrin.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -627,7 +628,7 @@ std::string parse_json_path(int argc, char** argv) {
     if (arg == "--json" && i + 1 < argc) {
       path = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: fenestra_bench [--json PATH]\n");
+      std::fprintf(stderr, "usage: fenestra_bench [--json PATH] | --thick-walls\n");
       std::exit(arg == "-h" || arg == "--help" ? 0 : 2);
     }
   }
@@ -644,28 +645,76 @@ struct WallCost {
   double seconds = 0.0;
   size_t record_bytes = 0;
   double relative_variance = 0.0;  // mean over sensors and open sets of (standard error / value)^2
+  std::array<double, 3> set_variance{};  // the same, per open set (all open, random half, bands)
+  double rays_per_path = 0.0;
 };
+
+// All open, a random half, bands of four in ten.
+std::vector<std::vector<uint8_t>> wall_open_sets(size_t n) {
+  std::vector<std::vector<uint8_t>> sets(3, std::vector<uint8_t>(n, 0));
+  std::mt19937 rng(5);
+  for (size_t k = 0; k < n; ++k) sets[0][k] = 1, sets[1][k] = rng() % 2, sets[2][k] = k % 10 < 4;
+  return sets;
+}
 
 // One pass, and the run's own noise on the exact values of a few open sets (all open, half, a band).
 WallCost wall_cost(const Scene& base) {
   const Scene scene = with_paths(base, kWallPaths, kReferenceSeed + 7);
+  const uint64_t rays_before = fenestra::rays_traced();
   const auto start = Clock::now();
   const fenestra::Contributions c = fenestra::compute_contributions(scene);
   WallCost cost;
   cost.seconds = seconds_since(start);
+  cost.rays_per_path = static_cast<double>(fenestra::rays_traced() - rays_before) /
+                       static_cast<double>(kWallPaths * scene.sensors.size());
   for (const auto& r : c.records) cost.record_bytes += r.memory_bytes();
-  const size_t n = c.element_count();
-  std::vector<std::vector<uint8_t>> sets(3, std::vector<uint8_t>(n, 0));
-  std::mt19937 rng(5);
-  for (size_t k = 0; k < n; ++k) sets[0][k] = 1, sets[1][k] = rng() % 2, sets[2][k] = k % 10 < 4;
+  const std::vector<std::vector<uint8_t>> sets = wall_open_sets(c.element_count());
   size_t count = 0;
-  for (const auto& open : sets) {
-    const fenestra::SensorValues v = c.evaluate(open);
-    for (Eigen::Index i = 0; i < v.value.size(); ++i)
-      if (v.value[i] > 0.0) cost.relative_variance += std::pow(v.standard_error[i] / v.value[i], 2), ++count;
+  for (size_t s = 0; s < sets.size(); ++s) {
+    const fenestra::SensorValues v = c.evaluate(sets[s]);
+    size_t set_count = 0;
+    for (Eigen::Index i = 0; i < v.value.size(); ++i) {
+      if (!(v.value[i] > 0.0)) continue;
+      const double r = std::pow(v.standard_error[i] / v.value[i], 2);
+      cost.relative_variance += r, cost.set_variance[s] += r, ++count, ++set_count;
+    }
+    cost.set_variance[s] /= std::max<size_t>(1, set_count);
   }
   cost.relative_variance /= std::max<size_t>(1, count);
   return cost;
+}
+
+json wall_cost_json(const WallCost& w) {
+  return {{"seconds", w.seconds},
+          {"record_bytes", w.record_bytes},
+          {"rays_per_path", w.rays_per_path},
+          {"relative_variance", w.relative_variance},
+          {"relative_variance_per_set", {{"all_open", w.set_variance[0]}, {"random_half", w.set_variance[1]},
+                                         {"bands", w.set_variance[2]}}}};
+}
+
+// What the wall's light costs a forward path tracer: `evaluate` with the same open sets really cut
+// (one opening per open element), seconds x mean relative variance over the sets.
+constexpr int kForwardPaths = 256;
+
+double forward_cost(const Scene& base) {
+  const Scene scene = with_paths(base, kForwardPaths, kReferenceSeed + 11);
+  double seconds = 0.0, variance = 0.0;
+  size_t count = 0;
+  for (const auto& open : wall_open_sets(scene.domain.element_count())) {
+    std::vector<fenestra::OpeningInput> openings;
+    for (size_t k = 0; k < open.size(); ++k)
+      if (open[k]) {
+        const fenestra::Element& e = scene.domain.elements()[k];
+        openings.push_back(fenestra::PanelRectangle{e.panel, e.u0, e.u1, e.v0, e.v1});
+      }
+    const auto start = Clock::now();
+    const fenestra::SensorValues v = fenestra::evaluate_openings(scene, openings);
+    seconds += seconds_since(start);
+    for (Eigen::Index i = 0; i < v.value.size(); ++i)
+      if (v.value[i] > 0.0) variance += std::pow(v.standard_error[i] / v.value[i], 2), ++count;
+  }
+  return seconds * variance / std::max<size_t>(1, count);
 }
 
 json thick_wall_comparison(const std::string& scene_path) {
@@ -680,16 +729,22 @@ json thick_wall_comparison(const std::string& scene_path) {
   const double time_ratio = (b.seconds * b.relative_variance) / (a.seconds * a.relative_variance);
   const double memory_ratio = static_cast<double>(b.record_bytes) / static_cast<double>(a.record_bytes);
   std::printf("[5] Thick walls: the domain as a %.1f m wall against the zero-thickness one, %d paths per sensor\n"
-              "    %-8s %9s %12s %14s\n", kWallThickness, kWallPaths, "wall", "seconds", "records MiB", "rel. variance");
-  std::printf("    %-8s %9.2f %12.1f %14.3g\n", "thin", a.seconds, mib(a.record_bytes), a.relative_variance);
-  std::printf("    %-8s %9.2f %12.1f %14.3g\n", "0.3 m", b.seconds, mib(b.record_bytes), b.relative_variance);
+              "    %-8s %9s %12s %10s %14s  %s\n", kWallThickness, kWallPaths, "wall", "seconds", "records MiB",
+              "rays/path", "rel. variance", "(all open, random half, bands)");
+  for (const auto& [name, w] : {std::pair<const char*, const WallCost&>{"thin", a}, {"0.3 m", b}})
+    std::printf("    %-8s %9.2f %12.1f %10.1f %14.3g  (%.3g, %.3g, %.3g)\n", name, w.seconds, mib(w.record_bytes),
+                w.rays_per_path, w.relative_variance, w.set_variance[0], w.set_variance[1], w.set_variance[2]);
   std::printf("    time to the same accuracy (seconds x relative variance): %.2f x the thin wall's; path-record "
-              "memory %.2f x\n\n", time_ratio, memory_ratio);
+              "memory %.2f x\n", time_ratio, memory_ratio);
+  const double forward_ratio = forward_cost(thick) / forward_cost(thin);
+  std::printf("    the same sets really cut (evaluate, %d paths): time to the same accuracy %.2f x the thin wall's\n\n",
+              kForwardPaths, forward_ratio);
   return {{"paths", kWallPaths},
           {"thickness_m", kWallThickness},
-          {"thin", {{"seconds", a.seconds}, {"record_bytes", a.record_bytes}, {"relative_variance", a.relative_variance}}},
-          {"thick", {{"seconds", b.seconds}, {"record_bytes", b.record_bytes}, {"relative_variance", b.relative_variance}}},
+          {"thin", wall_cost_json(a)},
+          {"thick", wall_cost_json(b)},
           {"time_to_accuracy_ratio", time_ratio},
+          {"forward_time_to_accuracy_ratio", forward_ratio},
           {"record_memory_ratio", memory_ratio}};
 }
 
@@ -769,6 +824,15 @@ int run(const std::string& json_path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 2 && std::string(argv[1]) == "--thick-walls") {  // section 5 alone
+    try {
+      thick_wall_comparison(kScenePath);
+      return 0;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "fenestra_bench: error: %s\n", e.what());
+      return 1;
+    }
+  }
   const std::string json_path = parse_json_path(argc, argv);
   try {
     return run(json_path);
