@@ -55,12 +55,9 @@ struct PathTracer::PathState {
   float portal_pdf = 0.0f;     // portal density of this direction, once known (at an escape)
   int sky_samples = 1;         // sky samples the vertex that chose this direction took
   bool beyond_element = false;  // followed through an element: the next vertex is the first outside
-  // Depth of the segment entering a thick wall: it goes on at each tube side it meets (open
-  // neighbour) and follows one of the reveals (closed ones); deeper, one way at random at each side
-  // (meet_element_outside).
+  // Depth at which a segment through a thick wall follows both ways at each tube side it meets (open
+  // neighbour: on; closed: its reveal); deeper, one way at random (meet_element_outside).
   int branch_both_depth = -1;
-  // On that segment, the probability that none of the reveals met so far was chosen (0 once one was).
-  float reveal_unchosen = 1.0f;
   float must_reach = 0.0f;      // the first segment counts only if nothing is met before this distance
   bool by_portal = false;      // this direction was chosen by portal sampling (else by the BSDF)
   // At the sensor, portal samples alone carry the light that comes through elements: they are
@@ -553,25 +550,9 @@ bool PathTracer::meet_element_outside(const Crossing& j, bool through_face, cons
     st.beta /= reflect;
     return sink.reflect_off(j);
   }
-  if (through_face) {
-    // Were j open, the sub-path would go on through it: follow that too.
-    pass(st);
-    // Closed, it is wall: what follows needs it closed.
-    return sink.reflect_off(j);
-  }
-  // The segment entering the wall: the way on is always followed, and of the reveals it may end
-  // on (m = 1 + the sides beyond this one), one: each with probability 1 / m, weighted m. One
-  // reveal sub-path per segment instead of m keeps the time per path down, and the sets of open
-  // elements an opening makes (few closed neighbours along a line) keep their noise.
-  const int panel = scene_.domain.elements()[j.element].panel;
-  const int m = 1 + scene_.domain.lines_ahead(panel, at, dir);
-  const float chosen = st.reveal_unchosen / static_cast<float>(m);  // probability of reflecting here
-  const bool reflect = chosen > 0.0f && rng.uniform() * st.reveal_unchosen < chosen;
-  PathState passing = st;
-  passing.reveal_unchosen = reflect ? 0.0f : st.reveal_unchosen - chosen;
-  pass(passing);
-  if (!reflect) return false;
-  st.beta /= chosen;
+  // Were j open, the sub-path would go on through it: follow that too.
+  pass(st);
+  // Closed, it is wall: what follows needs it closed.
   return sink.reflect_off(j);
 }
 
