@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <sstream>
 
+#include "solve/region_search.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
@@ -99,6 +101,71 @@ TEST(OpenRegion, RectanglesOffTheGridMatchEvaluate) {
   for (Eigen::Index i = 0; i < exact.value.size(); ++i)
     distinct += !within_sigma(snapped.value[i], snapped.standard_error[i], truth.value[i], truth.standard_error[i]);
   EXPECT_GT(distinct, 0);
+}
+
+TEST(RegionSearch, StripsCoverEveryPointInOneRectangleOnly) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> x(0.0, 4.0);
+  auto rectangle = [&] {
+    const double a = x(rng), b = x(rng), c = x(rng), d = x(rng);
+    return PanelRectangle{0, std::min(a, b), std::max(a, b), std::min(c, d), std::max(c, d)};
+  };
+  auto inside = [](const PanelRectangle& r, double u, double v) { return u > r.u0 && u < r.u1 && v > r.v0 && v < r.v1; };
+  int tested = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    PanelRectangle a = rectangle(), b = a;
+    // One edge, two, or a new rectangle.
+    if (trial % 3 == 0) b.u1 = std::max(b.u0 + 0.01, b.u1 + x(rng) - 2.0);
+    if (trial % 3 == 1) b.v0 = std::min(b.v1 - 0.01, b.v0 + x(rng) - 2.0), b.u0 = std::min(b.u1 - 0.01, b.u0 + 0.1);
+    if (trial % 3 == 2) b = rectangle();
+    const std::vector<PanelRectangle> strips = changed_strips(a, b);
+    for (int k = 0; k < 200; ++k) {
+      const double u = x(rng), v = x(rng);
+      if (inside(a, u, v) == inside(b, u, v)) continue;
+      ++tested;
+      bool covered = false;
+      for (const PanelRectangle& s : strips) covered = covered || (u >= s.u0 && u <= s.u1 && v >= s.v0 && v <= s.v1);
+      EXPECT_TRUE(covered) << "trial " << trial << " point " << u << ", " << v;
+    }
+  }
+  EXPECT_GT(tested, 1000);
+  EXPECT_TRUE(changed_strips(PanelRectangle{0, 1, 2, 1, 2}, PanelRectangle{0, 1, 2, 1, 2}).empty());
+}
+
+// The incremental values (only the paths that met the swept strips re-evaluated) equal a full
+// evaluation of the same rectangles, over a seeded walk of edge moves of every size.
+TEST(RegionSearch, IncrementalValuesEqualAFullEvaluation) {
+  TempDir dir;
+  const Scene scene = room_with_neighbour(dir, 1 << 9);
+  const Contributions c = compute_contributions(scene);
+  const int wall = wall_panel(scene), roof = 1 - wall;
+  std::vector<PanelRectangle> current = {{wall, 1.0, 2.0, 0.5, 1.5}, {roof, 1.0, 2.5, 1.0, 2.0}};
+  RegionSearch search(c, scene.domain, current);
+  std::mt19937 rng(3);
+  const std::vector<double> steps = {0.5, 0.25, 0.125, 0.01, 0.37};
+  size_t accepted = 0;
+  for (int move = 0; move < 60; ++move) {
+    std::vector<PanelRectangle> candidate = current;
+    PanelRectangle& r = candidate[rng() % 2];
+    const double by = (rng() % 2 ? 1.0 : -1.0) * steps[rng() % steps.size()];
+    double* edges[] = {&r.u0, &r.u1, &r.v0, &r.v1};
+    *edges[rng() % 4] += by;
+    if (move % 5 == 0) *edges[rng() % 4] -= by;  // a second edge
+    if (!(r.u1 - r.u0 > 0.05 && r.v1 - r.v0 > 0.05 && r.u0 >= 0.0 && r.v0 >= 0.0 && r.u1 <= 2.5 && r.v1 <= 2.5))
+      continue;
+    const Eigen::VectorXd tried = search.try_region(candidate);
+    const SensorValues full = c.evaluate(OpenRegion(scene.domain, candidate));
+    for (Eigen::Index i = 0; i < tried.size(); ++i)
+      ASSERT_NEAR(tried[i], full.value[i], 1e-9 * (1.0 + full.value[i])) << "move " << move << " sensor " << i;
+    if (rng() % 2) {
+      search.accept();
+      current = candidate;
+      ++accepted;
+    }
+  }
+  EXPECT_GT(accepted, 10u);
+  // Fewer paths than a full evaluation per try: the strips hold a fraction of the met points.
+  EXPECT_LT(search.paths_evaluated(), 60u * scene.sensors.size() * c.paths_per_sensor / 2);
 }
 
 }  // namespace

@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kTolerance = 1e-6;  // meters (and relative, for ratios): limits met within rounding
 constexpr double kMinClearance = 0.01;  // meters between two openings of a panel, whatever min_gap says
-constexpr int kMaxSweeps = 16;          // over all edges, per step size
+constexpr int kMaxSweeps = 16;          // cycles over all openings' moves, per step size
 constexpr int kMaxScanPasses = 3;       // of EdgeSearchScope::scan_span over both axes
 
 bool covers_elements(const OpeningDomain& domain, int panel, double u0, double u1, double v0, double v1) {
@@ -30,23 +30,6 @@ std::string meters(double x) {
   std::ostringstream s;
   s << x << " m";
   return s.str();
-}
-
-// The elements whose cells overlap the strip between two positions of one edge of `r`, and their neighbours.
-std::vector<int> strip_elements(const OpeningDomain& domain, const PanelRectangle& r, int edge, double from, double to) {
-  double u0 = r.u0, u1 = r.u1, v0 = r.v0, v1 = r.v1;
-  const double lo = std::min(from, to), hi = std::max(from, to);
-  if (edge < 2) u0 = lo, u1 = hi;
-  else v0 = lo, v1 = hi;
-  std::vector<int> out;
-  const auto [c0, c1] = domain.columns_overlapping(r.panel, u0, u1);
-  const auto [r0, r1] = domain.rows_overlapping(r.panel, v0, v1);
-  for (int row = r0 - 1; row <= r1 + 1; ++row)
-    for (int col = c0 - 1; col <= c1 + 1; ++col) {
-      const int k = domain.cell(r.panel, row, col);
-      if (k >= 0) out.push_back(k);
-    }
-  return out;
 }
 
 double& edge_of(PanelRectangle& r, int edge) {
@@ -140,10 +123,7 @@ bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& cons
         (axis == 0 ? r.u0 : r.v0) = low[a];
         (axis == 0 ? r.u1 : r.v1) = high[b];
         if (!fits(domain, constraints, candidate, i)) return;
-        std::vector<int> touched = strip_elements(domain, r, 2 * axis, lo, low[a]);
-        const std::vector<int> other = strip_elements(domain, r, 2 * axis + 1, hi, high[b]);
-        touched.insert(touched.end(), other.begin(), other.end());
-        const double e = prediction_error(objective, search->try_region(candidate, touched) - closed);
+        const double e = prediction_error(objective, search->try_region(candidate) - closed);
         ++out->evaluations;
         if (e < *error * (1.0 - 1e-9)) *error = e, best = candidate, best_a = a, best_b = b;
       };
@@ -154,10 +134,7 @@ bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& cons
         for (long db = -1; db <= 1; ++db) try_pair(ca + da, cb + db);
       if (best.empty()) continue;
       // Evaluated again (the search remembers its last try only), and kept.
-      std::vector<int> touched = strip_elements(domain, best[i], 2 * axis, lo, axis == 0 ? best[i].u0 : best[i].v0);
-      const std::vector<int> other = strip_elements(domain, best[i], 2 * axis + 1, hi, axis == 0 ? best[i].u1 : best[i].v1);
-      touched.insert(touched.end(), other.begin(), other.end());
-      search->try_region(best, touched);
+      search->try_region(best);
       search->accept();
       ++out->moves;
       kept = true;
@@ -260,45 +237,43 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
   for (int pass = 0; scope.scan_span > 0.0 && pass < kMaxScanPasses; ++pass)
     if (!scan_edge_pairs(domain, constraints, objective, closed, scope.scan_span, &search, &error, &out, progress))
       break;
+  const std::vector<EdgeMove>& moves = edge_moves(scope.scan_span > 0.0);
+  // Opening i's edges moved by `step` (move, direction): kept when the exact error falls.
+  auto try_move = [&](size_t i, const EdgeMove& move, double direction, double step, bool whole_elements) {
+    std::vector<PanelRectangle> candidate = search.rectangles();
+    PanelRectangle& r = candidate[i];
+    bool changed = true;
+    for (int k = 0; k < 2; ++k) {
+      const int edge = move.edges[k];
+      if (edge < 0) continue;
+      const double from = edge_of(r, edge);
+      const double by = direction * move.signs[k] * step;
+      edge_of(r, edge) = whole_elements ? from + by : snap(from + by, module);
+      changed = changed && edge_of(r, edge) != from;
+    }
+    if (!changed || !fits(domain, constraints, candidate, i)) return false;
+    const Eigen::VectorXd& values = search.try_region(candidate);
+    ++out.evaluations;
+    const double e = prediction_error(objective, values - closed);
+    if (!(e < error * (1.0 - 1e-9))) return false;
+    search.accept();
+    error = e;
+    ++out.moves;
+    return true;
+  };
+  const size_t cycle = search.rectangles().size() * moves.size() * 2;
   for (const double step : edge_steps(s, module, false)) {
     const bool whole_elements = step >= s * (1.0 - 1e-9);
     if (whole_elements && !scope.whole_elements) continue;
-    bool moved = true;
-    for (int sweep = 0; moved && sweep < kMaxSweeps; ++sweep) {
-      moved = false;
-      for (size_t i = 0; i < search.rectangles().size(); ++i) {
-        const PanelRectangle& current = search.rectangles()[i];
-        const bool thick = domain.panels()[current.panel].thickness > 0.0f;
-        if (!thick && !scope.zero_thickness_panels) continue;
-        for (const EdgeMove& move : edge_moves(scope.scan_span > 0.0))
-          for (double direction : {-1.0, 1.0}) {
-            if (progress) progress->throw_if_cancelled();
-            std::vector<PanelRectangle> candidate = search.rectangles();
-            PanelRectangle& r = candidate[i];
-            std::vector<int> touched;
-            bool changed = true;
-            for (int k = 0; k < 2; ++k) {
-              const int edge = move.edges[k];
-              if (edge < 0) continue;
-              const double from = edge_of(r, edge);
-              const double by = direction * move.signs[k] * step;
-              edge_of(r, edge) = whole_elements ? from + by : snap(from + by, module);
-              changed = changed && edge_of(r, edge) != from;
-              const std::vector<int> strip = strip_elements(domain, r, edge, from, edge_of(r, edge));
-              touched.insert(touched.end(), strip.begin(), strip.end());
-            }
-            if (!changed || !fits(domain, constraints, candidate, i)) continue;
-            const Eigen::VectorXd& values = search.try_region(candidate, touched);
-            ++out.evaluations;
-            const double e = prediction_error(objective, values - closed);
-            if (e < error * (1.0 - 1e-9)) {
-              search.accept();
-              error = e;
-              ++out.moves;
-              moved = true;
-            }
-          }
-      }
+    // Every opening's moves in turn, until a whole cycle of them since the last one kept has
+    // failed: each was then tried against the openings as they ended.
+    for (size_t t = 0, failed = 0; failed < cycle && t < kMaxSweeps * cycle; ++t) {
+      const size_t i = t / (moves.size() * 2) % search.rectangles().size();
+      const EdgeMove& move = moves[t / 2 % moves.size()];
+      const bool thick = domain.panels()[search.rectangles()[i].panel].thickness > 0.0f;
+      if (progress) progress->throw_if_cancelled();
+      const bool kept = (thick || scope.zero_thickness_panels) && try_move(i, move, t % 2 ? 1.0 : -1.0, step, whole_elements);
+      failed = kept ? 0 : failed + 1;
     }
   }
   out.openings = search.rectangles();

@@ -50,6 +50,12 @@ class OpenRegion {
       if (u > r.u0 && u < r.u1 && v > r.v0 && v < r.v1) return true;
     return false;
   }
+  // The point is_open(element, p) tests: p taken inside the element's cell.
+  PanelPoint point_in_cell(int32_t element, const PanelPoint& p) const {
+    const Cell& cell = cells_[element];
+    return {static_cast<float>(std::clamp<double>(p.u, cell.u0 + inset_, cell.u1 - inset_)),
+            static_cast<float>(std::clamp<double>(p.v, cell.v0 + inset_, cell.v1 - inset_))};
+  }
   size_t element_count() const { return cells_.size(); }
 
  private:

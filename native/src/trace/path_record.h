@@ -57,15 +57,15 @@ void path_elements(const SensorRecord& record, size_t p, std::vector<int32_t>* o
 // Value of path p of `record` when exactly the elements with open[k] != 0 are open.
 double path_value(const SensorRecord& record, size_t p, const std::vector<uint8_t>& open);
 
-// Value of path p when the domain is open where is_open(element, point) holds: the point is
-// where the path met the element. With is_open(k, point) = open[k], this is path_value.
-template <typename IsOpen>
-double path_value_in_region(const SensorRecord& r, size_t p, IsOpen is_open) {
+// Value of path p from which of its points are open: event_open(i) for the escape that is event i,
+// condition_open(j) for entry j of the conditions.
+template <typename EventOpen, typename ConditionOpen>
+double path_value_by_point(const SensorRecord& r, size_t p, EventOpen event_open, ConditionOpen condition_open) {
   auto holds = [&](const PathEvent& e) {
     for (uint32_t i = e.conditions_begin; i < e.conditions_begin + e.open_count; ++i)
-      if (!is_open(r.conditions[i], r.condition_points[i])) return false;
+      if (!condition_open(i)) return false;
     for (uint32_t i = e.conditions_begin + e.open_count; i < e.conditions_begin + e.open_count + e.closed_count; ++i)
-      if (is_open(r.conditions[i], r.condition_points[i])) return false;
+      if (condition_open(i)) return false;
     return true;
   };
   double sum = 0.0;
@@ -74,7 +74,7 @@ double path_value_in_region(const SensorRecord& r, size_t p, IsOpen is_open) {
     const PathEvent& e = r.events[i];
     if (e.is_light()) {
       if (holds(e)) sum += e.value;
-    } else if (e.is_escape() && is_open(e.element, r.event_points[i])) {
+    } else if (e.is_escape() && event_open(i)) {
       sum += e.value;
       for (uint32_t j = i + 1; j < end && r.events[j].is_escape_part(); ++j)
         if (holds(r.events[j])) sum += r.events[j].value;
@@ -82,6 +82,15 @@ double path_value_in_region(const SensorRecord& r, size_t p, IsOpen is_open) {
     }
   }
   return sum;
+}
+
+// Value of path p when the domain is open where is_open(element, point) holds: the point is
+// where the path met the element. With is_open(k, point) = open[k], this is path_value.
+template <typename IsOpen>
+double path_value_in_region(const SensorRecord& r, size_t p, IsOpen is_open) {
+  return path_value_by_point(
+      r, p, [&](uint32_t i) { return is_open(r.events[i].element, r.event_points[i]); },
+      [&](uint32_t i) { return is_open(r.conditions[i], r.condition_points[i]); });
 }
 
 }  // namespace fenestra
