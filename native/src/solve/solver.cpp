@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -104,6 +105,23 @@ double exact_fitness(const LinearObjective& o, const ElementGrid& grid, const Sh
   return prediction_error(o, predicted_net) + shape_penalty(shape, shape_counts(grid, open));
 }
 
+// Exact values of open sets from the path records, kept: the stages evaluate many sets more than
+// once (elites carried from round to round, the final candidates, the linear start's answer).
+class ExactValues {
+ public:
+  ExactValues(const Contributions& c, const Progress* progress) : c_(c), progress_(progress) {}
+  const SensorValues& operator()(const std::vector<uint8_t>& open) {
+    auto it = known_.find(open);
+    if (it == known_.end()) it = known_.emplace(open, c_.evaluate(open, progress_)).first;
+    return it->second;
+  }
+
+ private:
+  const Contributions& c_;
+  const Progress* progress_;
+  std::map<std::vector<uint8_t>, SensorValues> known_;
+};
+
 // Rounds of successive linearisation after the first genetic run (each stops early when it gains nothing).
 constexpr int kLinearisationRounds = 4;
 
@@ -143,6 +161,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.goals = resolve_goals(scene, c);
   const SolverSettings& settings = scene.solver;
   const LinearObjective objective = linear_objective(c, out.goals, settings.bound_weight);
+  ExactValues exact_values(c, progress);
   const ElementGrid grid = ElementGrid::from_domain(scene.domain);
   const ShapeWeights shape = shape_of(settings);
   GeneticSettings ga;
@@ -206,7 +225,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   if (candidates.empty()) candidates.push_back(result.best);
   if (ga.generations > 0) {
     std::vector<uint8_t> about = result.best;
-    SensorValues about_values = c.evaluate(about, progress);
+    SensorValues about_values = exact_values(about);
     double about_fitness = exact_fitness(objective, grid, shape, about, about_values.value - c.closed.value);
     for (int round = 0; round < kLinearisationRounds; ++round) {
       const LinearObjective local = linearised_objective(objective, c, about, about_values.value, progress);
@@ -220,7 +239,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
       candidates.insert(candidates.end(), refined.elite.begin(), refined.elite.end());
       bool improved = false;
       for (const auto& open : refined.elite) {
-        const SensorValues exact = c.evaluate(open, progress);
+        const SensorValues& exact = exact_values(open);
         const double f = exact_fitness(objective, grid, shape, open, exact.value - c.closed.value);
         if (f < about_fitness * (1.0 - 1e-6)) about = open, about_values = exact, about_fitness = f, improved = true;
       }
@@ -237,7 +256,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   double best = std::numeric_limits<double>::infinity();
   SensorValues chosen;
   for (const auto& open : candidates) {
-    const SensorValues exact = c.evaluate(open, progress);
+    const SensorValues& exact = exact_values(open);
     const double f = exact_fitness(objective, grid, shape, open, exact.value - c.closed.value);
     if (f < best) {
       best = f;
@@ -245,7 +264,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
       chosen = exact;
     }
   }
-  out.start_error = goal_error(out.goals, c.evaluate(fine_start.open, progress).value);
+  out.start_error = goal_error(out.goals, exact_values(fine_start.open).value);
   out.unconstrained_open = out.open;
   out.unconstrained_openings = merge_into_rectangles(scene.domain, out.open);
   out.unconstrained_error = goal_error(out.goals, chosen.value);
@@ -259,7 +278,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   constraints.panel_base_z = panel_base_heights(scene.domain, scene.mesh);
   auto exact_of = [&](const std::vector<GridRectangle>& rects, SensorValues* values) {
     const std::vector<uint8_t> open = rectangles_mask(scene.domain, rects);
-    *values = c.evaluate(open, progress);
+    *values = exact_values(open);
     return exact_fitness(objective, grid, shape, open, values->value - c.closed.value);
   };
   // Rectangles are scored by the exact linear model about the chosen state (the elements' joint light).
