@@ -1,6 +1,6 @@
 """Screenshot of the Fenestra tab after an interactive (modal) solve, for docs/ (needs a display):
 
-    xvfb-run -a -s "-screen 0 1400x1800x24" blender --enable-event-simulate --window-geometry 0 0 1400 1800 \\
+    xvfb-run -a -s "-screen 0 1400x1950x24" blender --enable-event-simulate --window-geometry 0 0 1400 1950 \\
         --python python_tests/blender/screenshot_panel.py -- docs/blender-panel.png
 
 with user preferences whose splash screen is off (BLENDER_USER_CONFIG).
