@@ -243,3 +243,17 @@ def test_solve_estimate_counts_the_thick_walls_refined_grids(tmp_path):
     assert "thick_wall_edge_records" not in fenestra.estimate_cost(off, "solve")["memory"]
     thin = fenestra.load_scene(str(write_room(tmp_path)))
     assert "thick_wall_edge_records" not in fenestra.estimate_cost(thin, "solve")["memory"]
+
+
+def test_solve_estimate_counts_the_edge_search_index(tmp_path):
+    """The edge search indexes where the paths met the domain (docs/cost.md): 1.5 x the path
+    records while solving, unless refine_edges is off; the contributions alone have none."""
+    path = write_room(tmp_path)
+    scene = fenestra.load_scene(str(path))
+    e = fenestra.estimate_cost(scene, "solve")
+    assert e["memory"]["edge_search_index"] == pytest.approx(1.5 * e["memory"]["path_records"])
+    assert "edge_search_index" not in fenestra.estimate_cost(scene, "contributions")["memory"]
+    d = json.loads(path.read_text())
+    d["solver"] = {"refine_edges": False}
+    path.write_text(json.dumps(d))
+    assert "edge_search_index" not in fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")["memory"]

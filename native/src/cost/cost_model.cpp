@@ -32,6 +32,10 @@ constexpr double kEventsAtSensor = 3.0, kEventsPerVertex = 1.75;
 // While the per-task records are merged into one per sensor, both exist (peak RSS measured at
 // 2.3x the records kept on the paper-scale scene).
 constexpr double kRecordAssembly = 1.5;
+// The edge search's index (solve/region_search.h): 17 bytes per point where a path met the domain
+// (its place, path and event, and an open flag) and 8 per path, against at least 12 bytes per
+// point in the records (a condition and its point; an event and its point, 24).
+constexpr double kEdgeSearchIndexShare = 1.5;
 // Embree's BVH, the tracer's triangle data and the mesh copies, per triangle.
 constexpr double kRaySceneBytesPerTriangle = 256.0;
 // Per worker thread while analysing a sensor: 16 replicate sums and A's sum per element.
@@ -118,6 +122,12 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                          kRaySceneBytesPerTriangle * static_cast<double>(e->triangles), "solving", "fewer triangles"});
   e->memory.push_back({"population", "the genetic algorithm's populations", 3 * pop * (N + 8 * S + 64), "solving",
                        "a smaller solver.population"});
+  if (s.refine_edges) {
+    // One search at a time: on the element grid's records, then on a thick wall's refined ones.
+    const double records = S * static_cast<double>(e->paths_per_sensor) * e->bytes_per_path;
+    e->memory.push_back({"edge_search_index", "the edge search's index of where paths met the domain",
+                         kEdgeSearchIndexShare * records, "solving", "fewer solver paths, or solver.refine_edges off"});
+  }
   if (s.refine_edges && scene.domain.has_thick_walls()) {
     // Edges in thick walls: the paths traced again on a grid refined about the openings
     // (solve/thick_wall_edges.h), choosing one way at each tube side (about the time of a

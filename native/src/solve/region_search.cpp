@@ -169,6 +169,14 @@ const Eigen::VectorXd& RegionSearch::try_region(const std::vector<PanelRectangle
   return candidate_values_;
 }
 
+size_t RegionSearch::memory_bytes() const {
+  size_t bytes = 0;
+  for (size_t i = 0; i < met_.size(); ++i)
+    bytes += met_[i].capacity() * sizeof(Met) + element_begin_[i].capacity() * sizeof(uint32_t) +
+             open_[i].event.capacity() + open_[i].condition.capacity() + path_values_[i].capacity() * sizeof(double);
+  return bytes;
+}
+
 void RegionSearch::accept() {
   rectangles_ = candidate_;
   values_ = candidate_values_;

@@ -25,6 +25,8 @@ class RegionSearch {
   void accept();
   // Paths re-evaluated by tries so far (over all sensors).
   size_t paths_evaluated() const { return paths_evaluated_; }
+  // Bytes of the index and the per-path values (the cost model's edge_search_index).
+  size_t memory_bytes() const;
 
  private:
   // A point where a path met an element (as OpenRegion tests it, inside the element's cell), and
