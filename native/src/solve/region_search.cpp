@@ -22,27 +22,6 @@ bool same(const PanelRectangle& a, const PanelRectangle& b) {
 
 }  // namespace
 
-std::vector<PanelRectangle> changed_strips(const PanelRectangle& a, const PanelRectangle& b);
-
-namespace {
-
-// The strips between two rectangle lists: per index when they pair up, else both lists whole.
-std::vector<PanelRectangle> strips_between(const std::vector<PanelRectangle>& from, const std::vector<PanelRectangle>& to) {
-  std::vector<PanelRectangle> out;
-  if (from.size() != to.size()) {
-    out = from;
-    out.insert(out.end(), to.begin(), to.end());
-    return out;
-  }
-  for (size_t i = 0; i < from.size(); ++i) {
-    const std::vector<PanelRectangle> strips = changed_strips(from[i], to[i]);
-    out.insert(out.end(), strips.begin(), strips.end());
-  }
-  return out;
-}
-
-}  // namespace
-
 std::vector<PanelRectangle> changed_strips(const PanelRectangle& a, const PanelRectangle& b) {
   if (same(a, b)) return {};
   if (a.panel != b.panel) return {a, b};
@@ -63,6 +42,25 @@ std::vector<PanelRectangle> changed_strips(const PanelRectangle& a, const PanelR
   across_v(a.v1, b.v1);
   return out;
 }
+
+namespace {
+
+// The strips between two rectangle lists: per index when they pair up, else both lists whole.
+std::vector<PanelRectangle> strips_between(const std::vector<PanelRectangle>& from, const std::vector<PanelRectangle>& to) {
+  std::vector<PanelRectangle> out;
+  if (from.size() != to.size()) {
+    out = from;
+    out.insert(out.end(), to.begin(), to.end());
+    return out;
+  }
+  for (size_t i = 0; i < from.size(); ++i) {
+    const std::vector<PanelRectangle> strips = changed_strips(from[i], to[i]);
+    out.insert(out.end(), strips.begin(), strips.end());
+  }
+  return out;
+}
+
+}  // namespace
 
 RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, const std::vector<PanelRectangle>& start)
     : c_(c), domain_(domain), rectangles_(start) {

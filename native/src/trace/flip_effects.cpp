@@ -90,7 +90,7 @@ class PathFlips {
     order_.clear();
     light_before_.clear();
     escape_value_.clear();
-    first_open_ = kNone;
+    first_open_ = kNone, first_open_element_ = -1;
     const uint32_t b = r.path_begin[p], end = r.path_begin[p + 1];
     double light = 0.0;
     uint32_t escape = kNone;  // the escape the parts that follow belong to
@@ -107,7 +107,7 @@ class PathFlips {
         order_.push_back({e.element, at});
         light_before_.push_back(light);
         escape_value_.push_back(e.value);
-        if (first_open_ == kNone && open[e.element]) first_open_ = at;
+        if (first_open_ == kNone && open[e.element]) first_open_ = at, first_open_element_ = e.element;
       } else if (escape != kNone) {  // a part of the escape before it
         if (r.holds(e, open)) escape_value_.back() += e.value;
         event_changes(r, e, open, escape, true, &changes_);
@@ -121,15 +121,10 @@ class PathFlips {
   uint32_t cutoff_with_flip(int32_t k, uint32_t first_of_k, const std::vector<uint8_t>& open) const {
     if (first_of_k == kNone) return first_open_;
     if (!open[k]) return std::min(first_open_, first_of_k);  // k opens
-    if (first_open_ == kNone || escape_element(first_open_) != k) return first_open_;
+    if (first_open_ == kNone || first_open_element_ != k) return first_open_;
     for (const Escape& e : order_)  // k closes, and the path left through it: the next open escape
       if (e.at > first_open_ && e.element != k && open[e.element]) return e.at;
     return kNone;
-  }
-  int32_t escape_element(uint32_t at) const {
-    for (const Escape& e : order_)
-      if (e.at == at) return e.element;
-    return -1;
   }
   // Light before the cutoff plus the cutoff escape's value and its parts' (with the base state's
   // conditions); the changes are added by the caller.
@@ -144,7 +139,8 @@ class PathFlips {
   std::vector<Escape> escapes_, order_;   // escapes sorted by element, and in path order
   std::vector<double> light_before_, escape_value_;  // per escape in path order
   double total_light_ = 0.0;
-  uint32_t first_open_ = kNone;
+  uint32_t first_open_ = kNone;  // the escape the path leaves through, and its element
+  int32_t first_open_element_ = -1;
 };
 
 }  // namespace
