@@ -294,6 +294,42 @@ TEST(Distribution1D, ZeroWeightCellsAreNeverSampled) {
   EXPECT_EQ(bad, 0);
 }
 
+// The guide table only shortens the search: every u lands in the cell a binary search over the
+// whole CDF finds (CDF summed as the distribution sums it), for flat, peaked and sparse weights.
+TEST(Distribution1D, GuidedSearchFindsTheCellOfAFullBinarySearch) {
+  Rng weights_rng(7, 0);
+  std::vector<std::vector<double>> cases = {kWeights1D, {1.0}, {0.0, 0.0, 1.0}, std::vector<double>(1000, 1.0)};
+  std::vector<double> peaked(4096, 1e-9);  // a sun: almost all the mass in three cells
+  peaked[2000] = peaked[2001] = peaked[2002] = 1.0;
+  cases.push_back(peaked);
+  std::vector<double> sparse(513, 0.0), random(777);
+  for (double& w : sparse) w = weights_rng.uniform() < 0.1 ? weights_rng.uniform() : 0.0;
+  for (double& w : random) w = std::pow(weights_rng.uniform(), 8.0);
+  cases.push_back(sparse);
+  cases.push_back(random);
+  for (size_t c = 0; c < cases.size(); ++c) {
+    const Distribution1D d(cases[c]);
+    const int n = d.size();
+    double sum = 0.0;
+    for (double w : cases[c]) sum += w;
+    std::vector<double> f = cases[c];
+    if (sum <= 0.0) std::fill(f.begin(), f.end(), 1.0), sum = n;
+    std::vector<double> cdf(n + 1, 0.0);
+    for (int i = 0; i < n; ++i) cdf[i + 1] = cdf[i] + f[i] / sum;
+    cdf[n] = 1.0;
+    int bad = 0;
+    for (float u : probe_values_1d(d, 200000, 41 + c)) {
+      int expected = static_cast<int>(std::upper_bound(cdf.begin(), cdf.end(), static_cast<double>(u)) - cdf.begin()) - 1;
+      expected = std::clamp(expected, 0, n - 1);
+      while (expected < n - 1 && f[expected] == 0.0) ++expected;
+      int index = -1;
+      d.sample(u, &index, nullptr);
+      if (index != expected && ++bad <= 5) ADD_FAILURE() << "case " << c << ", u = " << u << ": cell " << index << ", expected " << expected;
+    }
+    EXPECT_EQ(bad, 0) << "case " << c;
+  }
+}
+
 TEST(Distribution1D, ToUnitInvertsSample) {
   const Distribution1D d(kWeights1D);
   const int n = d.size();

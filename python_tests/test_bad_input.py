@@ -101,6 +101,9 @@ SCENE_CASES = [
     ("module -0.05", set_in("solver", "constraints", "module", -0.05), ["solver.constraints.module"]),
     ("module 1e300", set_in("solver", "constraints", "module", 1e300), ["module"]),
     ("refine_edges 1", set_in("solver", "refine_edges", 1), ["solver.refine_edges", "true or false"]),
+    ("verify_paths -1", set_in("solver", "verify_paths", -1), ["solver.verify_paths", "whole number"]),
+    ("verify_paths 2.5", set_in("solver", "verify_paths", 2.5), ["solver.verify_paths", "whole number"]),
+    ("verify_paths 1e300", set_in("solver", "verify_paths", 1e300), ["solver.verify_paths"]),
     ("lux goal 1e300", lambda s: s["sensors"].update(goals=[1e300, 1, 1], goal_units="lux"), ["goals[0]"]),
     # Messages name the key in words rather than nlohmann's "[json.exception.type_error.302]".
     ("sky type 3", set_in("sky", "type", 3), ["sky.type", "expected a string"]),

@@ -41,7 +41,7 @@ def base_scene(kind):
                     "goals": [0.5, 0.3, 0.6], "goal_units": "normalized"},
         "sky": {"type": "uniform", "radiance": 318.3},
         "render": {"paths_per_sensor": 32, "max_bounces": 4, "seed": 1, "threads": 2},
-        "solver": {"population": 8, "generations": 4, "improve_iterations": 20, "verify": True,
+        "solver": {"population": 8, "generations": 4, "improve_iterations": 20, "verify": True, "verify_paths": 16,
                    "constraints": {"min_width": 0.5, "max_openings": 3}},
     }
     if kind == "preetham":

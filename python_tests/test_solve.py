@@ -76,6 +76,30 @@ def test_python_solve_reuses_contributions_and_is_reproducible(small_room):
     assert [s["goal"] for s in a["sensors"]] == pytest.approx([400.0, 150.0, 250.0])
 
 
+def test_verify_paths_sets_the_checks_paths_only(small_room):
+    """solver.verify_paths: the check with real cutters traces that many paths per sensor (its
+    standard error grows as 1/sqrt(paths)); the solve itself does not change."""
+    def solve_with(verify_paths):
+        data = json.loads(with_goals(small_room, [400.0, 150.0, 250.0]).read_text())
+        if verify_paths:
+            data["solver"]["verify_paths"] = verify_paths
+        path = small_room.parent / ("verify_%d.json" % verify_paths)
+        path.write_text(json.dumps(data))
+        scene = fenestra.load_scene(str(path))
+        scene.render.paths_per_sensor = 2048
+        return fenestra.solve(scene, contributions=fenestra.contributions(scene))
+
+    full, quarter = solve_with(0), solve_with(512)
+    assert quarter["settings"]["verify_paths"] == 512 and full["settings"]["verify_paths"] == 0
+    assert quarter["openings"] == full["openings"]
+    assert [s["predicted"] for s in quarter["sensors"]] == [s["predicted"] for s in full["sensors"]]
+    for a, b in zip(full["sensors"], quarter["sensors"]):
+        # The standard error of the check: sqrt(2048 / 512) = 2 times larger, up to the spread of the
+        # estimated standard deviations (thousands of paths each: a few percent).
+        assert 1.6 < b["verified_stderr"] / a["verified_stderr"] < 2.5
+        assert abs(a["verified"] - b["verified"]) < 4.0 * np.hypot(a["verified_stderr"], b["verified_stderr"])
+
+
 @pytest.mark.parametrize("goals, units, needle", [
     ([0.5, -0.1, 0.2], "normalized", "goals[1]"),
     ([0.5, 1.2, 0.2], "normalized", "goals[1]"),

@@ -130,7 +130,7 @@ def scene(**changes):
 @pytest.mark.parametrize("change", [
     {"sensors.goals": [0.6]}, {"sensors.goal_units": "lux"}, {"goals": {"units": "lux", "uniform": []}},
     {"solver.generations": 500}, {"solver.population": 64}, {"solver.seed": 7},
-    {"solver.constraints": {"max_openings": 1}},
+    {"solver.constraints": {"max_openings": 1}}, {"solver.verify_paths": 512},
 ])
 def test_goals_and_solver_settings_keep_the_contributions(change):
     before, after = Study(scene()), Study(scene(**change))

@@ -313,6 +313,8 @@ def _build(context, depsgraph):
         "solver": {"paths": paths, "generations": generations, "population": population,
                    "seed": solve.seed},
     }
+    if solve.verify_paths() > 0:
+        scene_dict["solver"]["verify_paths"] = solve.verify_paths()
     if solve.wall_thickness > 0:  # else the native core measures each panel's wall
         scene_dict["opening_domain"]["thickness"] = solve.wall_thickness
     units = settings.goals.units.lower()

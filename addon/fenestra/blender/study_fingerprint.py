@@ -9,7 +9,8 @@ import json
 # element size do, so they are not listed; an unknown key counts as one that does.
 SOLVER_ONLY_KEYS = frozenset({
     "population", "generations", "seed", "time_budget_s", "shape_weights", "bound_weight", "coarse_to_fine",
-    "elite", "constraints", "panel_constraints", "improve_iterations", "verify", "refine_edges",
+    "elite", "constraints", "panel_constraints", "improve_iterations", "verify", "verify_paths",
+    "refine_edges",
 })
 GOAL_KEYS = frozenset({"goals", "goal_units"})  # of the sensors section
 

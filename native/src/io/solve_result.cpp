@@ -139,7 +139,8 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                      }()},
                     {"improve_iterations", s.improve_iterations},
                     {"refine_edges", s.refine_edges},
-                    {"verify", s.verify}}}};
+                    {"verify", s.verify},
+                    {"verify_paths", s.verify_paths}}}};
 }
 
 }  // namespace fenestra

@@ -20,13 +20,29 @@ Distribution1D::Distribution1D(std::vector<double> weights) : func_(std::move(we
   cdf_.assign(n + 1, 0.0);
   for (int i = 0; i < n; ++i) cdf_[i + 1] = cdf_[i] + func_[i] / sum;
   cdf_[n] = 1.0;
+  guide_.assign(n + 1, 0);
+  for (int j = 0, i = 0; j <= n; ++j) {
+    const double x = static_cast<double>(j) / n;
+    while (i < n && cdf_[i + 1] <= x) ++i;
+    guide_[j] = i;
+  }
+}
+
+int Distribution1D::cell_of(double u) const {
+  const int n = size();
+  if (!(u >= 0.0 && u < 1.0))
+    return static_cast<int>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin()) - 1;
+  const int j = std::min(static_cast<int>(u * n), n - 1);
+  int lo = guide_[j], hi = std::min(guide_[j + 1], n - 1);
+  while (lo > 0 && cdf_[lo] > u) --lo;  // u * n rounded up to the next integer
+  while (hi < n && cdf_[hi + 1] <= u) ++hi;
+  return static_cast<int>(std::upper_bound(cdf_.begin() + lo + 1, cdf_.begin() + hi + 1, u) - cdf_.begin()) - 1;
 }
 
 float Distribution1D::sample(float u, int* index, float* pdf) const {
   const int n = size();
   // Largest i with cdf[i] <= u, skipping zero-width cells.
-  int i = static_cast<int>(std::upper_bound(cdf_.begin(), cdf_.end(), static_cast<double>(u)) - cdf_.begin()) - 1;
-  i = std::clamp(i, 0, n - 1);
+  int i = std::clamp(cell_of(static_cast<double>(u)), 0, n - 1);
   while (i < n - 1 && func_[i] == 0.0) ++i;
   const double width = cdf_[i + 1] - cdf_[i];
   double du = width > 0.0 ? (u - cdf_[i]) / width : 0.5;

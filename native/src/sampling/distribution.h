@@ -22,7 +22,13 @@ class Distribution1D {
   float cell_pdf(int index) const { return static_cast<float>(func_[index] / normaliser_); }
 
  private:
+  // Cell with the largest cdf <= the next value below (what std::upper_bound would find).
+  int cell_of(double u) const;
+
   std::vector<double> func_, cdf_;
+  // guide_[j]: the largest i with cdf_[i] <= j / size(): the cell of u lies between guide_[j] and
+  // guide_[j + 1] for j = floor(u * size()), so a search is short whatever the size.
+  std::vector<int> guide_;
   double integral_ = 0.0, normaliser_ = 1.0;
 };
 

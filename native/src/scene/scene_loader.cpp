@@ -495,7 +495,7 @@ SolverSettings parse_solver(const ScenePath& sp, const json& j) {
   check_known_keys(sp, j, "solver",
                    {"element_size", "paths", "population", "generations", "seed", "time_budget_s", "shape_weights",
                     "bound_weight", "coarse_to_fine", "elite", "constraints", "panel_constraints", "improve_iterations",
-                    "verify", "refine_edges"});
+                    "verify", "verify_paths", "refine_edges"});
   auto integer = [&](const char* name, int lo, int hi, int fallback) {
     if (!j.contains(name)) return fallback;
     const double v = number(sp, j.at(name), std::string("solver.") + name);
@@ -526,6 +526,7 @@ SolverSettings parse_solver(const ScenePath& sp, const json& j) {
     if (!j.at("verify").is_boolean()) sp.fail("solver.verify", "expected true or false");
     s.verify = j.at("verify").get<bool>();
   }
+  s.verify_paths = integer("verify_paths", 0, 1 << 24, s.verify_paths);
   if (j.contains("constraints")) s.constraints = parse_constraints(sp, j.at("constraints"));
   if (j.contains("shape_weights")) {
     const json& w = j.at("shape_weights");

@@ -32,6 +32,7 @@ struct SolverSettings {
   int improve_iterations = 20000;  // local search over whole openings after the refinement; 0: none
   bool refine_edges = true;        // move openings' edges off the element grid (thick walls: on a refined grid)
   bool verify = true;              // path-trace the final openings with real cutters (evaluate)
+  int verify_paths = 0;            // paths per sensor of that check; 0: as many as the contributions'
 };
 
 }  // namespace fenestra

@@ -14,8 +14,9 @@ namespace {
 
 constexpr double kTolerance = 1e-6;  // meters (and relative, for ratios): limits met within rounding
 constexpr double kMinClearance = 0.01;  // meters between two openings of a panel, whatever min_gap says
-constexpr int kMaxSweeps = 16;          // cycles over all openings' moves, per step size
+constexpr int kMaxSweeps = 16;          // tries per step size, in cycles of all openings' moves
 constexpr int kMaxScanPasses = 3;       // of EdgeSearchScope::scan_span over both axes
+constexpr size_t kScreenedFailures = 4;  // exact tries of a screened step's best-ranked moves before it ends
 
 bool covers_elements(const OpeningDomain& domain, int panel, double u0, double u1, double v0, double v1) {
   const auto [c0, c1] = domain.columns_overlapping(panel, u0, u1);
@@ -143,6 +144,32 @@ bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& cons
   return kept;
 }
 
+// Area of element k's cell inside r, m^2.
+double area_within(const OpeningDomain& domain, int k, const PanelRectangle& r) {
+  const Element& e = domain.elements()[static_cast<size_t>(k)];
+  const double du = std::min<double>(e.u1, r.u1) - std::max<double>(e.u0, r.u0);
+  const double dv = std::min<double>(e.v1, r.v1) - std::max<double>(e.v0, r.v0);
+  return du > 0.0 && dv > 0.0 ? du * dv : 0.0;
+}
+
+// Sensor values when opening i of the search moves from `from` to `to`, predicted by the light
+// each element adds when opened, in proportion to the share of its cell that opens or closes.
+Eigen::VectorXd screened_values(const OpeningDomain& domain, const Eigen::MatrixXd& opening_light,
+                                const Eigen::VectorXd& values, const PanelRectangle& from, const PanelRectangle& to) {
+  Eigen::VectorXd out = values;
+  const auto [c0, c1] = domain.columns_overlapping(from.panel, std::min(from.u0, to.u0), std::max(from.u1, to.u1));
+  const auto [r0, r1] = domain.rows_overlapping(from.panel, std::min(from.v0, to.v0), std::max(from.v1, to.v1));
+  for (int row = std::max(r0, 0); row <= r1; ++row)
+    for (int col = std::max(c0, 0); col <= c1; ++col) {
+      const int k = domain.cell(from.panel, row, col);
+      if (k < 0) continue;
+      const Element& e = domain.elements()[static_cast<size_t>(k)];
+      const double share = (area_within(domain, k, to) - area_within(domain, k, from)) / (e.width() * e.height());
+      if (share != 0.0) out += share * opening_light.col(k);
+    }
+  return out;
+}
+
 }  // namespace
 
 std::vector<double> edge_steps(double s, double module, bool thick) {
@@ -239,9 +266,11 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
       break;
   const std::vector<EdgeMove>& moves = edge_moves(scope.scan_span > 0.0);
   // Opening i's edges moved by `step` (move, direction): kept when the exact error falls.
-  auto try_move = [&](size_t i, const EdgeMove& move, double direction, double step, bool whole_elements) {
-    std::vector<PanelRectangle> candidate = search.rectangles();
-    PanelRectangle& r = candidate[i];
+  // The openings with opening i's edges moved by `step` (move, direction), if that changes and fits.
+  auto moved = [&](size_t i, const EdgeMove& move, double direction, double step, bool whole_elements,
+                   std::vector<PanelRectangle>* candidate) {
+    *candidate = search.rectangles();
+    PanelRectangle& r = (*candidate)[i];
     bool changed = true;
     for (int k = 0; k < 2; ++k) {
       const int edge = move.edges[k];
@@ -251,7 +280,12 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
       edge_of(r, edge) = whole_elements ? from + by : snap(from + by, module);
       changed = changed && edge_of(r, edge) != from;
     }
-    if (!changed || !fits(domain, constraints, candidate, i)) return false;
+    return changed && fits(domain, constraints, *candidate, i);
+  };
+  // Kept when the exact error falls.
+  auto try_move = [&](size_t i, const EdgeMove& move, double direction, double step, bool whole_elements) {
+    std::vector<PanelRectangle> candidate;
+    if (!moved(i, move, direction, step, whole_elements, &candidate)) return false;
     const Eigen::VectorXd& values = search.try_region(candidate);
     ++out.evaluations;
     const double e = prediction_error(objective, values - closed);
@@ -262,18 +296,52 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
     return true;
   };
   const size_t cycle = search.rectangles().size() * moves.size() * 2;
-  for (const double step : edge_steps(s, module, false)) {
+  auto thick = [&](size_t i) { return domain.panels()[search.rectangles()[i].panel].thickness > 0.0f; };
+  auto searched = [&](size_t i) { return scope.zero_thickness_panels || thick(i); };
+  // The screen is linear: in thick walls, where elements open together pass much more light than
+  // apart (reveals, oblique paths), it misranks moves, so those openings are not screened.
+  auto screened = [&](size_t i) { return scope.opening_light && !thick(i) && searched(i); };
+  // The screened openings' moves in the order of the error the screen predicts, evaluated exactly
+  // until kScreenedFailures in a row fail.
+  auto screened_step = [&](double step, bool whole_elements) {
+    for (size_t round = 0; round < kMaxSweeps * cycle; ++round) {  // a move kept per round
+      std::vector<std::pair<double, size_t>> ranked;
+      for (size_t t = 0; t < cycle; ++t) {
+        const size_t i = t / (moves.size() * 2);
+        if (!screened(i)) continue;
+        std::vector<PanelRectangle> candidate;
+        if (!moved(i, moves[t / 2 % moves.size()], t % 2 ? 1.0 : -1.0, step, whole_elements, &candidate)) continue;
+        const Eigen::VectorXd predicted =
+            screened_values(domain, *scope.opening_light, search.values(), search.rectangles()[i], candidate[i]);
+        ranked.push_back({prediction_error(objective, predicted - closed), t});
+      }
+      std::sort(ranked.begin(), ranked.end());
+      bool improved = false;
+      for (size_t n = 0; n < ranked.size() && n < kScreenedFailures && !improved; ++n) {
+        const size_t t = ranked[n].second;
+        if (progress) progress->throw_if_cancelled();
+        improved = try_move(t / (moves.size() * 2), moves[t / 2 % moves.size()], t % 2 ? 1.0 : -1.0, step, whole_elements);
+      }
+      if (!improved) return;
+    }
+  };
+  const std::vector<double> steps = edge_steps(s, module, false);
+  for (const double step : steps) {
     const bool whole_elements = step >= s * (1.0 - 1e-9);
     if (whole_elements && !scope.whole_elements) continue;
-    // Every opening's moves in turn, until a whole cycle of them since the last one kept has
-    // failed: each was then tried against the openings as they ended.
-    for (size_t t = 0, failed = 0; failed < cycle && t < kMaxSweeps * cycle; ++t) {
+    const bool finest = step == steps.back();
+    if (scope.opening_light && !finest) screened_step(step, whole_elements);
+    // Every opening's moves in turn (at the coarser steps, those the screen left), until a whole
+    // cycle of them since the last one kept has failed: each was then tried against the openings
+    // as they ended. The finest step tries every move of every opening.
+    for (size_t t = 0, failed = 0, tries = 0; failed < cycle && tries < kMaxSweeps * cycle; ++tries) {
       const size_t i = t / (moves.size() * 2) % search.rectangles().size();
       const EdgeMove& move = moves[t / 2 % moves.size()];
-      const bool thick = domain.panels()[search.rectangles()[i].panel].thickness > 0.0f;
       if (progress) progress->throw_if_cancelled();
-      const bool kept = (thick || scope.zero_thickness_panels) && try_move(i, move, t % 2 ? 1.0 : -1.0, step, whole_elements);
+      const bool kept =
+          searched(i) && (finest || !screened(i)) && try_move(i, move, t % 2 ? 1.0 : -1.0, step, whole_elements);
       failed = kept ? 0 : failed + 1;
+      if (!kept) ++t;  // a kept move is tried again at once: an edge often travels several steps
     }
   }
   out.openings = search.rectangles();

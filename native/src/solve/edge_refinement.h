@@ -59,6 +59,9 @@ struct EdgeSearchScope {
   // this distance of its two edges is tried (its error along a sill or head can have narrow
   // valleys that single steps do not cross), and the best pair kept.
   double scan_span = 0.0;
+  // Optional, sensors x elements: the light each element adds when opened (a linearisation about
+  // the start). It ranks the moves of every step but the finest, so that few are evaluated.
+  const Eigen::MatrixXd* opening_light = nullptr;
 };
 
 EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,

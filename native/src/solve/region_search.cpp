@@ -63,7 +63,7 @@ std::vector<PanelRectangle> strips_between(const std::vector<PanelRectangle>& fr
 }  // namespace
 
 RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, const std::vector<PanelRectangle>& start)
-    : c_(c), domain_(domain), rectangles_(start) {
+    : c_(c), domain_(domain), rectangles_(start), candidate_region_(domain, start) {
   const size_t sensors = c.records.size(), elements = c.element_count();
   path_values_.resize(sensors);
   element_begin_.resize(sensors);
@@ -133,7 +133,8 @@ const Eigen::VectorXd& RegionSearch::try_region(const std::vector<PanelRectangle
   const std::vector<PanelRectangle> strips = strips_between(rectangles_, candidate);
   candidate_ = candidate;
   candidate_values_ = values_;
-  const OpenRegion region(domain_, candidate);
+  candidate_region_.set_rectangles(candidate);
+  const OpenRegion& region = candidate_region_;
   std::atomic<size_t> evaluated{0};
   tbb::parallel_for(size_t(0), c_.records.size(), [&](size_t i) {
     const SensorRecord& r = c_.records[i];
@@ -143,7 +144,8 @@ const Eigen::VectorXd& RegionSearch::try_region(const std::vector<PanelRectangle
     t.values.clear();
     // The points in the strips whose flag changes, flipped while the paths they belong to are
     // evaluated (and flipped back: accept() flips them again).
-    std::vector<uint32_t> paths;
+    std::vector<uint32_t>& paths = t.paths;
+    paths.clear();
     points_in(i, strips, [&](int k, const Met& m) {
       const uint8_t now = region.is_open(k, {m.u, m.v});
       if (now == open.of(m)) return;

@@ -46,6 +46,7 @@ class RegionSearch {
   struct Try {
     std::vector<const Met*> flipped;
     std::vector<std::pair<uint32_t, double>> values;
+    std::vector<uint32_t> paths;  // scratch: the paths the flipped points belong to
   };
   // The met points of a sensor that lie in one of the strips (with a little slack).
   template <typename Visit>
@@ -54,6 +55,7 @@ class RegionSearch {
   const Contributions& c_;
   const OpeningDomain& domain_;
   std::vector<PanelRectangle> rectangles_, candidate_;
+  OpenRegion candidate_region_;
   Eigen::VectorXd values_, candidate_values_;
   std::vector<std::vector<double>> path_values_;  // [sensor][path]
   // Per sensor, the met points of each element, sorted by u (CSR: begin[k] .. begin[k + 1]).

@@ -286,21 +286,27 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   std::vector<GridRectangle> rects = refine_openings(scene.domain, out.open, about_chosen, constraints, progress);
   best = exact_of(rects, &chosen);
   out.refined_error = goal_error(out.goals, chosen.value);
+  // The exact linear model about the current openings (the local search's, then the edge
+  // search's screen).
+  std::optional<LinearObjective> about;
+  auto linearise_about_rects = [&] {
+    about = linearised_objective(objective, c, rectangles_mask(scene.domain, rects), chosen.value, progress);
+  };
   if (settings.improve_iterations > 0) {
     if (progress) progress->start("solving: local search over openings", 1);
     // Each round searches the exact linear model about the current openings, and is kept only if
     // the exact evaluation agrees; the next round linearises about its answer.
-    LinearObjective about = linearised_objective(objective, c, rectangles_mask(scene.domain, rects), chosen.value, progress);
+    linearise_about_rects();
     for (int round = 0; round < kLinearisationRounds; ++round) {
       const std::vector<GridRectangle> improved = improve_rectangles(
-          scene.domain, rects, about, constraints, settings.seed + round, settings.improve_iterations, progress);
+          scene.domain, rects, *about, constraints, settings.seed + round, settings.improve_iterations, progress);
       SensorValues improved_values;
       const double f = exact_of(improved, &improved_values);
       if (!(f < best * (1.0 - 1e-6))) break;
       best = f;
       rects = improved;
       chosen = improved_values;
-      about = linearised_objective(objective, c, rectangles_mask(scene.domain, rects), chosen.value, progress);
+      linearise_about_rects();
     }
   }
   out.open = rectangles_mask(scene.domain, rects);
@@ -313,7 +319,10 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     if (progress) progress->start("solving: edges off the element grid", 1);
     std::vector<PanelRectangle> on_grid;
     for (const GridRectangle& r : rects) on_grid.push_back(panel_rectangle(r, scene.domain.element_size()));
-    const EdgeRefinement edges = refine_edges(scene.domain, c, objective, constraints, on_grid, progress);
+    if (!about) linearise_about_rects();
+    EdgeSearchScope scope;
+    scope.opening_light = &about->E;
+    const EdgeRefinement edges = refine_edges(scene.domain, c, objective, constraints, on_grid, progress, scope);
     out.edge_moves = edges.moves;
     std::vector<PanelRectangle> final_rects = on_grid;
     if (edges.moves > 0) {
@@ -367,7 +376,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     t = Clock::now();
     std::vector<OpeningInput> cutters;
     for (const OpeningRectangle& o : out.openings) cutters.emplace_back(o.parameter);
-    const SensorValues v = evaluate_openings(scene, cutters, progress);
+    const SensorValues v = evaluate_openings(scene, cutters, progress, settings.verify_paths);
     out.verified = true;
     out.verified_value = v.value;
     out.verified_stderr = v.standard_error;

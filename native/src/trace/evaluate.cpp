@@ -102,13 +102,14 @@ OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInp
   return g;
 }
 
-SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings, Progress* progress) {
+SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings, Progress* progress,
+                               int paths_per_sensor) {
   OpeningsGeometry g = build_openings(scene, openings);
   const PathTracer tracer(scene, std::move(g.cutters), std::move(g.reveals));
   tracer.check_sensors();
 
   const size_t sensors = scene.sensors.size();
-  const int paths = scene.render.paths_per_sensor;
+  const int paths = paths_per_sensor > 0 ? paths_per_sensor : scene.render.paths_per_sensor;
   const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
   std::vector<double> sum(sensors * tasks_per_sensor, 0.0), sum_sq(sensors * tasks_per_sensor, 0.0);
   if (progress) progress->start("tracing the scene with its openings", sum.size());

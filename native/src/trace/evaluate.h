@@ -37,7 +37,8 @@ struct OpeningsGeometry {
 // opening) and builds their cutters and reveal faces.
 OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInput>& openings);
 
+// Paths per sensor: `paths_per_sensor`, or the scene's render.paths_per_sensor when 0.
 SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings,
-                               Progress* progress = nullptr);
+                               Progress* progress = nullptr, int paths_per_sensor = 0);
 
 }  // namespace fenestra

@@ -57,6 +57,11 @@ OpenRegion::OpenRegion(const OpeningDomain& domain, const std::vector<PanelRecta
   inset_ = 1e-5 * domain.element_size();  // far above float rounding of panel coordinates, far below any edge step
   cells_.reserve(domain.element_count());
   for (const Element& e : domain.elements()) cells_.push_back({e.panel, e.u0, e.u1, e.v0, e.v1});
+  set_rectangles(rectangles);
+}
+
+void OpenRegion::set_rectangles(const std::vector<PanelRectangle>& rectangles) {
+  for (std::vector<PanelRectangle>& list : by_panel_) list.clear();
   for (const PanelRectangle& r : rectangles) {
     if (r.panel < 0 || static_cast<size_t>(r.panel) >= by_panel_.size())
       throw std::invalid_argument("open rectangle on panel " + std::to_string(r.panel) + ", which does not exist");

@@ -57,6 +57,8 @@ class OpenRegion {
             static_cast<float>(std::clamp<double>(p.v, cell.v0 + inset_, cell.v1 - inset_))};
   }
   size_t element_count() const { return cells_.size(); }
+  // The same domain's cells with other open rectangles (a search tries many).
+  void set_rectangles(const std::vector<PanelRectangle>& rectangles);
 
  private:
   struct Cell {
