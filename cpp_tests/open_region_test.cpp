@@ -14,28 +14,9 @@
 namespace fenestra {
 namespace {
 
-using test::ObjBuilder;
+using test::room_with_neighbour;
 using test::TempDir;
 using test::within_sigma;
-
-Scene room_with_neighbour(const TempDir& dir, int paths) {
-  ObjBuilder obj;
-  obj.box({0, 0, 0}, {4, 3, 2.5f}, [](const std::string& f) { return f == "south" || f == "ceiling" ? "domain" : "grey"; });
-  obj.quad("ground", "ground", {-30, -30, -0.01f}, {30, -30, -0.01f}, {30, 30, -0.01f}, {-30, 30, -0.01f});
-  obj.quad("neighbour", "grey", {-5, -4, 0}, {-5, -4, 6}, {8, -4, 6}, {8, -4, 0});
-  dir.write("scene.obj", obj.str());
-  std::ostringstream s;
-  s << R"({"fenestra": 1, "geometry": "scene.obj",
-      "materials": {"grey": {"reflectance": 0.6}, "domain": {"reflectance": 0.5}, "ground": {"reflectance": 0.2}},
-      "opening_domain": {"materials": ["domain"], "element_size": 0.5},
-      "sensors": {"points": [[1, 1, 0.8], [3, 2, 0.8], [2, 2.5, 1.2], [0.5, 0.5, 2]], "normals": [0, 0, 1]},
-      "sky": {"type": "preetham", "latitude": 48.85, "longitude": 2.35, "utc_offset": 1, "date": "2026-03-21",
-              "time": "11:00", "resolution": [128, 64]},
-      "render": {"paths_per_sensor": )"
-    << paths << R"(, "max_bounces": 6, "seed": 5}})";
-  dir.write("scene.json", s.str());
-  return load_scene(dir.file("scene.json"));
-}
 
 // The rectangle [u0, u1] x [v0, v1] of panel p in world corners (for evaluate).
 Rectangle world_corners(const OpeningDomain& domain, const PanelRectangle& r) {

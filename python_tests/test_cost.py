@@ -257,3 +257,12 @@ def test_solve_estimate_counts_the_edge_search_index(tmp_path):
     d["solver"] = {"refine_edges": False}
     path.write_text(json.dumps(d))
     assert "edge_search_index" not in fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")["memory"]
+
+
+def test_solve_estimate_counts_the_exact_values_index(tmp_path):
+    """The exact evaluation indexes the elements each path met (docs/cost.md): half the path
+    records while solving; the contributions alone have none."""
+    scene = fenestra.load_scene(str(write_room(tmp_path)))
+    e = fenestra.estimate_cost(scene, "solve")
+    assert e["memory"]["exact_values_index"] == pytest.approx(0.5 * e["memory"]["path_records"])
+    assert "exact_values_index" not in fenestra.estimate_cost(scene, "contributions")["memory"]

@@ -36,6 +36,9 @@ constexpr double kRecordAssembly = 1.5;
 // (its place, path and event, and an open flag) and 8 per path, against at least 12 bytes per
 // point in the records (a condition and its point; an event and its point, 24).
 constexpr double kEdgeSearchIndexShare = 1.5;
+// The exact values' index (solve/exact_values.h): 4 bytes per element a path met (at most one
+// per point, against at least 12 in the records) and 8 per path for the reference's values.
+constexpr double kExactValuesIndexShare = 0.5;
 // Embree's BVH, the tracer's triangle data and the mesh copies, per triangle.
 constexpr double kRaySceneBytesPerTriangle = 256.0;
 // Per worker thread while analysing a sensor: 16 replicate sums and A's sum per element.
@@ -122,18 +125,19 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                          kRaySceneBytesPerTriangle * static_cast<double>(e->triangles), "solving", "fewer triangles"});
   e->memory.push_back({"population", "the genetic algorithm's populations", 3 * pop * (N + 8 * S + 64), "solving",
                        "a smaller solver.population"});
+  const double path_records = S * static_cast<double>(e->paths_per_sensor) * e->bytes_per_path;
+  e->memory.push_back({"exact_values_index", "the exact evaluation's index of the elements each path met",
+                       kExactValuesIndexShare * path_records, "solving", "fewer solver paths"});
   if (s.refine_edges) {
     // One search at a time: on the element grid's records, then on a thick wall's refined ones.
-    const double records = S * static_cast<double>(e->paths_per_sensor) * e->bytes_per_path;
     e->memory.push_back({"edge_search_index", "the edge search's index of where paths met the domain",
-                         kEdgeSearchIndexShare * records, "solving", "fewer solver paths, or solver.refine_edges off"});
+                         kEdgeSearchIndexShare * path_records, "solving", "fewer solver paths, or solver.refine_edges off"});
   }
   if (s.refine_edges && scene.domain.has_thick_walls()) {
     // Edges in thick walls: the paths traced again on a grid refined about the openings
     // (solve/thick_wall_edges.h), choosing one way at each tube side (about the time of a
     // zero-thickness wall's pass), up to twice; their records beside the first pass's.
-    const double records = S * static_cast<double>(e->paths_per_sensor) * e->bytes_per_path;
-    e->memory.push_back({"thick_wall_edge_records", "the path records of the thick walls' refined grids", records,
+    e->memory.push_back({"thick_wall_edge_records", "the path records of the thick walls' refined grids", path_records,
                          "solving", "fewer solver paths, or solver.refine_edges off"});
     e->time.push_back({"thick_wall_edges", "tracing the thick walls' refined grids",
                        kThickWallEdgeRounds * S * static_cast<double>(e->paths_per_sensor) *

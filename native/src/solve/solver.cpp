@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -18,6 +17,7 @@
 #include "trace/evaluate.h"
 #include "trace/flip_effects.h"
 #include "solve/edge_refinement.h"
+#include "solve/exact_values.h"
 #include "solve/thick_wall_edges.h"
 
 namespace fenestra {
@@ -104,23 +104,6 @@ double exact_fitness(const LinearObjective& o, const ElementGrid& grid, const Sh
                      const std::vector<uint8_t>& open, const Eigen::VectorXd& predicted_net) {
   return prediction_error(o, predicted_net) + shape_penalty(shape, shape_counts(grid, open));
 }
-
-// Exact values of open sets from the path records, kept: the stages evaluate many sets more than
-// once (elites carried from round to round, the final candidates, the linear start's answer).
-class ExactValues {
- public:
-  ExactValues(const Contributions& c, const Progress* progress) : c_(c), progress_(progress) {}
-  const SensorValues& operator()(const std::vector<uint8_t>& open) {
-    auto it = known_.find(open);
-    if (it == known_.end()) it = known_.emplace(open, c_.evaluate(open, progress_)).first;
-    return it->second;
-  }
-
- private:
-  const Contributions& c_;
-  const Progress* progress_;
-  std::map<std::vector<uint8_t>, SensorValues> known_;
-};
 
 // Rounds of successive linearisation after the first genetic run (each stops early when it gains nothing).
 constexpr int kLinearisationRounds = 4;

@@ -1,0 +1,48 @@
+// The solver's exact values of open-element sets: evaluated from a reference set (only the paths
+// that met a changed element evaluated again), they equal a full evaluation of the records.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "solve/exact_values.h"
+#include "test_scenes.h"
+#include "trace/contributions.h"
+
+namespace fenestra {
+namespace {
+
+using test::room_with_neighbour;
+using test::TempDir;
+
+// A seeded walk over open sets, flipping one to a few elements at a time (evaluated from the
+// reference) and now and then many (evaluated in full, and the new reference).
+TEST(ExactValues, EqualAFullEvaluationNearAndFarFromTheReference) {
+  TempDir dir;
+  const Scene scene = room_with_neighbour(dir, 1 << 9);
+  const Contributions c = compute_contributions(scene);
+  ExactValues exact(c, nullptr);
+  std::mt19937 rng(11);
+  std::vector<uint8_t> open(c.element_count(), 0);
+  const int sets = 60;
+  for (int set = 0; set < sets; ++set) {
+    const size_t flips = set % 10 == 9 ? c.element_count() / 2 : 1 + rng() % 3;
+    for (size_t f = 0; f < flips; ++f) open[rng() % open.size()] ^= 1;
+    const SensorValues& got = exact(open);
+    const SensorValues full = c.evaluate(open);
+    for (Eigen::Index i = 0; i < full.value.size(); ++i) {
+      ASSERT_NEAR(got.value[i], full.value[i], 1e-12 * (1.0 + full.value[i])) << "set " << set << " sensor " << i;
+      ASSERT_NEAR(got.standard_error[i], full.standard_error[i], 1e-9 * (1.0 + full.standard_error[i]))
+          << "set " << set << " sensor " << i;
+    }
+  }
+  EXPECT_LT(exact.full_evaluations(), static_cast<size_t>(sets / 2));  // most from the reference
+  EXPECT_GT(exact.full_evaluations(), 1u);                              // the far sets in full
+  // The cost model counts the index as kExactValuesIndexShare of the path records (docs/cost.md).
+  size_t record_bytes = 0;
+  for (const SensorRecord& r : c.records) record_bytes += r.memory_bytes();
+  EXPECT_LT(static_cast<double>(exact.memory_bytes()), 0.5 * static_cast<double>(record_bytes));
+  EXPECT_GT(static_cast<double>(exact.memory_bytes()), 0.05 * static_cast<double>(record_bytes));
+}
+
+}  // namespace
+}  // namespace fenestra
