@@ -18,6 +18,24 @@ double value_with(const SensorRecord& r, size_t p, const std::vector<uint8_t>& o
   return path_value_in_region(r, p, [&](int32_t k, const PanelPoint&) { return open[k] != 0; });
 }
 
+// Each sensor's value and standard error from its replicate sums (sums_of(i)), in parallel,
+// polling for a cancel.
+template <typename SumsOf>
+SensorValues from_sums(const Contributions& c, const Progress* progress, SumsOf sums_of) {
+  const size_t sensors = c.records.size();
+  SensorValues out;
+  out.value.resize(static_cast<Eigen::Index>(sensors));
+  out.standard_error.resize(static_cast<Eigen::Index>(sensors));
+  tbb::parallel_for(size_t(0), sensors, [&](size_t i) {
+    if (progress && progress->cancelled()) return;
+    const ReplicateSums sums = sums_of(i);
+    const auto e = static_cast<Eigen::Index>(i);
+    sums.estimate(c.records[i].path_count(), &out.value[e], &out.standard_error[e]);
+  });
+  if (progress) progress->throw_if_cancelled();
+  return out;
+}
+
 }  // namespace
 
 const SensorValues& ExactValues::operator()(const std::vector<uint8_t>& open) {
@@ -48,44 +66,30 @@ SensorValues ExactValues::evaluate_in_full(const std::vector<uint8_t>& open) {
   reference_.clear();  // until complete
   reference_values_.resize(sensors);
   reference_sums_.assign(sensors, ReplicateSums{});
-  SensorValues out;
-  out.value.resize(static_cast<Eigen::Index>(sensors));
-  out.standard_error.resize(static_cast<Eigen::Index>(sensors));
-  tbb::parallel_for(size_t(0), sensors, [&](size_t i) {
-    if (progress_ && progress_->cancelled()) return;
+  SensorValues out = from_sums(c_, progress_, [&](size_t i) {
     const SensorRecord& r = c_.records[i];
     std::vector<double>& values = reference_values_[i];
     values.resize(r.path_count());
     for (size_t p = 0; p < r.path_count(); ++p) reference_sums_[i].add(p, values[p] = value_with(r, p, open));
-    const auto e = static_cast<Eigen::Index>(i);
-    reference_sums_[i].estimate(r.path_count(), &out.value[e], &out.standard_error[e]);
+    return reference_sums_[i];
   });
-  if (progress_) progress_->throw_if_cancelled();
   reference_ = open;
   ++full_evaluations_;
   return out;
 }
 
 SensorValues ExactValues::evaluate_from_reference(const std::vector<uint8_t>& open, const std::vector<int32_t>& changed) {
-  const size_t sensors = c_.records.size();
-  SensorValues out;
-  out.value.resize(static_cast<Eigen::Index>(sensors));
-  out.standard_error.resize(static_cast<Eigen::Index>(sensors));
-  tbb::parallel_for(size_t(0), sensors, [&](size_t i) {
-    if (progress_ && progress_->cancelled()) return;
-    const SensorRecord& r = c_.records[i];
+  return from_sums(c_, progress_, [&](size_t i) {
     const std::vector<uint32_t>& begin = element_begin_[i];
     std::vector<uint32_t> paths;
-    for (int32_t k : changed) paths.insert(paths.end(), element_paths_[i].begin() + begin[k], element_paths_[i].begin() + begin[k + 1]);
+    for (int32_t k : changed)
+      paths.insert(paths.end(), element_paths_[i].begin() + begin[k], element_paths_[i].begin() + begin[k + 1]);
     std::sort(paths.begin(), paths.end());
     paths.erase(std::unique(paths.begin(), paths.end()), paths.end());
     ReplicateSums sums = reference_sums_[i];
-    for (uint32_t p : paths) sums.add(p, value_with(r, p, open) - reference_values_[i][p]);
-    const auto e = static_cast<Eigen::Index>(i);
-    sums.estimate(r.path_count(), &out.value[e], &out.standard_error[e]);
+    for (uint32_t p : paths) sums.add(p, value_with(c_.records[i], p, open) - reference_values_[i][p]);
+    return sums;
   });
-  if (progress_) progress_->throw_if_cancelled();
-  return out;
 }
 
 void ExactValues::build_index() {
