@@ -144,9 +144,8 @@ bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& cons
   return kept;
 }
 
-// Area of element k's cell inside r, m^2.
-double area_within(const OpeningDomain& domain, int k, const PanelRectangle& r) {
-  const Element& e = domain.elements()[static_cast<size_t>(k)];
+// Area of an element's cell inside r, m^2.
+double area_within(const Element& e, const PanelRectangle& r) {
   const double du = std::min<double>(e.u1, r.u1) - std::max<double>(e.u0, r.u0);
   const double dv = std::min<double>(e.v1, r.v1) - std::max<double>(e.v0, r.v0);
   return du > 0.0 && dv > 0.0 ? du * dv : 0.0;
@@ -164,7 +163,7 @@ Eigen::VectorXd screened_values(const OpeningDomain& domain, const Eigen::Matrix
       const int k = domain.cell(from.panel, row, col);
       if (k < 0) continue;
       const Element& e = domain.elements()[static_cast<size_t>(k)];
-      const double share = (area_within(domain, k, to) - area_within(domain, k, from)) / (e.width() * e.height());
+      const double share = (area_within(e, to) - area_within(e, from)) / (e.width() * e.height());
       if (share != 0.0) out += share * opening_light.col(k);
     }
   return out;
@@ -265,7 +264,6 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
     if (!scan_edge_pairs(domain, constraints, objective, closed, scope.scan_span, &search, &error, &out, progress))
       break;
   const std::vector<EdgeMove>& moves = edge_moves(scope.scan_span > 0.0);
-  // Opening i's edges moved by `step` (move, direction): kept when the exact error falls.
   // The openings with opening i's edges moved by `step` (move, direction), if that changes and fits.
   auto moved = [&](size_t i, const EdgeMove& move, double direction, double step, bool whole_elements,
                    std::vector<PanelRectangle>* candidate) {
@@ -296,6 +294,13 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
     return true;
   };
   const size_t cycle = search.rectangles().size() * moves.size() * 2;
+  // Try t of a cycle: opening t / (2 moves), move t / 2, direction by t's parity.
+  auto opening_of = [&](size_t t) { return t / (moves.size() * 2) % search.rectangles().size(); };
+  auto move_of = [&](size_t t) -> const EdgeMove& { return moves[t / 2 % moves.size()]; };
+  auto direction_of = [](size_t t) { return t % 2 ? 1.0 : -1.0; };
+  auto try_nth = [&](size_t t, double step, bool whole_elements) {
+    return try_move(opening_of(t), move_of(t), direction_of(t), step, whole_elements);
+  };
   auto thick = [&](size_t i) { return domain.panels()[search.rectangles()[i].panel].thickness > 0.0f; };
   auto searched = [&](size_t i) { return scope.zero_thickness_panels || thick(i); };
   // The screen is linear: in thick walls, where elements open together pass much more light than
@@ -307,10 +312,10 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
     for (size_t round = 0; round < kMaxSweeps * cycle; ++round) {  // a move kept per round
       std::vector<std::pair<double, size_t>> ranked;
       for (size_t t = 0; t < cycle; ++t) {
-        const size_t i = t / (moves.size() * 2);
+        const size_t i = opening_of(t);
         if (!screened(i)) continue;
         std::vector<PanelRectangle> candidate;
-        if (!moved(i, moves[t / 2 % moves.size()], t % 2 ? 1.0 : -1.0, step, whole_elements, &candidate)) continue;
+        if (!moved(i, move_of(t), direction_of(t), step, whole_elements, &candidate)) continue;
         const Eigen::VectorXd predicted =
             screened_values(domain, *scope.opening_light, search.values(), search.rectangles()[i], candidate[i]);
         ranked.push_back({prediction_error(objective, predicted - closed), t});
@@ -318,9 +323,8 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
       std::sort(ranked.begin(), ranked.end());
       bool improved = false;
       for (size_t n = 0; n < ranked.size() && n < kScreenedFailures && !improved; ++n) {
-        const size_t t = ranked[n].second;
         if (progress) progress->throw_if_cancelled();
-        improved = try_move(t / (moves.size() * 2), moves[t / 2 % moves.size()], t % 2 ? 1.0 : -1.0, step, whole_elements);
+        improved = try_nth(ranked[n].second, step, whole_elements);
       }
       if (!improved) return;
     }
@@ -335,11 +339,9 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
     // cycle of them since the last one kept has failed: each was then tried against the openings
     // as they ended. The finest step tries every move of every opening.
     for (size_t t = 0, failed = 0, tries = 0; failed < cycle && tries < kMaxSweeps * cycle; ++tries) {
-      const size_t i = t / (moves.size() * 2) % search.rectangles().size();
-      const EdgeMove& move = moves[t / 2 % moves.size()];
+      const size_t i = opening_of(t);
       if (progress) progress->throw_if_cancelled();
-      const bool kept =
-          searched(i) && (finest || !screened(i)) && try_move(i, move, t % 2 ? 1.0 : -1.0, step, whole_elements);
+      const bool kept = searched(i) && (finest || !screened(i)) && try_nth(t, step, whole_elements);
       failed = kept ? 0 : failed + 1;
       if (!kept) ++t;  // a kept move is tried again at once: an edge often travels several steps
     }

@@ -14,10 +14,6 @@ namespace {
 // full (and becomes the reference): a search over scattered paths would cost about as much.
 constexpr double kMaxShareFromReference = 0.5;
 
-double value_with(const SensorRecord& r, size_t p, const std::vector<uint8_t>& open) {
-  return path_value_in_region(r, p, [&](int32_t k, const PanelPoint&) { return open[k] != 0; });
-}
-
 // Each sensor's value and standard error from its replicate sums (sums_of(i)), in parallel,
 // polling for a cancel.
 template <typename SumsOf>
@@ -70,7 +66,7 @@ SensorValues ExactValues::evaluate_in_full(const std::vector<uint8_t>& open) {
     const SensorRecord& r = c_.records[i];
     std::vector<double>& values = reference_values_[i];
     values.resize(r.path_count());
-    for (size_t p = 0; p < r.path_count(); ++p) reference_sums_[i].add(p, values[p] = value_with(r, p, open));
+    for (size_t p = 0; p < r.path_count(); ++p) reference_sums_[i].add(p, values[p] = path_value(r, p, open));
     return reference_sums_[i];
   });
   reference_ = open;
@@ -87,7 +83,7 @@ SensorValues ExactValues::evaluate_from_reference(const std::vector<uint8_t>& op
     std::sort(paths.begin(), paths.end());
     paths.erase(std::unique(paths.begin(), paths.end()), paths.end());
     ReplicateSums sums = reference_sums_[i];
-    for (uint32_t p : paths) sums.add(p, value_with(c_.records[i], p, open) - reference_values_[i][p]);
+    for (uint32_t p : paths) sums.add(p, path_value(c_.records[i], p, open) - reference_values_[i][p]);
     return sums;
   });
 }
