@@ -92,6 +92,8 @@ def test_verify_paths_sets_the_checks_paths_only(small_room):
     full, quarter = solve_with(0), solve_with(512)
     assert quarter["settings"]["verify_paths"] == 512 and full["settings"]["verify_paths"] == 0
     assert quarter["openings"] == full["openings"]
+    noise = quarter["error"]["verified"]["noise_rms"] / full["error"]["verified"]["noise_rms"]
+    assert 1.6 < noise < 2.5  # the check's noise, in the error's terms, doubles too
     assert [s["predicted"] for s in quarter["sensors"]] == [s["predicted"] for s in full["sensors"]]
     for a, b in zip(full["sensors"], quarter["sensors"]):
         # The standard error of the check: sqrt(2048 / 512) = 2 times larger, up to the spread of the

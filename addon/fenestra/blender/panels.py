@@ -194,7 +194,7 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             col.label(text="Evaluated as placed", icon='CHECKMARK')
         col.label(text="Worst sensor %.1f %%" % (100 * r.max_relative))
         if r.verified_rms >= 0:
-            col.label(text="Checked: %.1f %% RMS" % (100 * r.verified_rms))
+            col.label(text="Checked: %.1f %% (noise %.1f %%)" % (100 * r.verified_rms, 100 * r.verified_noise))
         for warning in filter(None, r.warnings.split("\n")):
             draw_warning(layout, warning)
         col.label(text="Time %.1f s (solver %.1f s)" % (r.seconds_total, r.seconds_solver))

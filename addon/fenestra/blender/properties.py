@@ -185,6 +185,9 @@ class FenestraResults(PropertyGroup):
     verified_rms: FloatProperty(name="Checked Error", default=-1.0,
                                 description="Relative RMS error path-traced with the openings really cut "
                                             "(negative: not checked)")
+    verified_noise: FloatProperty(name="Checked Noise", default=0.0,
+                                  description="Monte Carlo noise of the checked error (relative RMS of its "
+                                              "standard errors): fewer paths read worse by about this much")
     warnings: StringProperty(name="Warnings", description="What to know before trusting the result, one per line")
     evaluated: BoolProperty(name="Evaluated", default=False,
                             description="The values and errors are path-traced with the cutters as they stand "

@@ -240,6 +240,7 @@ def apply(context, study, result):
     r.max_relative = result["error"].get("max_relative", 0.0)
     verified = result["error"].get("verified")
     r.verified_rms = verified["relative_rms"] if verified else -1.0
+    r.verified_noise = verified.get("noise_rms", 0.0) if verified else 0.0
     r.warnings = "\n".join(result.get("warnings", []))
     r.openings = len(result["openings"])
     r.open_elements = len(result.get("open_elements", []))

@@ -50,6 +50,16 @@ SolverGoals resolve_goals(const Scene& scene, const Contributions& c) {
   return g;
 }
 
+double goal_noise(const SolverGoals& goals, const Eigen::VectorXd& standard_error) {
+  double num = 0.0, den = 0.0;
+  for (Eigen::Index i = 0; i < standard_error.size(); ++i) {
+    if (!(goals.weight[i] > 0.0)) continue;
+    num += goals.weight[i] * standard_error[i] * standard_error[i];
+    den += goals.weight[i] * goals.target[i] * goals.target[i];
+  }
+  return den > 0.0 ? std::sqrt(num / den) : std::sqrt(num);
+}
+
 GoalError goal_error(const SolverGoals& goals, const Eigen::VectorXd& predicted) {
   GoalError e;
   double num = 0.0, den = 0.0;

@@ -29,5 +29,8 @@ struct GoalError {
   int worst_sensor = -1;
 };
 GoalError goal_error(const SolverGoals& goals, const Eigen::VectorXd& predicted);
+// The Monte Carlo noise of that relative RMS error: the values' standard errors in its place,
+// sqrt(sum w se^2 / sum w goal^2) over the sensors with a goal.
+double goal_noise(const SolverGoals& goals, const Eigen::VectorXd& standard_error);
 
 }  // namespace fenestra
