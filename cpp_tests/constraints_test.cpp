@@ -299,6 +299,60 @@ TEST(ConstraintsSatisfies, SizeAspectMarginAndHeightsOnAWall) {
   EXPECT_NEAR(panel_base_heights(raised, mesh)[0], 3.0, 1e-6);
 }
 
+TEST(ConstraintsSatisfies, HeadClearanceCountsFromTheWallsTop) {
+  const OpeningDomain d = wall(5, 2.5, 0.25);  // 10 rows: top at 2.5 m
+  const Panel& p = d.panels()[0];
+  const double a = d.element_size();
+  std::string why;
+  OpeningConstraints c;
+  c.head_clearance = 0.2;
+  EXPECT_TRUE(satisfies({0, 2, 8, 2, 5}, p, c, a, &why)) << why;  // head at 2.25 m: 0.25 m below the top
+  EXPECT_FALSE(satisfies({0, 2, 9, 2, 5}, p, c, a, &why));        // head at the top
+  EXPECT_NE(why.find("head_clearance 0.2 m"), std::string::npos) << why;
+  c.head_clearance = 0.3;
+  EXPECT_FALSE(satisfies({0, 2, 8, 2, 5}, p, c, a, &why));
+  // The top comes from the panel's faces when given: a ceiling 0.5 m above the grid's top.
+  c.panel_base_z = {0.0};
+  c.panel_top_z = {3.0};
+  EXPECT_TRUE(satisfies({0, 2, 9, 2, 5}, p, c, a, &why)) << why;
+  // Roofs have no head.
+  const OpeningDomain roof = domain_of({{Vec3(0, 0, 3), Vec3(0, 2, 3), Vec3(2, 2, 3), Vec3(2, 0, 3)}}, 0.25);
+  OpeningConstraints r;
+  r.head_clearance = 5.0;
+  EXPECT_TRUE(satisfies({0, 0, 7, 0, 7}, roof.panels()[0], r, roof.element_size(), &why)) << why;
+}
+
+TEST(ConstraintsSatisfies, OpeningsPerPanelFollowTheWidthAndTheCount) {
+  const OpeningDomain d = wall(5, 2.5, 0.25);  // 5 m wide
+  const Panel& p = d.panels()[0];
+  const double a = d.element_size();
+  OpeningConstraints c;
+  EXPECT_EQ(panel_opening_limit(p, 0, c, a), 0);  // unlimited
+  c.panel_width_per_opening = 3.0;
+  EXPECT_EQ(panel_opening_limit(p, 0, c, a), 2);  // ceil(5 / 3)
+  c.panel_width_per_opening = 2.5;
+  EXPECT_EQ(panel_opening_limit(p, 0, c, a), 2);  // exactly 2, not 3 by rounding
+  c.panel_width_per_opening = 10.0;
+  EXPECT_EQ(panel_opening_limit(p, 0, c, a), 1);  // at least one
+  c.max_openings_per_panel = 3;
+  EXPECT_EQ(panel_opening_limit(p, 0, c, a), 1);
+  c.panel_width_per_opening = 0.0;
+  EXPECT_EQ(panel_opening_limit(p, 0, c, a), 3);
+  // Roofs count both sides: a 4 x 4 m roof at 2 m per opening holds 2 x 2.
+  const OpeningDomain roof = domain_of({{Vec3(0, 0, 3), Vec3(0, 4, 3), Vec3(4, 4, 3), Vec3(4, 0, 3)}}, 0.25);
+  OpeningConstraints r;
+  r.panel_width_per_opening = 2.0;
+  EXPECT_EQ(panel_opening_limit(roof.panels()[0], 0, r, 0.25), 4);
+
+  c = {};
+  c.max_openings_per_panel = 2;
+  const GridRectangle x{0, 2, 5, 1, 3}, y{0, 2, 5, 8, 11}, z{0, 2, 5, 15, 18};
+  std::string why;
+  EXPECT_TRUE(satisfies_all(d, {x, y}, c, &why)) << why;
+  EXPECT_FALSE(satisfies_all(d, {x, y, z}, c, &why));
+  EXPECT_NE(why.find("more than 2 openings"), std::string::npos) << why;
+}
+
 TEST(ConstraintsSatisfies, HeightsDoNotApplyToRoofs) {
   // A flat roof at 3 m, seen from below.
   const OpeningDomain d = domain_of({{Vec3(0, 0, 3), Vec3(0, 2, 3), Vec3(2, 2, 3), Vec3(2, 0, 3)}}, 0.25);
@@ -499,6 +553,24 @@ TEST(RefineOpenings, MaxOpeningsKeepsTheOpeningsTheGoalsNeed) {
   EXPECT_EQ(refine_openings(d, rectangles_mask(d, {a, b, extra}), o, c), (std::vector<GridRectangle>{a, b}));
   c.max_openings = 1;
   EXPECT_EQ(refine_openings(d, rectangles_mask(d, {a, b, extra}), o, c).size(), 1u);
+}
+
+TEST(RefineOpenings, OpeningsPerPanelKeepTheOpeningsTheGoalsNeed) {
+  // Two panels side by side; the goals need a and b on the first, c on the second.
+  const OpeningDomain d = domain_of({{Vec3(0, 0, 0), Vec3(5, 0, 0), Vec3(5, 0, 2.5f), Vec3(0, 0, 2.5f)},
+                                     {Vec3(0, 0, 0), Vec3(0, -5, 0), Vec3(0, -5, 2.5f), Vec3(0, 0, 2.5f)}},
+                                    0.25);
+  ASSERT_EQ(d.panels().size(), 2u);
+  const GridRectangle a{0, 2, 5, 1, 3}, b{0, 2, 5, 8, 11}, extra{0, 2, 5, 15, 18}, c{1, 2, 5, 8, 11};
+  const LinearObjective o = view_objective(d, rectangles_mask(d, {a, b, c}));
+  OpeningConstraints limits;
+  limits.max_openings_per_panel = 2;
+  const auto rects = refine_openings(d, rectangles_mask(d, {a, b, extra, c}), o, limits);
+  EXPECT_EQ(rects, (std::vector<GridRectangle>{a, b, c}));
+  // The local search adds no third opening to a full panel.
+  const auto improved = improve_rectangles(d, {a, b}, o, limits, 7, 3000);
+  std::string why;
+  EXPECT_TRUE(satisfies_all(d, improved, limits, &why)) << why;
 }
 
 TEST(RefineOpenings, OpeningsTooCloseAreTrimmedApart) {

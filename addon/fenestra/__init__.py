@@ -26,6 +26,7 @@ import sys  # noqa: E402
 
 try:
     from ._core import (
+        automatic_constraints,
         goal_error,
         preetham_radiance,
         preetham_sun,
@@ -63,6 +64,7 @@ else:
 
 
 __all__ = [
+    "automatic_constraints",
     "Cancelled",
     "Contributions",
     "Progress",

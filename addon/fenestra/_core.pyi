@@ -1,6 +1,6 @@
 """Type stubs for the native module fenestra._core (see native/python/module.cpp)."""
 
-from typing import Optional, Tuple
+from typing import Dict, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -91,4 +91,5 @@ def preetham_radiance(turbidity: float, sun_direction: npt.ArrayLike, directions
                       ) -> npt.NDArray[np.float64]: ...  # (n, 3) linear sRGB, cd/m^2
 def preetham_sun(turbidity: float, sun_zenith_deg: float) -> dict: ...  # radiance, solid_angle, normal_illuminance
 def solve(scene: Scene, contributions: Optional[Contributions] = None, progress: Optional[Progress] = None) -> str: ...  # JSON
+def automatic_constraints(full_height: bool = False) -> Dict[str, Tuple[float, str]]: ...  # key: (meters or count, why)
 def nnls(A: npt.ArrayLike, b: npt.ArrayLike, max_iterations: int = 0, tolerance: float = 0.0) -> Tuple[npt.NDArray[np.float64], float]: ...  # Lawson-Hanson: (x >= 0, ||A x - b||)

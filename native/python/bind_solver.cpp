@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "solve/constraints.h"
 #include "solve/nnls.h"
 
 namespace py = pybind11;
@@ -45,6 +46,26 @@ void bind_nnls(py::module_& m) {
       "the iteration limit is reached.");
 }
 
+// ---- What openings are when the user says nothing ----
+
+void bind_automatic_constraints(py::module_& m) {
+  m.def(
+      "automatic_constraints",
+      [](bool full_height) {
+        py::dict out;
+        for (const fenestra::AutomaticConstraint& a : fenestra::automatic_constraints(full_height))
+          out[a.key] = py::make_tuple(a.value, a.why);
+        return out;
+      },
+      py::arg("full_height") = false,
+      "The solver.constraints keys that take an automatic value when not given (and \"automatic\" is\n"
+      "on): {key: (value, explanation)}, lengths in meters. full_height: doors and floor-to-ceiling\n"
+      "glazing allowed (no automatic sill, head or margin).");
+}
+
 }  // namespace
 
-void bind_solver(py::module_& m) { bind_nnls(m); }
+void bind_solver(py::module_& m) {
+  bind_nnls(m);
+  bind_automatic_constraints(m);
+}

@@ -58,10 +58,13 @@ json constraints_json(const OpeningConstraints& c) {
       {"max_aspect", c.max_aspect}, {"min_width", c.min_width},   {"max_width", c.max_width},
       {"min_height", c.min_height}, {"max_height", c.max_height}, {"min_gap", c.min_gap},
       {"margin", c.margin},         {"sill_min", c.sill_min},     {"sill_max", c.sill_max},
-      {"head_min", c.head_min},     {"head_max", c.head_max},     {"module", c.module}};
+      {"head_min", c.head_min},     {"head_max", c.head_max},     {"module", c.module},
+      {"head_clearance", c.head_clearance}, {"panel_width_per_opening", c.panel_width_per_opening}};
   for (const auto& [name, value] : values)
     if (std::isfinite(value) && value > 0.0) j[name] = value;  // only what constrains
   if (c.max_openings > 0) j["max_openings"] = c.max_openings;
+  if (c.max_openings_per_panel > 0) j["max_openings_per_panel"] = c.max_openings_per_panel;
+  j["automatic"] = c.automatic_keys;  // the keys above that took their automatic value
   return j;
 }
 

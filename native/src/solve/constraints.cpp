@@ -100,6 +100,11 @@ double grid_bottom_z(const Panel& panel, double a) {
   const double rise_v = panel.rows * a * panel.v_axis.z(), rise_u = panel.cols * a * panel.u_axis.z();
   return z0 + std::min(0.0, rise_v) + std::min(0.0, rise_u);
 }
+double grid_top_z(const Panel& panel, double a) {
+  const double z0 = panel.origin.z();
+  const double rise_v = panel.rows * a * panel.v_axis.z(), rise_u = panel.cols * a * panel.u_axis.z();
+  return z0 + std::max(0.0, rise_v) + std::max(0.0, rise_u);
+}
 
 // An explanation of why a rows x cols opening does not fit (empty when it does).
 std::string size_problem(int rows, int cols, const OpeningConstraints& c, const GridLimits& g, double a) {
@@ -125,7 +130,37 @@ bool OpeningConstraints::any() const {
   return min_area > 0.0 || max_area < kInfinity || min_aspect > 0.0 || max_aspect < kInfinity ||
          min_width > 0.0 || max_width < kInfinity || min_height > 0.0 || max_height < kInfinity ||
          max_openings > 0 || min_gap > 0.0 || margin > 0.0 || sill_min > 0.0 || sill_max < kInfinity ||
-         head_min > 0.0 || head_max < kInfinity;
+         head_min > 0.0 || head_max < kInfinity || head_clearance > 0.0 || max_openings_per_panel > 0 ||
+         panel_width_per_opening > 0.0 || !catalogue.empty();
+}
+
+std::vector<AutomaticConstraint> automatic_constraints(bool full_height) {
+  std::vector<AutomaticConstraint> list = {
+      {"min_width", 0.5, "openings at least 0.5 m wide"},
+      {"min_height", 0.5, "openings at least 0.5 m high"},
+      {"min_gap", 0.5, "a pier of at least 0.5 m between two openings"},
+      {"panel_width_per_opening", 3.0, "at most one opening per 3 m of a panel's width"},
+  };
+  if (!full_height) {
+    list.push_back({"margin", 0.2, "0.2 m clear of a panel's edges and corners"});
+    list.push_back({"sill_min", 0.3, "sills at least 0.3 m above a wall's bottom"});
+    list.push_back({"head_clearance", 0.2, "heads at least 0.2 m below a wall's top"});
+  }
+  return list;
+}
+
+void set_constraint(OpeningConstraints* c, const std::string& key, double value) {
+  const std::pair<const char*, double*> keys[] = {
+      {"min_width", &c->min_width}, {"min_height", &c->min_height},
+      {"min_gap", &c->min_gap},     {"panel_width_per_opening", &c->panel_width_per_opening},
+      {"margin", &c->margin},       {"sill_min", &c->sill_min},
+      {"head_clearance", &c->head_clearance}};
+  for (const auto& [name, field] : keys)
+    if (key == name) {
+      *field = value;
+      return;
+    }
+  throw std::invalid_argument("opening constraints: no automatic key '" + key + "'");
 }
 
 std::string OpeningConstraints::to_string() const {
@@ -153,6 +188,10 @@ std::string OpeningConstraints::to_string() const {
   item("sill_max", sill_max, kInfinity, " m");
   item("head_min", head_min, 0.0, " m");
   item("head_max", head_max, kInfinity, " m");
+  item("head_clearance", head_clearance, 0.0, " m");
+  item("max_openings_per_panel", max_openings_per_panel, 0, "");
+  item("panel_width_per_opening", panel_width_per_opening, 0.0, " m");
+  if (!catalogue.empty()) s << sep << "catalogue=" << catalogue.name, sep = ", ";
   if (!any()) s << "unconstrained";
   s << ")";
   return s.str();
@@ -208,9 +247,15 @@ void check_feasible(const OpeningConstraints& c, double a) {
   check_value("sill_max", c.sill_max, true);
   check_value("head_min", c.head_min, false);
   check_value("head_max", c.head_max, true);
+  check_value("head_clearance", c.head_clearance, false);
+  check_value("panel_width_per_opening", c.panel_width_per_opening, false);
+  if (c.max_openings_per_panel < 0)
+    refuse("max_openings_per_panel " + std::to_string(c.max_openings_per_panel) + " is negative");
   if (c.max_openings < 0) refuse("max_openings " + std::to_string(c.max_openings) + " is negative");
   for (size_t i = 0; i < c.panel_base_z.size(); ++i)
     if (!std::isfinite(c.panel_base_z[i])) refuse("the base height of panel " + std::to_string(i) + " is not finite");
+  for (size_t i = 0; i < c.panel_top_z.size(); ++i)
+    if (!std::isfinite(c.panel_top_z[i])) refuse("the top height of panel " + std::to_string(i) + " is not finite");
 
   check_range("min_area", c.min_area, "max_area", c.max_area, square_meters);
   check_range("min_aspect", c.min_aspect, "max_aspect", c.max_aspect, number);
@@ -269,6 +314,9 @@ bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const O
     throw std::invalid_argument("opening constraints: panel_base_z has " + std::to_string(base_z.size()) +
                                 " values, panel " + std::to_string(panel_index) + " has none");
   const double base = base_z.empty() ? grid_bottom_z(panel, a) : base_z[panel_index];
+  const std::vector<double>& top_z = all.panel_top_z;
+  const bool has_top = panel_index < static_cast<int>(top_z.size());
+  const double top = has_top ? top_z[panel_index] : grid_top_z(panel, a);
   const double z0 = panel.origin.z() + row0 * a * panel.v_axis.z();
   const double z1 = panel.origin.z() + (row1 + 1) * a * panel.v_axis.z();
   const double sill = std::min(z0, z1) - base, head = std::max(z0, z1) - base;
@@ -281,6 +329,9 @@ bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const O
   if (sill > c.sill_max + kHeightTolerance) return fail(at_sill + ", above sill_max " + meters(c.sill_max));
   if (head < c.head_min - kHeightTolerance) return fail(at_head + ", below head_min " + meters(c.head_min));
   if (head > c.head_max + kHeightTolerance) return fail(at_head + ", above head_max " + meters(c.head_max));
+  if (head > top - base - c.head_clearance + kHeightTolerance)
+    return fail(at_head + ", less than head_clearance " + meters(c.head_clearance) + " below the wall's top at " +
+                meters(top - base));
   return true;
 }
 
@@ -293,6 +344,32 @@ std::vector<double> panel_base_heights(const OpeningDomain& domain, const Mesh& 
     base.push_back(z);
   }
   return base;
+}
+
+std::vector<double> panel_top_heights(const OpeningDomain& domain, const Mesh& mesh) {
+  std::vector<double> top;
+  for (const Panel& panel : domain.panels()) {
+    double z = -kInfinity;
+    for (uint32_t t : panel.triangles)
+      for (int k = 0; k < 3; ++k) z = std::max(z, static_cast<double>(mesh.vertex(t, k).z()));
+    top.push_back(z);
+  }
+  return top;
+}
+
+int panel_opening_limit(const Panel& panel, int panel_index, const OpeningConstraints& all, double a) {
+  const OpeningConstraints& c = all.for_panel(panel_index);
+  int limit = c.max_openings_per_panel;
+  const double w = c.panel_width_per_opening;
+  if (w > 0.0) {
+    auto per_side = [&](int elements) {
+      return static_cast<int>(std::min<double>(kMaxCount, std::max(1.0, std::ceil(elements * a / w - kRelative))));
+    };
+    const int64_t n = int64_t{per_side(panel.cols)} * (is_wall(panel) ? 1 : per_side(panel.rows));
+    const int by_size = static_cast<int>(std::min<int64_t>(n, kMaxCount));
+    limit = limit > 0 ? std::min(limit, by_size) : by_size;
+  }
+  return limit;
 }
 
 bool satisfies(const GridRectangle& r, const Panel& panel, const OpeningConstraints& all, double a,
@@ -351,9 +428,14 @@ bool satisfies_all(const OpeningDomain& domain, const std::vector<GridRectangle>
   };
   if (c.max_openings > 0 && static_cast<int>(rects.size()) > c.max_openings)
     return fail(std::to_string(rects.size()) + " openings, more than max_openings " + std::to_string(c.max_openings));
+  std::vector<int> per_panel(static_cast<size_t>(panels), 0);
   for (const GridRectangle& r : rects) {
     if (r.panel < 0 || r.panel >= panels) return fail(r.to_string() + " names no panel of the domain");
     if (!satisfies(r, domain.panels()[r.panel], c, a, why)) return false;
+    const int limit = panel_opening_limit(domain.panels()[r.panel], r.panel, c, a);
+    if (limit > 0 && ++per_panel[r.panel] > limit)
+      return fail("panel " + std::to_string(r.panel) + " has more than " + std::to_string(limit) +
+                  " openings (max_openings_per_panel, panel_width_per_opening)");
   }
   for (size_t i = 0; i < rects.size(); ++i)
     for (size_t j = i + 1; j < rects.size(); ++j)

@@ -13,6 +13,7 @@
 
 #include "scene/mesh.h"
 #include "scene/opening_domain.h"
+#include "solve/window_catalogue.h"
 
 namespace fenestra {
 
@@ -32,10 +33,21 @@ struct OpeningConstraints {
   // On walls only (normal within 30 degrees of horizontal), above the panel's base height.
   double sill_min = 0.0, sill_max = kUnlimited;
   double head_min = 0.0, head_max = kUnlimited;
-  // World Z of each panel's lowest point, which sills and heads are measured from
-  // (panel_base_heights()). Empty: the bottom of each panel's element grid, which the grid's
-  // centring may lift above the panel's edge by up to half an element.
-  std::vector<double> panel_base_z;
+  double head_clearance = 0.0;  // on walls: between the head and the panel's top
+  // Openings per panel: at most max_openings_per_panel (0: unlimited), and at most one per
+  // panel_width_per_opening meters of the panel's width (0: unlimited; panel_opening_limit()).
+  int max_openings_per_panel = 0;
+  double panel_width_per_opening = 0.0;
+  // Empty: any size within the limits above. Otherwise every opening's size is one of the
+  // catalogue's (on the kind of panel it lists sizes for); openings on the element grid are
+  // snapped to it after the grid search (solve/catalogue_snap.h).
+  WindowCatalogue catalogue;
+  // World Z of each panel's lowest and highest points, which sills and heads are measured from
+  // (panel_base_heights(), panel_top_heights()). Empty: the bottom and top of each panel's element
+  // grid, which the grid's centring may move inside the panel's edges by up to half an element.
+  std::vector<double> panel_base_z, panel_top_z;
+  // The keys that took their automatic value (automatic_constraints()), for the result to say so.
+  std::vector<std::string> automatic_keys;
   // Empty, or one set per panel that replaces these limits on that panel (max_openings stays
   // the global one).
   std::vector<OpeningConstraints> per_panel;
@@ -46,6 +58,18 @@ struct OpeningConstraints {
   bool any() const;  // whether anything is constrained beyond plain rectangles
   std::string to_string() const;
 };
+
+// What an opening is when the user says nothing: the value each key takes when it is not given
+// and "automatic" is on. With full_height (doors and floor-to-ceiling glazing allowed), walls keep
+// no automatic sill, head or margin limits.
+struct AutomaticConstraint {
+  const char* key;
+  double value;
+  const char* why;  // one line for the docs and the add-on's panel
+};
+std::vector<AutomaticConstraint> automatic_constraints(bool full_height);
+// Sets `key` (one of automatic_constraints()' keys) to `value`.
+void set_constraint(OpeningConstraints* c, const std::string& key, double value);
 
 // Elements [row0, row1] x [col0, col1] (inclusive) of one panel.
 struct GridRectangle {
@@ -86,8 +110,14 @@ bool is_wall(const Panel& panel);
 // (true on roofs). Rows are horizontal on walls, so columns do not matter.
 bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const OpeningConstraints& constraints,
                 double element_size, std::string* why = nullptr);
-// World Z of the lowest vertex of each panel's faces.
+// World Z of the lowest and the highest vertex of each panel's faces.
 std::vector<double> panel_base_heights(const OpeningDomain& domain, const Mesh& mesh);
+std::vector<double> panel_top_heights(const OpeningDomain& domain, const Mesh& mesh);
+// The most openings panel `panel_index` may hold under its constraints (0: unlimited):
+// max_openings_per_panel, and one per panel_width_per_opening of the panel's width (on roofs,
+// of each side: ceil(width / w) x ceil(height / w)), at least one.
+int panel_opening_limit(const Panel& panel, int panel_index, const OpeningConstraints& constraints,
+                        double element_size);
 
 // One opening: inside its panel's grid on existing elements, `margin` clear of the panel's
 // edges, and within the size, aspect, sill and head limits. `why` (optional) says what fails.
@@ -99,7 +129,8 @@ double clear_distance(const GridRectangle& a, const GridRectangle& b, double ele
 // Whether two openings are separate regions and at least min_gap apart.
 bool apart(const GridRectangle& a, const GridRectangle& b, const OpeningConstraints& constraints,
            double element_size);
-// Every opening satisfies(), every pair is apart(), and there are at most max_openings.
+// Every opening satisfies(), every pair is apart(), and there are at most max_openings (and at
+// most panel_opening_limit() on each panel).
 bool satisfies_all(const OpeningDomain& domain, const std::vector<GridRectangle>& rects,
                    const OpeningConstraints& constraints, std::string* why = nullptr);
 

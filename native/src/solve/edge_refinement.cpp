@@ -151,8 +151,8 @@ double area_within(const Element& e, const PanelRectangle& r) {
   return du > 0.0 && dv > 0.0 ? du * dv : 0.0;
 }
 
-// Sensor values when opening i of the search moves from `from` to `to`, predicted by the light
-// each element adds when opened, in proportion to the share of its cell that opens or closes.
+}  // namespace
+
 Eigen::VectorXd screened_values(const OpeningDomain& domain, const Eigen::MatrixXd& opening_light,
                                 const Eigen::VectorXd& values, const PanelRectangle& from, const PanelRectangle& to) {
   Eigen::VectorXd out = values;
@@ -168,8 +168,6 @@ Eigen::VectorXd screened_values(const OpeningDomain& domain, const Eigen::Matrix
     }
   return out;
 }
-
-}  // namespace
 
 std::vector<double> edge_steps(double s, double module, bool thick) {
   const double smallest = std::max(module > 0.0 ? module : kContinuousEdgeStep, thick ? kThickWallEdgeStep : 0.0);
@@ -230,6 +228,7 @@ bool admissible(const PanelRectangle& r, const OpeningDomain& domain, const Open
   if (w * h < c.min_area * (1 - kTolerance) || w * h > c.max_area * (1 + kTolerance)) return fail("has an area out of its limits");
   if (w / h < c.min_aspect * (1 - kTolerance) || w / h > c.max_aspect * (1 + kTolerance))
     return fail("has an aspect ratio out of its limits");
+  if (!c.catalogue.allows(panel, w, h)) return fail("is " + meters(w) + " x " + meters(h) + ", not a size of the catalogue");
   if (is_wall(panel)) {
     const std::vector<double>& base_z = all.panel_base_z;
     const double grid_bottom = panel.origin.z() + std::min(0.0, panel.v_lines.back() * static_cast<double>(panel.v_axis.z()));
@@ -238,6 +237,13 @@ bool admissible(const PanelRectangle& r, const OpeningDomain& domain, const Open
     const double sill = std::min(z0, z1) - base, head = std::max(z0, z1) - base;
     if (sill < c.sill_min - kTolerance || sill > c.sill_max + kTolerance) return fail("has its sill out of its limits");
     if (head < c.head_min - kTolerance || head > c.head_max + kTolerance) return fail("has its head out of its limits");
+    if (c.head_clearance > 0.0) {
+      const std::vector<double>& top_z = all.panel_top_z;
+      const double grid_top = panel.origin.z() + std::max(0.0, panel.v_lines.back() * static_cast<double>(panel.v_axis.z()));
+      const double top = top_z.empty() ? grid_top : top_z[static_cast<size_t>(r.panel)];
+      if (std::max(z0, z1) > top - c.head_clearance + kTolerance)
+        return fail("has its head less than head_clearance " + meters(c.head_clearance) + " below the wall's top");
+    }
   }
   return true;
 }

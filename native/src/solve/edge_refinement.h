@@ -44,6 +44,12 @@ bool admissible(const PanelRectangle& r, const OpeningDomain& domain, const Open
 // Two openings of one panel at least min_gap (and 1 cm) apart.
 bool apart(const PanelRectangle& a, const PanelRectangle& b, const OpeningConstraints& constraints);
 
+// Sensor values when an opening moves from `from` to `to` (one panel), predicted from `values` by
+// the light each element adds when opened (opening_light, sensors x elements), in proportion to
+// the share of its cell that opens or closes.
+Eigen::VectorXd screened_values(const OpeningDomain& domain, const Eigen::MatrixXd& opening_light,
+                                const Eigen::VectorXd& values, const PanelRectangle& from, const PanelRectangle& to);
+
 struct EdgeRefinement {
   std::vector<PanelRectangle> openings;
   int moves = 0;         // accepted edge moves

@@ -319,20 +319,39 @@ class Refiner {
   }
 
   // Step 7.
+  // Beyond a panel's limit (panel_opening_limit), then beyond max_openings, the opening whose
+  // removal raises the error least is dropped, one at a time.
   void limit_count(std::vector<GridRectangle>* rects) const {
-    if (constraints_.max_openings <= 0) return;
     VectorXd light = light_.of(*rects);
-    while (static_cast<int>(rects->size()) > constraints_.max_openings) {
-      poll();
-      size_t dropped = 0;
+    auto drop_one = [&](int panel) {  // panel < 0: any
+      size_t dropped = rects->size();
       double best = kInfinity;
       for (size_t i = 0; i < rects->size(); ++i) {
+        if (panel >= 0 && (*rects)[i].panel != panel) continue;
         const double e = light_.error(light - light_.of((*rects)[i]));
-        if (e < best) best = e, dropped = i;
+        if (e < best || dropped == rects->size()) best = e, dropped = i;
       }
       light -= light_.of((*rects)[dropped]);
       rects->erase(rects->begin() + static_cast<std::ptrdiff_t>(dropped));
+    };
+    for (int p = 0; p < static_cast<int>(domain_.panels().size()); ++p) {
+      const int limit = panel_limit(p);
+      while (limit > 0 && openings_on(p, *rects) > limit) {
+        poll();
+        drop_one(p);
+      }
     }
+    while (constraints_.max_openings > 0 && static_cast<int>(rects->size()) > constraints_.max_openings) {
+      poll();
+      drop_one(-1);
+    }
+  }
+
+  int panel_limit(int panel) const {
+    return panel_opening_limit(domain_.panels()[panel], panel, constraints_, a_);
+  }
+  static int openings_on(int panel, const std::vector<GridRectangle>& rects) {
+    return static_cast<int>(std::count_if(rects.begin(), rects.end(), [&](const GridRectangle& r) { return r.panel == panel; }));
   }
 
   std::vector<GridRectangle> improve(std::vector<GridRectangle> rects, uint64_t seed, int iterations) const {
@@ -349,6 +368,7 @@ class Refiner {
       if (count == 0 || (room_for_more && uniform_int(rng, kAddOneIn) == 0)) {
         if (!room_for_more || hosts.empty()) continue;
         const int p = hosts[uniform_int(rng, static_cast<int>(hosts.size()))];
+        if (panel_limit(p) > 0 && openings_on(p, rects) >= panel_limit(p)) continue;
         const Panel& panel = domain_.panels()[p];
         const Size s = smallest_[p];
         GridRectangle added;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "solve/catalogue_snap.h"
 #include "solve/coarse_grid.h"
 #include "solve/compensation.h"
 #include "solve/linear_start.h"
@@ -259,6 +260,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   t = Clock::now();
   OpeningConstraints constraints = settings.constraints;
   constraints.panel_base_z = panel_base_heights(scene.domain, scene.mesh);
+  constraints.panel_top_z = panel_top_heights(scene.domain, scene.mesh);
   auto exact_of = [&](const std::vector<GridRectangle>& rects, SensorValues* values) {
     const std::vector<uint8_t> open = rectangles_mask(scene.domain, rects);
     *values = exact_values(open);
@@ -266,7 +268,9 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   };
   // Rectangles are scored by the exact linear model about the chosen state (the elements' joint light).
   const LinearObjective about_chosen = linearised_objective(objective, c, out.open, chosen.value, progress);
-  std::vector<GridRectangle> rects = refine_openings(scene.domain, out.open, about_chosen, constraints, progress);
+  // With a catalogue, the grid's openings keep near its sizes; they take them exactly below.
+  const OpeningConstraints grid_constraints = grid_search_constraints(scene.domain, constraints);
+  std::vector<GridRectangle> rects = refine_openings(scene.domain, out.open, about_chosen, grid_constraints, progress);
   best = exact_of(rects, &chosen);
   out.refined_error = goal_error(out.goals, chosen.value);
   // The exact linear model about the current openings (the local search's, then the edge
@@ -282,7 +286,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     linearise_about_rects();
     for (int round = 0; round < kLinearisationRounds; ++round) {
       const std::vector<GridRectangle> improved = improve_rectangles(
-          scene.domain, rects, *about, constraints, settings.seed + round, settings.improve_iterations, progress);
+          scene.domain, rects, *about, grid_constraints, settings.seed + round, settings.improve_iterations, progress);
       SensorValues improved_values;
       const double f = exact_of(improved, &improved_values);
       if (!(f < best * (1.0 - 1e-6))) break;
@@ -296,25 +300,42 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.openings.clear();
   for (const GridRectangle& r : rects) out.openings.push_back(to_world(scene.domain, r));
   out.fitness = best;
+  std::vector<PanelRectangle> final_rects;
+  for (const GridRectangle& r : rects) final_rects.push_back(panel_rectangle(r, scene.domain.element_size()));
+  // Whether `chosen` holds the records' exact values of final_rects (not so for catalogue sizes in
+  // thick walls until their refined grid is traced).
+  bool chosen_exact = true;
+  if (uses_catalogue(scene.domain, constraints) && !rects.empty()) {
+    if (progress) progress->start("solving: catalogue sizes", 1);
+    if (!about) linearise_about_rects();
+    const CatalogueSnap snap =
+        snap_to_catalogue(scene.domain, c, objective, constraints, about->E, final_rects, progress);
+    const double grid_error = prediction_error(objective, chosen.value - c.closed.value);
+    final_rects = snap.openings;
+    chosen_exact = snap.exact;
+    if (snap.exact) chosen = c.evaluate(OpenRegion(scene.domain, final_rects), progress);
+    else chosen.value = snap.values;
+    out.fitness += prediction_error(objective, chosen.value - c.closed.value) - grid_error;
+    out.warnings.insert(out.warnings.end(), snap.notes.begin(), snap.notes.end());
+  }
   // Edges below the element size, where the exact error says so.
   double thick_seconds = 0.0;
-  if (settings.refine_edges && !rects.empty()) {
+  if (settings.refine_edges && !final_rects.empty()) {
     if (progress) progress->start("solving: edges off the element grid", 1);
-    std::vector<PanelRectangle> on_grid;
-    for (const GridRectangle& r : rects) on_grid.push_back(panel_rectangle(r, scene.domain.element_size()));
     if (!about) linearise_about_rects();
     EdgeSearchScope scope;
     scope.opening_light = &about->E;
-    const EdgeRefinement edges = refine_edges(scene.domain, c, objective, constraints, on_grid, progress, scope);
+    const EdgeRefinement edges = refine_edges(scene.domain, c, objective, constraints, final_rects, progress, scope);
     out.edge_moves = edges.moves;
-    std::vector<PanelRectangle> final_rects = on_grid;
-    if (edges.moves > 0) {
+    if (edges.moves > 0 && !chosen_exact) {
+      final_rects = edges.openings;  // the prediction comes from the refined grid or real cutters below
+    } else if (edges.moves > 0) {
       const SensorValues v = c.evaluate(OpenRegion(scene.domain, edges.openings), progress);
       const double grid_error = prediction_error(objective, chosen.value - c.closed.value);
       const double error = prediction_error(objective, v.value - c.closed.value);
       if (error < grid_error) {
         chosen = v;
-        out.fitness = best - grid_error + error;
+        out.fitness += error - grid_error;
         final_rects = edges.openings;
       }
     }
@@ -335,15 +356,22 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     if (thick) {
       // Errors within one set of records: the first round's start is these openings.
       out.edge_moves += thick->edges.moves;
-      out.fitness += thick->error - thick->start_error;
+      out.fitness += thick->error - (chosen_exact ? thick->start_error
+                                                  : prediction_error(objective, chosen.value - c.closed.value));
       chosen = thick->values;
+      chosen_exact = true;
       final_rects = thick->edges.openings;
     }
     if (traced_thick) thick_seconds = since(thick_start);
-    out.openings.clear();
-    for (const PanelRectangle& r : final_rects) out.openings.push_back(to_world(scene.domain, r));
-    out.open = open_elements(scene.domain, final_rects);
   }
+  if (!chosen_exact) {
+    // Catalogue sizes in thick walls without their refined records: cut for real.
+    std::vector<OpeningInput> cutters(final_rects.begin(), final_rects.end());
+    chosen = evaluate_openings(scene, cutters, progress);
+  }
+  out.openings.clear();
+  for (const PanelRectangle& r : final_rects) out.openings.push_back(to_world(scene.domain, r));
+  out.open = open_elements(scene.domain, final_rects);
   out.predicted = chosen.value;
   out.predicted_stderr = chosen.standard_error;
   out.linear = linear_prediction(c, out.open);

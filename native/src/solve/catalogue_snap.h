@@ -1,0 +1,52 @@
+#pragma once
+// Openings found on the element grid, given the sizes of a window catalogue
+// (solver.constraints.catalogue). For each opening in turn (two passes), every catalogue size of
+// its panel, placed centred where the opening was, on its sill, or under its head (moved by the
+// least that makes it admissible), and no opening at all, are ranked by the linear model about the
+// grid's openings; the best few are evaluated exactly from the path records and the best kept. An
+// opening whose size is not in the catalogue is always replaced; one with no admissible size is
+// dropped, and a note says why.
+//
+// In thick walls the records are exact only on the element grid's lines, so there a catalogue size
+// is scored by the linear model alone; the solver then traces the refined grid about the snapped
+// edges (thick_wall_edges.h), or cuts them for real, for the prediction.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "solve/constraints.h"
+#include "solve/genetic.h"
+#include "trace/contributions.h"
+#include "trace/open_region.h"
+
+namespace fenestra {
+
+class Progress;
+
+struct CatalogueSnap {
+  std::vector<PanelRectangle> openings;
+  Eigen::VectorXd values;          // per sensor: exact, but linear for resized openings in thick walls
+  bool exact = true;               // false when an opening in a thick wall was resized
+  std::vector<std::string> notes;  // openings dropped for want of an admissible size
+};
+
+// Empty when some catalogue size fits within a panel that has a catalogue (its extent less the
+// margins, and on walls less the sill and head clearances), or no panel has one; otherwise why not,
+// naming the largest room and the smallest size.
+std::string catalogue_fit_problem(const OpeningDomain& domain, const OpeningConstraints& constraints);
+
+// The constraints the element-grid search works with: on panels with a catalogue, sizes within
+// an element of the catalogue's range (so that the grid's openings are near a catalogue size),
+// where that is feasible.
+OpeningConstraints grid_search_constraints(const OpeningDomain& domain, const OpeningConstraints& constraints);
+
+// Whether some panel's catalogue applies (snap_to_catalogue has work to do).
+bool uses_catalogue(const OpeningDomain& domain, const OpeningConstraints& constraints);
+
+// `start`: the grid's openings (satisfies_all). `opening_light`: sensors x elements, the light each
+// element adds when opened about `start` (the solver's linearisation).
+CatalogueSnap snap_to_catalogue(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
+                                const OpeningConstraints& constraints, const Eigen::MatrixXd& opening_light,
+                                const std::vector<PanelRectangle>& start, Progress* progress);
+
+}  // namespace fenestra
