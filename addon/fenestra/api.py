@@ -161,6 +161,12 @@ def evaluate(scene, openings, progress=None, callback=None, max_memory=None):
     return _run(lambda p: _core.evaluate(scene, rects, p), progress, callback)
 
 
+def constraint_violations(scene, openings):
+    """What the openings (as for evaluate) break of the scene's solver.constraints: a list of
+    lines, empty when every opening is admissible."""
+    return list(_core.constraint_violations(scene, openings_argument(openings)))
+
+
 def sky(scene, max_memory=None):
     """The scene's sky as the tracer sees it: a dict with
     - "map": (height, width, 3) float32 equirectangular map, linear sRGB in cd/m^2, top row the

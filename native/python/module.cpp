@@ -271,6 +271,9 @@ PYBIND11_MODULE(_core, m) {
                              },
                              "(panel, row, column) of every element, shape (elements, 3).")
       .def("elements_json", [](const Scene& s) { return elements_json(s).dump(); })
+      .def("constraints_json", [](const Scene& s) { return constraints_json(s.solver.constraints).dump(); },
+           "The solver.constraints in force (JSON): the keys that limit something, and \"automatic\", the "
+           "keys that took their automatic value.")
       .def("__repr__", [](const Scene& s) { return text_of(s.to_string()); });
 
   py::class_<Contributions, std::shared_ptr<Contributions>>(m, "Contributions",
@@ -368,6 +371,16 @@ PYBIND11_MODULE(_core, m) {
       py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
       "Path-traces the scene with the openings cut (an (n, 4, 3) array of corners, or the JSON text of an "
       "openings file); returns (value, stderr) per sensor.");
+  m.def(
+      "constraint_violations",
+      [](const Scene& scene, const py::object& openings) {
+        std::vector<PanelRectangle> rects;
+        for (const OpeningInput& o : openings_from(openings)) rects.push_back(to_panel_rectangle(scene.domain, o));
+        return solved_constraint_violations(scene, rects);
+      },
+      py::arg("scene"), py::arg("openings"),
+      "What the openings (as for evaluate) break of the scene's solver.constraints: one line each, empty "
+      "when they meet every one.");
   m.def(
       "write_image",
       [](const std::string& path, py::array_t<float, py::array::c_style | py::array::forcecast> image) {

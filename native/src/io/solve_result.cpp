@@ -51,23 +51,6 @@ json openings_json(const std::vector<OpeningRectangle>& openings) {
   return list;
 }
 
-json constraints_json(const OpeningConstraints& c) {
-  json j = json::object();
-  const std::pair<const char*, double> values[] = {
-      {"min_area", c.min_area},     {"max_area", c.max_area},     {"min_aspect", c.min_aspect},
-      {"max_aspect", c.max_aspect}, {"min_width", c.min_width},   {"max_width", c.max_width},
-      {"min_height", c.min_height}, {"max_height", c.max_height}, {"min_gap", c.min_gap},
-      {"margin", c.margin},         {"sill_min", c.sill_min},     {"sill_max", c.sill_max},
-      {"head_min", c.head_min},     {"head_max", c.head_max},     {"module", c.module},
-      {"head_clearance", c.head_clearance}, {"panel_width_per_opening", c.panel_width_per_opening}};
-  for (const auto& [name, value] : values)
-    if (std::isfinite(value) && value > 0.0) j[name] = value;  // only what constrains
-  if (c.max_openings > 0) j["max_openings"] = c.max_openings;
-  if (c.max_openings_per_panel > 0) j["max_openings_per_panel"] = c.max_openings_per_panel;
-  j["automatic"] = c.automatic_keys;  // the keys above that took their automatic value
-  return j;
-}
-
 json open_list(const std::vector<uint8_t>& open) {
   json list = json::array();
   for (size_t k = 0; k < open.size(); ++k)
@@ -98,6 +81,24 @@ json sensors_json(const SolveResult& r) {
 
 }  // namespace
 
+json constraints_json(const OpeningConstraints& c) {
+  json j = json::object();
+  const std::pair<const char*, double> values[] = {
+      {"min_area", c.min_area},     {"max_area", c.max_area},     {"min_aspect", c.min_aspect},
+      {"max_aspect", c.max_aspect}, {"min_width", c.min_width},   {"max_width", c.max_width},
+      {"min_height", c.min_height}, {"max_height", c.max_height}, {"min_gap", c.min_gap},
+      {"margin", c.margin},         {"sill_min", c.sill_min},     {"sill_max", c.sill_max},
+      {"head_min", c.head_min},     {"head_max", c.head_max},     {"module", c.module},
+      {"head_clearance", c.head_clearance}, {"panel_width_per_opening", c.panel_width_per_opening}};
+  for (const auto& [name, value] : values)
+    if (std::isfinite(value) && value > 0.0) j[name] = value;  // only what constrains
+  if (c.max_openings > 0) j["max_openings"] = c.max_openings;
+  if (c.max_openings_per_panel > 0) j["max_openings_per_panel"] = c.max_openings_per_panel;
+  if (!c.catalogue.empty()) j["catalogue"] = c.catalogue.name;
+  j["automatic"] = c.automatic_keys;  // the keys above that took their automatic value
+  return j;
+}
+
 json solve_result_json(const Scene& scene, const SolveResult& r) {
   json history = json::array();
   for (const GenerationRecord& g : r.history)
@@ -125,6 +126,8 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                  {"nnls_relative_rms", r.nnls_relative_rms}}},
       {"fitness", r.fitness},
       {"warnings", r.warnings},
+      {"constraints_met", r.constraint_violations.empty()},
+      {"constraint_violations", r.constraint_violations},
       {"unconstrained", {{"open_elements", open_list(r.unconstrained_open)},
                          {"openings", openings_json(r.unconstrained_openings)},
                          {"error", error_json(r.unconstrained_error)}}},

@@ -9,5 +9,8 @@
 namespace fenestra {
 
 nlohmann::json solve_result_json(const Scene& scene, const SolveResult& result);
+// The constraints that limit something (lengths in meters), the catalogue's name, and "automatic":
+// the keys that took their automatic value. As the result's settings.constraints.
+nlohmann::json constraints_json(const OpeningConstraints& constraints);
 
 }  // namespace fenestra

@@ -255,6 +255,38 @@ bool apart(const PanelRectangle& a, const PanelRectangle& b, const OpeningConstr
   return d >= std::max(kMinClearance, c.for_panel(a.panel).min_gap) - kTolerance;
 }
 
+std::vector<std::string> constraint_violations(const OpeningDomain& domain, const std::vector<PanelRectangle>& openings,
+                                               const OpeningConstraints& constraints) {
+  std::vector<std::string> out;
+  const int panels = static_cast<int>(domain.panels().size());
+  auto name = [](size_t i) { return "opening " + std::to_string(i); };
+  std::vector<int> count(static_cast<size_t>(panels), 0);
+  for (size_t i = 0; i < openings.size(); ++i) {
+    const PanelRectangle& r = openings[i];
+    if (r.panel < 0 || r.panel >= panels) {
+      out.push_back(name(i) + " names no panel of the domain");
+      continue;
+    }
+    ++count[static_cast<size_t>(r.panel)];
+    std::string why;
+    if (!admissible(r, domain, constraints, &why)) out.push_back(name(i) + " " + why);
+    for (size_t j = i + 1; j < openings.size(); ++j)
+      if (!apart(r, openings[j], constraints))
+        out.push_back(name(i) + " and " + name(j) + " are closer than min_gap " +
+                      meters(std::max(kMinClearance, constraints.for_panel(r.panel).min_gap)));
+  }
+  if (constraints.max_openings > 0 && static_cast<int>(openings.size()) > constraints.max_openings)
+    out.push_back(std::to_string(openings.size()) + " openings, more than max_openings " +
+                  std::to_string(constraints.max_openings));
+  for (int p = 0; p < panels; ++p) {
+    const int limit = panel_opening_limit(domain.panels()[p], p, constraints, domain.element_size());
+    if (limit > 0 && count[static_cast<size_t>(p)] > limit)
+      out.push_back("panel " + std::to_string(p) + " has " + std::to_string(count[static_cast<size_t>(p)]) +
+                    " openings, more than its limit " + std::to_string(limit));
+  }
+  return out;
+}
+
 EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
                             const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start,
                             Progress* progress, const EdgeSearchScope& scope) {

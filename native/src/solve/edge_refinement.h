@@ -50,6 +50,11 @@ bool apart(const PanelRectangle& a, const PanelRectangle& b, const OpeningConstr
 Eigen::VectorXd screened_values(const OpeningDomain& domain, const Eigen::MatrixXd& opening_light,
                                 const Eigen::VectorXd& values, const PanelRectangle& from, const PanelRectangle& to);
 
+// What the openings break of the constraints (one line each, empty when nothing): an opening not
+// admissible(), two not apart(), more than max_openings, or more than a panel's limit.
+std::vector<std::string> constraint_violations(const OpeningDomain& domain, const std::vector<PanelRectangle>& openings,
+                                               const OpeningConstraints& constraints);
+
 struct EdgeRefinement {
   std::vector<PanelRectangle> openings;
   int moves = 0;         // accepted edge moves

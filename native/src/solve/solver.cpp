@@ -137,6 +137,18 @@ LinearObjective linearised_objective(const LinearObjective& objective, const Con
 
 }  // namespace
 
+// The constraints as the solver applies them: sills and heads measured from each panel's faces.
+OpeningConstraints measured_constraints(const Scene& scene) {
+  OpeningConstraints constraints = scene.solver.constraints;
+  constraints.panel_base_z = panel_base_heights(scene.domain, scene.mesh);
+  constraints.panel_top_z = panel_top_heights(scene.domain, scene.mesh);
+  return constraints;
+}
+
+std::vector<std::string> solved_constraint_violations(const Scene& scene, const std::vector<PanelRectangle>& openings) {
+  return constraint_violations(scene.domain, openings, measured_constraints(scene));
+}
+
 SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress* progress) {
   check_contributions_match(scene, c, "solve");
   refuse_dark_sky(scene);
@@ -258,9 +270,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   // then a local search over whole openings; the exact evaluation has the last word.
   if (progress) progress->start("solving: openings within the constraints", 1);
   t = Clock::now();
-  OpeningConstraints constraints = settings.constraints;
-  constraints.panel_base_z = panel_base_heights(scene.domain, scene.mesh);
-  constraints.panel_top_z = panel_top_heights(scene.domain, scene.mesh);
+  const OpeningConstraints constraints = measured_constraints(scene);
   auto exact_of = [&](const std::vector<GridRectangle>& rects, SensorValues* values) {
     const std::vector<uint8_t> open = rectangles_mask(scene.domain, rects);
     *values = exact_values(open);
@@ -372,6 +382,8 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.openings.clear();
   for (const PanelRectangle& r : final_rects) out.openings.push_back(to_world(scene.domain, r));
   out.open = open_elements(scene.domain, final_rects);
+  out.constraint_violations = constraint_violations(scene.domain, final_rects, constraints);
+  for (const std::string& v : out.constraint_violations) out.warnings.push_back("constraints: " + v);
   out.predicted = chosen.value;
   out.predicted_stderr = chosen.standard_error;
   out.linear = linear_prediction(c, out.open);

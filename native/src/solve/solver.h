@@ -49,10 +49,16 @@ struct SolveResult {
   // What the user should know before trusting the result (too few paths, a prediction the
   // real-cutter check contradicts), in words.
   std::vector<std::string> warnings;
+  // What the final openings break of the constraints (solved_constraint_violations): empty unless
+  // no admissible answer was found; each line is also a warning.
+  std::vector<std::string> constraint_violations;
 };
 
 // Contributions already computed for this scene.
 SolveResult solve_openings(const Scene& scene, const Contributions& contributions, Progress* progress = nullptr);
+// What openings break of the scene's constraints (constraint_violations, with sills and heads
+// measured from each panel's faces as the solver measures them).
+std::vector<std::string> solved_constraint_violations(const Scene& scene, const std::vector<PanelRectangle>& openings);
 // Computes the contributions first (solver.paths or render.paths_per_sensor paths per sensor).
 SolveResult solve_openings(const Scene& scene, Progress* progress = nullptr);
 
