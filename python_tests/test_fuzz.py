@@ -42,7 +42,9 @@ def base_scene(kind):
         "sky": {"type": "uniform", "radiance": 318.3},
         "render": {"paths_per_sensor": 32, "max_bounces": 4, "seed": 1, "threads": 2},
         "solver": {"population": 8, "generations": 4, "improve_iterations": 20, "verify": True, "verify_paths": 16,
-                   "constraints": {"min_width": 0.5, "max_openings": 3}},
+                   "constraints": {"min_width": 0.5, "max_openings": 3, "head_clearance": 0.1,
+                                   "max_openings_per_panel": 2, "full_height": False,
+                                   "catalogue": {"walls": [[0.5, 1.0], [1.0, 1.0]], "roofs": [[1.0, 1.0]]}}},
     }
     if kind == "preetham":
         scene["sky"] = {"type": "preetham", "latitude": 48.85, "longitude": 2.35, "timezone": "Europe/Paris",

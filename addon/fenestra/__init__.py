@@ -27,6 +27,7 @@ import sys  # noqa: E402
 try:
     from ._core import (
         automatic_constraints,
+        catalogues,
         goal_error,
         preetham_radiance,
         preetham_sun,
@@ -67,6 +68,7 @@ else:
 __all__ = [
     "automatic_constraints",
     "Cancelled",
+    "catalogues",
     "Contributions",
     "Progress",
     "Scene",

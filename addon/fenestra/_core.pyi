@@ -94,4 +94,5 @@ def preetham_radiance(turbidity: float, sun_direction: npt.ArrayLike, directions
 def preetham_sun(turbidity: float, sun_zenith_deg: float) -> dict: ...  # radiance, solid_angle, normal_illuminance
 def solve(scene: Scene, contributions: Optional[Contributions] = None, progress: Optional[Progress] = None) -> str: ...  # JSON
 def automatic_constraints(full_height: bool = False) -> Dict[str, Tuple[float, str]]: ...  # key: (meters or count, why)
+def catalogues() -> Dict[str, Dict[str, list[Tuple[float, float]]]]: ...  # built-in window catalogues, meters
 def nnls(A: npt.ArrayLike, b: npt.ArrayLike, max_iterations: int = 0, tolerance: float = 0.0) -> Tuple[npt.NDArray[np.float64], float]: ...  # Lawson-Hanson: (x >= 0, ||A x - b||)

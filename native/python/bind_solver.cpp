@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <pybind11/stl.h>
+
 #include "solve/constraints.h"
 #include "solve/nnls.h"
 
@@ -63,9 +65,33 @@ void bind_automatic_constraints(py::module_& m) {
       "glazing allowed (no automatic sill, head or margin).");
 }
 
+void bind_catalogues(py::module_& m) {
+  m.def(
+      "catalogues",
+      [] {
+        auto sizes = [](const std::vector<fenestra::CatalogueSize>& list) {
+          py::list out;
+          for (const fenestra::CatalogueSize& s : list) out.append(py::make_tuple(s.width, s.height));
+          return out;
+        };
+        py::dict out;
+        for (const std::string& name : fenestra::catalogue_names()) {
+          const fenestra::WindowCatalogue c = fenestra::builtin_catalogue(name);
+          py::dict entry;
+          entry["walls"] = sizes(c.walls);
+          entry["roofs"] = sizes(c.roofs);
+          out[name.c_str()] = entry;
+        }
+        return out;
+      },
+      "The built-in window catalogues (solver.constraints.catalogue by name): {name: {\"walls\": [(width, "
+      "height), ...], \"roofs\": [...]}}, meters; walls' widths are horizontal.");
+}
+
 }  // namespace
 
 void bind_solver(py::module_& m) {
   bind_nnls(m);
   bind_automatic_constraints(m);
+  bind_catalogues(m);
 }

@@ -182,6 +182,39 @@ class Solve(unittest.TestCase):
         else:
             self.assertNotIn("constraints", solver)
 
+    def test_automatic_constraints_show_greyed_and_choices_reach_the_study(self):
+        import fenestra
+        from fenestra.blender import constraint_defaults, properties
+        study()
+        c = bpy.context.scene.fenestra.solve.constraints
+        # Every key left at 0 shows the solver's own automatic value.
+        shown = constraint_defaults.automatic_values(c)
+        automatic = fenestra.automatic_constraints()
+        self.assertEqual(set(shown), set(automatic))
+        self.assertEqual(shown["min_width"], "auto: %g m" % automatic["min_width"][0])
+        c.min_width = 0.8  # set: no longer automatic
+        self.assertNotIn("min_width", constraint_defaults.automatic_values(c))
+        c.full_height = True
+        self.assertNotIn("sill_min", constraint_defaults.automatic_values(c))
+        c.catalogue = 'residential'
+        self.assertNotIn("min_height", constraint_defaults.automatic_values(c))
+        c.automatic = False
+        self.assertEqual(constraint_defaults.automatic_values(c), {})
+        # The add-on's catalogues are the solver's.
+        names = {k for k, _, _ in properties.CATALOGUES if k != 'NONE'}
+        self.assertEqual(names, set(fenestra.catalogues()))
+        path = os.path.join(OUT, "study", "scene.json")
+        c.min_width = 0.0
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        self.assertEqual(json.load(open(path))["solver"]["constraints"],
+                         {"automatic": False, "full_height": True, "catalogue": "residential"})
+        sizes = fenestra.catalogues()["residential"]["walls"]
+        result = json.load(open(os.path.join(OUT, "study", "result.json")))
+        self.assertTrue(result["openings"] and result["constraints_met"])
+        for o in result["openings"]:
+            self.assertTrue(any(abs(o["width"] - w) < 1e-3 and abs(o["height"] - h) < 1e-3 for w, h in sizes), o)
+        self.assertEqual(len(cutters()), len(result["openings"]))
+
     def test_settings_survive_save_and_reload(self):
         study()
         f = bpy.context.scene.fenestra

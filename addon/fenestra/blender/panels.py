@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import export, native, sensor_results, sky, solve_progress, visibility
+from . import constraint_defaults, export, native, sensor_results, sky, solve_progress, visibility
 
 SHOWN = 12  # sensors listed in the Results panel
 
@@ -169,10 +169,22 @@ class FENESTRA_PT_constraints(FenestraPanel, bpy.types.Panel):
 
     def draw(self, context):
         layout, c = self.layout, context.scene.fenestra.solve.constraints
-        layout.label(text="0 = unset")
+        row = layout.row(align=True)
+        row.prop(c, "automatic")
+        row.prop(c, "full_height", text="Full Height")
+        layout.prop(c, "catalogue")
+        layout.label(text="0 = unset, automatic greyed" if c.automatic else "0 = unset")
+        automatic = constraint_defaults.automatic_values(c)
         col = layout.column(align=True)
         for key in c.KEYS:
-            col.prop(c, key)
+            if getattr(c, key) == 0 and key in automatic:
+                split = col.split(factor=0.62, align=True)
+                split.prop(c, key)
+                hint = split.row(align=True)
+                hint.active = False  # greyed: what the solver will use
+                hint.label(text=automatic[key])
+            else:
+                col.prop(c, key)
         if native.unavailable() is None and c.as_dict() and not native.accepts_constraints():
             draw_warning(layout, "This build of the solver does not take constraints yet: they are not used.")
 

@@ -98,8 +98,23 @@ class FenestraGoalSettings(PropertyGroup):
                          description="Painted goals: the goal of a white vertex (or of a float value 1)")
 
 
+CATALOGUES = (('NONE', "Free Sizes", "Any size within the limits below"),
+              ('residential', "Residential", "Walls 0.6-1.8 m wide x 1.2-2.1 m high; common roof-window sizes"),
+              ('commercial', "Commercial", "Walls 1.2-3.0 m wide x 1.5-2.4 m high; skylights 1.2-2.4 m"))
+
+
 class FenestraConstraints(PropertyGroup):
-    """Architectural constraints on the openings; 0 leaves one unset."""
+    """Architectural constraints on the openings; 0 leaves one unset (automatic, when on)."""
+    automatic: BoolProperty(
+        name="Automatic", default=True,
+        description="Keys left at 0 take the solver's automatic values (shown greyed): openings at least "
+                    "0.5 m, a 0.5 m pier between them, clear of panel edges, sills and heads off the "
+                    "floor and ceiling, a few openings per panel")
+    full_height: BoolProperty(name="Doors / Full-Height Glazing", default=False,
+                              description="No automatic sill, head or margin: openings may reach the floor "
+                                          "and ceiling")
+    catalogue: EnumProperty(name="Catalogue", items=CATALOGUES, default='NONE',
+                            description="Every opening takes one of the catalogue's sizes")
     min_area: FloatProperty(name="Min Area", min=0.0, default=0.0, unit='AREA')
     max_area: FloatProperty(name="Max Area", min=0.0, default=0.0, unit='AREA')
     min_aspect: FloatProperty(name="Min Aspect", min=0.0, default=0.0, description="Width / height")
@@ -109,6 +124,10 @@ class FenestraConstraints(PropertyGroup):
     min_height: FloatProperty(name="Min Height", min=0.0, default=0.0, unit='LENGTH')
     max_height: FloatProperty(name="Max Height", min=0.0, default=0.0, unit='LENGTH')
     max_openings: IntProperty(name="Max Openings", min=0, default=0)
+    max_openings_per_panel: IntProperty(name="Max per Panel", min=0, default=0,
+                                        description="Openings on one panel (a face group of one plane)")
+    panel_width_per_opening: FloatProperty(name="Panel Width per Opening", min=0.0, default=0.0, unit='LENGTH',
+                                           description="At most one opening per this much of a panel's width")
     min_gap: FloatProperty(name="Min Gap", min=0.0, default=0.0, unit='LENGTH',
                            description="Between two openings")
     margin: FloatProperty(name="Margin", min=0.0, default=0.0, unit='LENGTH',
@@ -117,13 +136,24 @@ class FenestraConstraints(PropertyGroup):
                             description="Lowest sill height above the panel's bottom")
     head_max: FloatProperty(name="Max Head", min=0.0, default=0.0, unit='LENGTH',
                             description="Highest head height above the panel's bottom")
+    head_clearance: FloatProperty(name="Head Clearance", min=0.0, default=0.0, unit='LENGTH',
+                                  description="Least distance between a head and the wall's top")
 
     KEYS = ("min_area", "max_area", "min_aspect", "max_aspect", "min_width", "max_width", "min_height",
-            "max_height", "max_openings", "min_gap", "margin", "sill_min", "head_max")
+            "max_height", "max_openings", "max_openings_per_panel", "panel_width_per_opening", "min_gap",
+            "margin", "sill_min", "head_max", "head_clearance")
 
     def as_dict(self):
-        """The constraints that are set, as the scene file's solver.constraints."""
-        return {k: getattr(self, k) for k in self.KEYS if getattr(self, k) > 0}
+        """The constraints that are set, as the scene file's solver.constraints (keys left out take
+        their automatic value in the solver)."""
+        out = {k: getattr(self, k) for k in self.KEYS if getattr(self, k) > 0}
+        if not self.automatic:
+            out["automatic"] = False
+        if self.full_height:
+            out["full_height"] = True
+        if self.catalogue != 'NONE':
+            out["catalogue"] = self.catalogue
+        return out
 
 
 QUALITY = {'PREVIEW': (2048, 150, 32), 'FINAL': (16384, 500, 64)}  # paths, generations, population

@@ -42,7 +42,9 @@ CONSTRAINTS = {
     "min_area": "Min Area", "max_area": "Max Area", "min_aspect": "Min Aspect", "max_aspect": "Max Aspect",
     "min_width": "Min Width", "max_width": "Max Width", "min_height": "Min Height", "max_height": "Max Height",
     "max_openings": "Max Openings", "min_gap": "Min Gap", "margin": "Margin", "sill_min": "Min Sill",
-    "head_max": "Max Head",
+    "head_max": "Max Head", "head_clearance": "Head Clearance", "max_openings_per_panel": "Max per Panel",
+    "panel_width_per_opening": "Panel Width per Opening", "automatic": "Automatic",
+    "full_height": "Doors / Full-Height Glazing", "catalogue": "Catalogue",
 }
 FIELDS.update({"solver.constraints." + k: v for k, v in CONSTRAINTS.items()})
 # What is left of a key the tab has no field for: the part of the study it belongs to.

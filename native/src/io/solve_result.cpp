@@ -51,6 +51,24 @@ json openings_json(const std::vector<OpeningRectangle>& openings) {
   return list;
 }
 
+json tradeoffs_json(const SolveResult& r) {
+  json list = json::array();
+  for (const TradeoffResult& t : r.tradeoffs) {
+    double area = 0.0;
+    for (const OpeningRectangle& o : t.openings) area += o.width * o.height;
+    list.push_back({{"openings_count", t.openings.size()},
+                    {"answer", t.answer},
+                    {"glazing_area_m2", area},
+                    {"error", error_json(t.error)},
+                    {"predicted_by", t.cut ? "cutters" : "records"},
+                    {"openings", openings_json(t.openings)},
+                    {"predicted", std::vector<double>(t.predicted.data(), t.predicted.data() + t.predicted.size())},
+                    {"predicted_stderr", std::vector<double>(t.predicted_stderr.data(),
+                                                             t.predicted_stderr.data() + t.predicted_stderr.size())}});
+  }
+  return list;
+}
+
 json open_list(const std::vector<uint8_t>& open) {
   json list = json::array();
   for (size_t k = 0; k < open.size(); ++k)
@@ -127,6 +145,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
       {"fitness", r.fitness},
       {"warnings", r.warnings},
       {"constraints_met", r.constraint_violations.empty()},
+      {"tradeoffs", tradeoffs_json(r)},
       {"constraint_violations", r.constraint_violations},
       {"unconstrained", {{"open_elements", open_list(r.unconstrained_open)},
                          {"openings", openings_json(r.unconstrained_openings)},
@@ -153,7 +172,8 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                     {"improve_iterations", s.improve_iterations},
                     {"refine_edges", s.refine_edges},
                     {"verify", s.verify},
-                    {"verify_paths", s.verify_paths}}}};
+                    {"verify_paths", s.verify_paths},
+                    {"tradeoffs", s.tradeoffs}}}};
 }
 
 }  // namespace fenestra

@@ -598,7 +598,7 @@ SolverSettings parse_solver(const ScenePath& sp, const json& j) {
   check_known_keys(sp, j, "solver",
                    {"element_size", "paths", "population", "generations", "seed", "time_budget_s", "shape_weights",
                     "bound_weight", "coarse_to_fine", "elite", "constraints", "panel_constraints", "improve_iterations",
-                    "verify", "verify_paths", "refine_edges"});
+                    "verify", "verify_paths", "refine_edges", "tradeoffs"});
   auto integer = [&](const char* name, int lo, int hi, int fallback) {
     if (!j.contains(name)) return fallback;
     const double v = number(sp, j.at(name), std::string("solver.") + name);
@@ -630,6 +630,10 @@ SolverSettings parse_solver(const ScenePath& sp, const json& j) {
     s.verify = j.at("verify").get<bool>();
   }
   s.verify_paths = integer("verify_paths", 0, 1 << 24, s.verify_paths);
+  if (j.contains("tradeoffs")) {
+    if (!j.at("tradeoffs").is_boolean()) sp.fail("solver.tradeoffs", "expected true or false");
+    s.tradeoffs = j.at("tradeoffs").get<bool>();
+  }
   if (j.contains("shape_weights")) {
     const json& w = j.at("shape_weights");
     if (!w.is_object()) sp.fail("solver.shape_weights", "expected {\"isolated\", \"boundary\", \"regions\"}");

@@ -33,6 +33,7 @@ struct SolverSettings {
   bool refine_edges = true;        // move openings' edges off the element grid (thick walls: on a refined grid)
   bool verify = true;              // path-trace the final openings with real cutters (evaluate)
   int verify_paths = 0;            // paths per sensor of that check; 0: as many as the contributions'
+  bool tradeoffs = true;           // also the best answers with fewer openings (solve/tradeoffs.h)
 };
 
 }  // namespace fenestra

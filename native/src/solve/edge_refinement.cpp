@@ -290,9 +290,16 @@ std::vector<std::string> constraint_violations(const OpeningDomain& domain, cons
 EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
                             const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start,
                             Progress* progress, const EdgeSearchScope& scope) {
+  RegionSearch search(c, domain, start);
+  return refine_edges(domain, c, objective, constraints, &search, progress, scope);
+}
+
+EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
+                            const OpeningConstraints& constraints, RegionSearch* searched_region, Progress* progress,
+                            const EdgeSearchScope& scope) {
   const double s = domain.element_size();
   EdgeRefinement out;
-  RegionSearch search(c, domain, start);
+  RegionSearch& search = *searched_region;
   const Eigen::VectorXd closed = c.closed.value;
   double error = prediction_error(objective, search.values() - closed);
   const double module = constraints.module;
@@ -367,7 +374,10 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c,
       if (!improved) return;
     }
   };
-  const std::vector<double> steps = edge_steps(s, module, false);
+  std::vector<double> steps = edge_steps(s, module, false);
+  while (scope.coarsest_finest_step > 0.0 && steps.size() > 1 &&
+         steps[steps.size() - 2] >= scope.coarsest_finest_step * (1.0 - 1e-9))
+    steps.pop_back();
   for (const double step : steps) {
     const bool whole_elements = step >= s * (1.0 - 1e-9);
     if (whole_elements && !scope.whole_elements) continue;

@@ -16,6 +16,7 @@
 namespace fenestra {
 
 class Progress;
+class RegionSearch;
 
 // Smallest step of continuous edges (solver.constraints.module 0), meters.
 constexpr double kContinuousEdgeStep = 0.01;
@@ -73,10 +74,17 @@ struct EdgeSearchScope {
   // Optional, sensors x elements: the light each element adds when opened (a linearisation about
   // the start). It ranks the moves of every step but the finest, so that few are evaluated.
   const Eigen::MatrixXd* opening_light = nullptr;
+  // > 0: the steps stop at the first not below this (meters): a quicker, coarser search.
+  double coarsest_finest_step = 0.0;
 };
 
 EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
                             const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start,
                             Progress* progress, const EdgeSearchScope& scope = {});
+// The same from the openings `search` holds, which it holds, moved, afterwards (so that one index
+// serves several searches).
+EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
+                            const OpeningConstraints& constraints, RegionSearch* search, Progress* progress,
+                            const EdgeSearchScope& scope = {});
 
 }  // namespace fenestra

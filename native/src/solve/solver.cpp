@@ -20,6 +20,7 @@
 #include "solve/edge_refinement.h"
 #include "solve/exact_values.h"
 #include "solve/thick_wall_edges.h"
+#include "solve/tradeoffs.h"
 
 namespace fenestra {
 namespace {
@@ -395,6 +396,28 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   if (thick_seconds > 0.0) out.timings.push_back({"thick-wall edges", thick_seconds});
   if (progress) progress->throw_if_cancelled();
 
+  if (settings.tradeoffs && !out.openings.empty()) {
+    t = Clock::now();
+    if (progress) progress->start("solving: fewer openings", 1);
+    TradeoffResult answer;
+    answer.openings = out.openings;
+    answer.predicted = out.predicted;
+    answer.predicted_stderr = out.predicted_stderr;
+    answer.error = out.error;
+    answer.answer = true;
+    out.tradeoffs.push_back(answer);
+    for (const Tradeoff& f : fewer_openings(scene, c, objective, constraints, final_rects,
+                                            about ? &about->E : nullptr, settings.verify_paths, progress)) {
+      TradeoffResult entry;
+      for (const PanelRectangle& r : f.openings) entry.openings.push_back(to_world(scene.domain, r));
+      entry.predicted = f.values.value;
+      entry.predicted_stderr = f.values.standard_error;
+      entry.error = goal_error(out.goals, f.values.value);
+      entry.cut = f.cut;
+      out.tradeoffs.push_back(std::move(entry));
+    }
+    out.timings.push_back({"trade-offs", since(t)});
+  }
   if (settings.verify) {
     t = Clock::now();
     std::vector<OpeningInput> cutters;

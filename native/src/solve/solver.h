@@ -16,6 +16,15 @@
 
 namespace fenestra {
 
+// One entry of the choice of trade-offs (solve/tradeoffs.h): a set of openings and its prediction.
+struct TradeoffResult {
+  std::vector<OpeningRectangle> openings;
+  Eigen::VectorXd predicted, predicted_stderr;  // per sensor
+  GoalError error;
+  bool cut = false;     // predicted by real cutters (thick walls), not the path records
+  bool answer = false;  // the solver's answer (the one with the most openings)
+};
+
 struct SolveResult {
   std::vector<uint8_t> open;                 // per element: the final openings' elements
   std::vector<OpeningRectangle> openings;    // the final openings: admissible rectangles
@@ -52,6 +61,8 @@ struct SolveResult {
   // What the final openings break of the constraints (solved_constraint_violations): empty unless
   // no admissible answer was found; each line is also a warning.
   std::vector<std::string> constraint_violations;
+  // The answer, then the best found with fewer openings, down to one (solver.tradeoffs).
+  std::vector<TradeoffResult> tradeoffs;
 };
 
 // Contributions already computed for this scene.
