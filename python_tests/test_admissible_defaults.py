@@ -196,3 +196,50 @@ def test_bad_constraint_keys_are_refused_naming_the_key(tmp_path, constraints, m
     d["solver"]["constraints"] = constraints
     with pytest.raises(ValueError, match=message):
         fenestra.scene_from_dict(d, tmp_path)
+
+
+def test_tradeoffs_list_the_best_answers_with_fewer_openings(tmp_path):
+    d = small_scene(tmp_path)
+    d["render"]["paths_per_sensor"] = 1 << 15  # the checks below
+    d["opening_domain"]["element_size"] = 0.25
+    d["solver"] = dict(FAST, verify=True, constraints={"panel_width_per_opening": 0.5, "min_gap": 0.25,
+                                                       "min_width": 0.25, "min_height": 0.25})
+    scene = fenestra.scene_from_dict(d, tmp_path)
+    truth = [grid_window(scene, (3, 6), (1, 2)), grid_window(scene, (3, 6), (5, 6)), grid_window(scene, (3, 6), (9, 10))]
+    scene.render.paths_per_sensor = 4096
+    goals, _ = fenestra.evaluate(scene, truth)
+    d["sensors"]["goals"] = [float(g) for g in goals]
+    d["sensors"]["goal_units"] = "lux"
+    scene = fenestra.scene_from_dict(d, tmp_path)
+    result = fenestra.solve(scene)
+    entries = result["tradeoffs"]
+    n = len(result["openings"])
+    assert n >= 2, result["openings"]
+    # The answer first, then one opening fewer each time, down to one.
+    assert entries[0]["answer"] and entries[0]["openings"] == result["openings"]
+    assert entries[0]["error"]["relative_rms"] == pytest.approx(result["error"]["relative_rms"])
+    assert [e["openings_count"] for e in entries] == list(range(n, max(0, n - 9), -1))
+    assert not any(e["answer"] for e in entries[1:])
+    for e in entries:
+        assert len(e["openings"]) == e["openings_count"]
+        assert fenestra.constraint_violations(scene, e["openings"]) == []
+        area = sum(o["width"] * o["height"] for o in e["openings"])
+        assert e["glazing_area_m2"] == pytest.approx(area)
+        assert e["predicted_by"] == "records"
+    # Each entry is at least as good as the best single removal from the one before it.
+    for before, after in zip(entries, entries[1:]):
+        rects = before["openings"]
+        removal_errors = []
+        for i in range(len(rects)):
+            values, _ = fenestra.evaluate(scene, rects[:i] + rects[i + 1:])
+            removal_errors.append(np.sqrt(np.sum((values - goals) ** 2) / np.sum(goals ** 2)))
+        values, stderr = fenestra.evaluate(scene, after["openings"])
+        predicted, predicted_stderr = np.asarray(after["predicted"]), np.asarray(after["predicted_stderr"])
+        # The prediction is the records' exact value: real cutters agree within the noise.
+        assert np.all(np.abs(values - predicted) <= 5 * np.hypot(stderr, predicted_stderr) + 1e-9)
+        error = np.sqrt(np.sum((values - goals) ** 2) / np.sum(goals ** 2))
+        noise = np.sqrt(np.sum(stderr ** 2) / np.sum(goals ** 2))
+        assert error <= min(removal_errors) + 3 * noise, (error, removal_errors)
+    # Off: no list.
+    d["solver"]["tradeoffs"] = False
+    assert fenestra.solve(fenestra.scene_from_dict(d, tmp_path))["tradeoffs"] == []

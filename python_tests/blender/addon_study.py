@@ -191,7 +191,7 @@ class Solve(unittest.TestCase):
         shown = constraint_defaults.automatic_values(c)
         automatic = fenestra.automatic_constraints()
         self.assertEqual(set(shown), set(automatic))
-        self.assertEqual(shown["min_width"], "auto: %g m" % automatic["min_width"][0])
+        self.assertEqual(shown["min_width"], "auto %g m" % automatic["min_width"][0])
         c.min_width = 0.8  # set: no longer automatic
         self.assertNotIn("min_width", constraint_defaults.automatic_values(c))
         c.full_height = True
@@ -214,6 +214,30 @@ class Solve(unittest.TestCase):
         for o in result["openings"]:
             self.assertTrue(any(abs(o["width"] - w) < 1e-3 and abs(o["height"] - h) < 1e-3 for w, h in sizes), o)
         self.assertEqual(len(cutters()), len(result["openings"]))
+
+    def test_a_tradeoff_replaces_the_cutters_without_solving_again(self):
+        study()
+        c = bpy.context.scene.fenestra.solve.constraints
+        c.automatic, c.max_width = False, 1.0  # several openings to light the room
+        bpy.context.scene.fenestra.goals.level = 0.9
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        r = bpy.context.scene.fenestra.results
+        result = json.load(open(os.path.join(OUT, "study", "result.json")))
+        entries = result["tradeoffs"]
+        self.assertGreater(len(entries), 1, result["openings"])
+        self.assertEqual([t.openings for t in r.tradeoffs], [e["openings_count"] for e in entries])
+        last = len(entries) - 1
+        self.assertEqual(bpy.ops.fenestra.apply_tradeoff(index=last), {'FINISHED'})
+        self.assertEqual(len(cutters()), entries[last]["openings_count"])
+        self.assertEqual(r.tradeoff_shown, last)
+        self.assertAlmostEqual(r.relative_rms, entries[last]["error"]["relative_rms"], places=6)
+        self.assertLess(r.verified_rms, 0.0)  # the check was of the answer, not of this one
+        achieved = [s.achieved for s in r.sensors]
+        self.assertTrue(np.allclose(achieved, entries[last]["predicted"], rtol=1e-5))
+        # Back to the answer.
+        self.assertEqual(bpy.ops.fenestra.apply_tradeoff(index=0), {'FINISHED'})
+        self.assertEqual(len(cutters()), len(result["openings"]))
+        self.assertEqual(len(r.tradeoffs), len(entries))
 
     def test_settings_survive_save_and_reload(self):
         study()

@@ -56,6 +56,11 @@ def setup():
                 bpy.utils.unregister_class(cls)
             except RuntimeError:
                 pass
+    # The Constraints sub-panel open, so that its automatic values show.
+    constraints_panel = bpy.types.FENESTRA_PT_constraints
+    bpy.utils.unregister_class(constraints_panel)
+    constraints_panel.bl_options = set()
+    bpy.utils.register_class(constraints_panel)
     window, area, region = view3d()
     space = area.spaces.active
     space.show_region_ui = True

@@ -9,7 +9,7 @@ result_operators and sensor_hover (Inspect Sensors), panels and result_panels (3
 the selected or pointed-at sensors). user_messages (the core's messages in the user's words),
 visibility (hidden marked objects), goal_bounds (the goal fields' ranges), setup_checks and
 check_setup (warnings before a solve), opening_cutters and evaluate_openings (the cutters as the
-user moved them, path-traced).
+user moved them, path-traced), tradeoff_operators (a simpler design from the solve's list).
 A solve: solve_job (the worker), solve_progress (its bar and Cancel button), solve_guard (what
 cancels it), study_folder (replaced only on success), study_fingerprint and contributions_cache
 (the contributions reused when only goals or solver settings changed).
@@ -19,11 +19,11 @@ import bpy
 
 from . import (check_setup, contributions_cache, evaluate_openings, false_colour_overlay, legend, operators, overlay,
                panels, properties, result_operators, result_panels, sensor_hover, sensor_labels, solve_guard, solve_job,
-               solve_progress)
+               solve_progress, tradeoff_operators)
 
 classes = (properties.classes + operators.classes + result_operators.classes + sensor_hover.classes
            + evaluate_openings.classes + solve_progress.classes + panels.classes + result_panels.classes
-           + check_setup.classes)
+           + check_setup.classes + tradeoff_operators.classes)
 DRAWN = (overlay, false_colour_overlay, legend, sensor_labels)
 
 

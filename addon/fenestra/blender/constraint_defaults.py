@@ -18,14 +18,14 @@ def _defaults(full_height):
 
 def _text(key, value):
     if key == "panel_width_per_opening":
-        return "auto: 1 per %g m" % value
-    return "auto: %g m" % value
+        return "auto 1 per %g m" % value
+    return "auto %g m" % value
 
 
 def automatic_values(constraints):
-    """{key: greyed text} for the keys the solver fills in when they are left at 0."""
+    """{key: greyed text} for the keys left at 0 that the solver fills in."""
     if not constraints.automatic or native.unavailable() is not None:
         return {}
     values = _defaults(bool(constraints.full_height))
     return {key: _text(key, value) for key, (value, _why) in values.items()
-            if not (constraints.catalogue != 'NONE' and key in _CATALOGUE_SIZES)}
+            if getattr(constraints, key) == 0 and not (constraints.catalogue != 'NONE' and key in _CATALOGUE_SIZES)}

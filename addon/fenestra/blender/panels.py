@@ -177,12 +177,10 @@ class FENESTRA_PT_constraints(FenestraPanel, bpy.types.Panel):
         automatic = constraint_defaults.automatic_values(c)
         col = layout.column(align=True)
         for key in c.KEYS:
-            if getattr(c, key) == 0 and key in automatic:
-                split = col.split(factor=0.62, align=True)
-                split.prop(c, key)
-                hint = split.row(align=True)
-                hint.active = False  # greyed: what the solver will use
-                hint.label(text=automatic[key])
+            if key in automatic:  # left at 0: greyed, named with the value the solver will use
+                row = col.row(align=True)
+                row.active = False
+                row.prop(c, key, text="%s (%s)" % (c.bl_rna.properties[key].name, automatic[key]))
             else:
                 col.prop(c, key)
         if native.unavailable() is None and c.as_dict() and not native.accepts_constraints():
@@ -209,6 +207,16 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             col.label(text="Checked: %.1f %% (noise %.1f %%)" % (100 * r.verified_rms, 100 * r.verified_noise))
         for warning in filter(None, r.warnings.split("\n")):
             draw_warning(layout, warning)
+        if len(r.tradeoffs) > 1:
+            box = layout.box()
+            box.label(text="Trade-offs (predicted)")
+            col_t = box.column(align=True)
+            for i, t in enumerate(r.tradeoffs):
+                op = col_t.operator("fenestra.apply_tradeoff", depress=(i == r.tradeoff_shown),
+                                    text="%d opening%s: %.1f %%, %.1f m\u00b2" % (
+                                        t.openings, "" if t.openings == 1 else "s", 100 * t.relative_rms,
+                                        t.glazing_area))
+                op.index = i
         col.label(text="Time %.1f s (solver %.1f s)" % (r.seconds_total, r.seconds_solver))
         box = layout.box()
         box.label(text="Farthest from their goals:" if len(r.sensors) > SHOWN else "Sensors:")

@@ -126,7 +126,7 @@ class FenestraConstraints(PropertyGroup):
     max_openings: IntProperty(name="Max Openings", min=0, default=0)
     max_openings_per_panel: IntProperty(name="Max per Panel", min=0, default=0,
                                         description="Openings on one panel (a face group of one plane)")
-    panel_width_per_opening: FloatProperty(name="Panel Width per Opening", min=0.0, default=0.0, unit='LENGTH',
+    panel_width_per_opening: FloatProperty(name="Width per Opening", min=0.0, default=0.0, unit='LENGTH',
                                            description="At most one opening per this much of a panel's width")
     min_gap: FloatProperty(name="Min Gap", min=0.0, default=0.0, unit='LENGTH',
                            description="Between two openings")
@@ -209,8 +209,18 @@ class FenestraSensorResult(PropertyGroup):
     vertex: IntProperty(name="Vertex", description="Its vertex index in that object")
 
 
+class FenestraTradeoff(PropertyGroup):
+    openings: IntProperty(name="Openings")
+    relative_rms: FloatProperty(name="Relative RMS Error")
+    glazing_area: FloatProperty(name="Glazing Area", unit='AREA', description="Total area of the openings")
+
+
 class FenestraResults(PropertyGroup):
     valid: BoolProperty(default=False)
+    tradeoffs: CollectionProperty(type=FenestraTradeoff,
+                                  description="The answer and the best found with fewer openings")
+    tradeoff_shown: IntProperty(name="Shown Trade-off", default=0,
+                                description="Which of the trade-offs the cutters show (0: the answer)")
     relative_rms: FloatProperty(name="Relative RMS Error")
     verified_rms: FloatProperty(name="Checked Error", default=-1.0,
                                 description="Relative RMS error path-traced with the openings really cut "
@@ -261,6 +271,7 @@ classes = (
     FenestraSkySettings,
     FenestraGoalSettings,
     FenestraConstraints,
+    FenestraTradeoff,
     FenestraSolveSettings,
     FenestraSensorResult,
     FenestraResults,

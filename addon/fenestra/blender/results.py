@@ -183,6 +183,17 @@ def write_achieved(study, achieved):
         mesh.update()
 
 
+def tradeoff_result(result, index):
+    """The result as it would be with trade-off `index` (of result["tradeoffs"]) as the answer: its
+    openings, predicted values and error; the rest (the list itself included) as solved."""
+    entry = result["tradeoffs"][index]
+    sensors = [dict(s, predicted=p, predicted_stderr=e)
+               for s, p, e in zip(result["sensors"], entry["predicted"], entry["predicted_stderr"])]
+    error = dict(result["error"], **entry["error"], verified=None)  # the check was of the answer
+    return dict(result, openings=entry["openings"], sensors=sensors, error=error,
+                open_elements=[], warnings=[w for w in result.get("warnings", []) if not w.startswith("checked")])
+
+
 def apply(context, study, result):
     """Replaces the previous result with this one (a dict as fenestra.solve returns)."""
     from .opening_cutters import remember  # (it reads this module's names)
@@ -243,6 +254,13 @@ def apply(context, study, result):
     r.verified_noise = verified.get("noise_rms", 0.0) if verified else 0.0
     r.warnings = "\n".join(result.get("warnings", []))
     r.openings = len(result["openings"])
+    r.tradeoffs.clear()
+    for entry in result.get("tradeoffs", []):
+        item = r.tradeoffs.add()
+        item.openings = entry["openings_count"]
+        item.relative_rms = entry["error"]["relative_rms"]
+        item.glazing_area = entry["glazing_area_m2"]
+    r.tradeoff_shown = 0
     r.open_elements = len(result.get("open_elements", []))
     r.elements = result.get("element_count", 0)
     r.seconds_total = timings.get("total", 0.0)

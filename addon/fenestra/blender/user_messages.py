@@ -43,7 +43,7 @@ CONSTRAINTS = {
     "min_width": "Min Width", "max_width": "Max Width", "min_height": "Min Height", "max_height": "Max Height",
     "max_openings": "Max Openings", "min_gap": "Min Gap", "margin": "Margin", "sill_min": "Min Sill",
     "head_max": "Max Head", "head_clearance": "Head Clearance", "max_openings_per_panel": "Max per Panel",
-    "panel_width_per_opening": "Panel Width per Opening", "automatic": "Automatic",
+    "panel_width_per_opening": "Width per Opening", "automatic": "Automatic",
     "full_height": "Doors / Full-Height Glazing", "catalogue": "Catalogue",
 }
 FIELDS.update({"solver.constraints." + k: v for k, v in CONSTRAINTS.items()})
