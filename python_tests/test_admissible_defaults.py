@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import fenestra
+from conftest import box_obj
 from test_ground_truth import PATHS, TARGET, grid_window, small_scene
 
 FAST = {"paths": 1024, "generations": 40, "population": 24, "seed": 1, "verify": False}
@@ -243,3 +244,82 @@ def test_tradeoffs_list_the_best_answers_with_fewer_openings(tmp_path):
     # Off: no list.
     d["solver"]["tradeoffs"] = False
     assert fenestra.solve(fenestra.scene_from_dict(d, tmp_path))["tradeoffs"] == []
+
+
+def three_windows_goals(tmp_path, constraints):
+    """Goals from three windows of different sills and sizes on the 3 m wall (0.25 m elements)."""
+    d = small_scene(tmp_path)
+    d["opening_domain"]["element_size"] = 0.25
+    d["render"]["paths_per_sensor"] = 1 << 14
+    scene = fenestra.scene_from_dict(d, tmp_path)
+    truth = [grid_window(scene, (2, 5), (0, 1)), grid_window(scene, (4, 8), (5, 6)), grid_window(scene, (3, 6), (10, 11))]
+    goals, _ = fenestra.evaluate(scene, truth)
+    d["sensors"]["goals"] = [float(g) for g in goals]
+    d["sensors"]["goal_units"] = "lux"
+    d["solver"] = dict(FAST, constraints=dict({"panel_width_per_opening": 1.0, "min_width": 0.25,
+                                               "min_height": 0.25, "min_gap": 0.25, "margin": 0.0}, **constraints))
+    return d
+
+
+def sills_and_heads(result):
+    z = [np.asarray(o["corners"])[:, 2] for o in result["openings"]]
+    return [float(v.min()) for v in z], [float(v.max()) for v in z]
+
+
+@pytest.mark.parametrize("rules", [{"align_sills": True}, {"align_sills": True, "align_heads": True},
+                                   {"equal_widths": True}, {"sill_heights": [0.5, 0.75]},
+                                   {"same_type_in_row": True, "align_sills": True}, {"symmetric": True},
+                                   {"equal_spacing": True, "align_sills": True}])
+def test_facade_rules_hold_in_the_result_and_say_what_they_cost(tmp_path, rules):
+    d = three_windows_goals(tmp_path, rules)
+    scene = fenestra.scene_from_dict(d, tmp_path)
+    result = fenestra.solve(scene)
+    assert result["openings"]
+    assert result["constraints_met"], result["constraint_violations"]
+    assert fenestra.constraint_violations(scene, result["openings"]) == []
+    steps = result["composition"]
+    assert steps and all(s["met"] for s in steps), steps
+    assert steps[-1]["error_after"] == pytest.approx(result["error"]["relative_rms"], rel=1e-6)
+    for s in steps:
+        if s["error_after"] > s["error_before"] + 1e-3:
+            assert any(w.startswith(s["rule"] + " raises the error from") for w in result["warnings"]), s
+    sills, heads = sills_and_heads(result)
+    widths = [o["width"] for o in result["openings"]]
+    if rules.get("align_sills"):
+        assert np.ptp(sills) <= 1e-3, sills
+    if rules.get("align_heads"):
+        assert np.ptp(heads) <= 1e-3, heads
+    if rules.get("equal_widths") or rules.get("same_type_in_row"):
+        assert np.ptp(widths) <= 1e-3, widths
+    if "sill_heights" in rules:
+        assert all(min(abs(s - h) for h in rules["sill_heights"]) <= 1e-3 for s in sills), sills
+    if rules.get("symmetric"):
+        xs = sorted(round(float(np.asarray(o["corners"])[:, 0].mean()), 3) for o in result["openings"])
+        assert np.allclose(xs, sorted(3.0 - x for x in xs), atol=2e-3), xs  # the wall's axis: x = 1.5
+    # The same goals without the rules: the free answer breaks them (the test can fail).
+    free = fenestra.solve(fenestra.scene_from_dict(three_windows_goals(tmp_path, {}), tmp_path))
+    assert fenestra.constraint_violations(scene, free["openings"]), free["openings"]
+
+
+@pytest.mark.parametrize("constraints, message", [
+    ({"align_sills": "yes"}, r"constraints\.align_sills: expected true or false"),
+    ({"sill_heights": []}, r"sill_heights: expected a non-empty list"),
+    ({"sill_heights": [-0.5]}, r"sill_heights\[0\]: expected a height from 0 to 100 m"),
+    ({"sill_heights": [0.2], "sill_min": 0.5}, r"sill_heights\[0\] 0.2 m is below sill_min 0.5 m"),
+    ({"sill_heights": [2.0], "head_max": 2.2, "min_height": 0.5},
+     r"sill_heights\[0\] 2 m \+ min_height 0.5 m is above head_max 2.2 m"),
+])
+def test_contradictory_composition_keys_are_refused(tmp_path, constraints, message):
+    d = small_scene(tmp_path)
+    d["solver"]["constraints"] = constraints
+    with pytest.raises(ValueError, match=message):
+        fenestra.scene_from_dict(d, tmp_path)
+
+
+def test_facade_rules_need_a_wall(tmp_path):
+    d = small_scene(tmp_path)
+    (tmp_path / "room.obj").write_text(
+        box_obj((0, 0, 0), (3, 3.5, 2.5), lambda f: {"ceiling": "facade", "floor": "floor"}.get(f, "grey")))
+    d["solver"]["constraints"] = {"align_sills": True}
+    with pytest.raises(ValueError, match=r"apply to flat walls, and the opening domain has none"):
+        fenestra.scene_from_dict(d, tmp_path)

@@ -113,6 +113,12 @@ json constraints_json(const OpeningConstraints& c) {
   if (c.max_openings > 0) j["max_openings"] = c.max_openings;
   if (c.max_openings_per_panel > 0) j["max_openings_per_panel"] = c.max_openings_per_panel;
   if (!c.catalogue.empty()) j["catalogue"] = c.catalogue.name;
+  const std::pair<const char*, bool> rules[] = {{"align_sills", c.align_sills},   {"align_heads", c.align_heads},
+                                                {"equal_widths", c.equal_widths}, {"same_type_in_row", c.same_type_in_row},
+                                                {"symmetric", c.symmetric},       {"equal_spacing", c.equal_spacing}};
+  for (const auto& [name, on] : rules)
+    if (on) j[name] = true;
+  if (!c.sill_heights.empty()) j["sill_heights"] = c.sill_heights;
   j["automatic"] = c.automatic_keys;  // the keys above that took their automatic value
   return j;
 }
@@ -146,6 +152,13 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
       {"warnings", r.warnings},
       {"constraints_met", r.constraint_violations.empty()},
       {"tradeoffs", tradeoffs_json(r)},
+      {"composition", [&] {
+         json steps = json::array();
+         for (const CompositionStep& c : r.composition)
+           steps.push_back({{"rule", c.rule}, {"met", c.met}, {"error_before", c.error_before},
+                            {"error_after", c.error_after}});
+         return steps;
+       }()},
       {"constraint_violations", r.constraint_violations},
       {"unconstrained", {{"open_elements", open_list(r.unconstrained_open)},
                          {"openings", openings_json(r.unconstrained_openings)},

@@ -13,6 +13,7 @@
 #include "scene/input_limits.h"
 #include "scene/scene.h"
 #include "solve/catalogue_snap.h"
+#include "solve/composition.h"
 
 namespace fenestra {
 
@@ -483,7 +484,8 @@ OpeningConstraints parse_constraints(const ScenePath& sp, const json& j, double 
                    {"min_area", "max_area", "min_aspect", "max_aspect", "min_width", "max_width", "min_height",
                     "max_height", "max_openings", "min_gap", "margin", "sill_min", "sill_max", "head_min",
                     "head_max", "module", "head_clearance", "max_openings_per_panel", "panel_width_per_opening",
-                    "automatic", "full_height", "catalogue"});
+                    "automatic", "full_height", "catalogue", "align_sills", "align_heads", "equal_widths",
+                    "same_type_in_row", "symmetric", "equal_spacing", "sill_heights"});
   OpeningConstraints c;
   const std::pair<const char*, double*> values[] = {
       {"min_area", &c.min_area},     {"max_area", &c.max_area},     {"min_aspect", &c.min_aspect},
@@ -511,6 +513,23 @@ OpeningConstraints parse_constraints(const ScenePath& sp, const json& j, double 
   };
   const bool automatic = flag("automatic", true), full_height = flag("full_height", false);
   if (j.contains("catalogue")) c.catalogue = parse_catalogue(sp, j.at("catalogue"), key + ".catalogue");
+  c.align_sills = flag("align_sills", false);
+  c.align_heads = flag("align_heads", false);
+  c.equal_widths = flag("equal_widths", false);
+  c.same_type_in_row = flag("same_type_in_row", false);
+  c.symmetric = flag("symmetric", false);
+  c.equal_spacing = flag("equal_spacing", false);
+  if (j.contains("sill_heights")) {
+    const json& list = j.at("sill_heights");
+    const std::string at = key + ".sill_heights";
+    if (!list.is_array() || list.empty()) sp.fail(at, "expected a non-empty list of heights in meters");
+    if (list.size() > 100) sp.fail(at, "has more than 100 heights");
+    for (size_t i = 0; i < list.size(); ++i) {
+      const double h = number(sp, list[i], at + "[" + std::to_string(i) + "]");
+      if (!(h >= 0.0) || !(h <= 100.0)) sp.fail(at + "[" + std::to_string(i) + "]", "expected a height from 0 to 100 m");
+      c.sill_heights.push_back(h);
+    }
+  }
   auto feasible = [&](const OpeningConstraints& set) {
     try {
       check_feasible(set, element_size);
@@ -751,6 +770,8 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     apply_panel_constraints(sp, j.value("solver", json()), &scene);
     const std::string no_fit = catalogue_fit_problem(scene.domain, scene.solver.constraints);
     if (!no_fit.empty()) sp.fail("solver.constraints.catalogue", no_fit);
+    const std::string no_facade = composition_problem(scene.domain, scene.solver.constraints);
+    if (!no_facade.empty()) sp.fail("solver.constraints", no_facade);
   } catch (const json::exception& e) {
     sp.fail("(structure)", "a value has the wrong type: " + json_error_text(e));
   }

@@ -131,7 +131,7 @@ bool OpeningConstraints::any() const {
          min_width > 0.0 || max_width < kInfinity || min_height > 0.0 || max_height < kInfinity ||
          max_openings > 0 || min_gap > 0.0 || margin > 0.0 || sill_min > 0.0 || sill_max < kInfinity ||
          head_min > 0.0 || head_max < kInfinity || head_clearance > 0.0 || max_openings_per_panel > 0 ||
-         panel_width_per_opening > 0.0 || !catalogue.empty();
+         panel_width_per_opening > 0.0 || !catalogue.empty() || composes();
 }
 
 std::vector<AutomaticConstraint> automatic_constraints(bool full_height) {
@@ -299,6 +299,14 @@ void check_feasible(const OpeningConstraints& c, double a) {
            meters(c.min_width) + " .. " + meters(c.max_width) + ", height " + meters(c.min_height) + " .. " +
            meters(c.max_height) + ", area " + square_meters(c.min_area) + " .. " + square_meters(c.max_area) +
            " and aspect " + number(c.min_aspect) + " .. " + number(c.max_aspect) + " together");
+  for (size_t i = 0; i < c.sill_heights.size(); ++i) {
+    const double h = c.sill_heights[i];
+    const std::string name = "sill_heights[" + std::to_string(i) + "] " + meters(h);
+    if (h < c.sill_min - kHeightTolerance) refuse(name + " is below sill_min " + meters(c.sill_min));
+    if (h > c.sill_max + kHeightTolerance) refuse(name + " is above sill_max " + meters(c.sill_max));
+    if (h + c.min_height > c.head_max + kHeightTolerance)
+      refuse(name + " + min_height " + meters(c.min_height) + " is above head_max " + meters(c.head_max));
+  }
   const bool heights = c.sill_min > 0.0 || c.sill_max < kInfinity || c.head_min > 0.0 || c.head_max < kInfinity;
   if (heights) check_heights(c, g, a);
 }

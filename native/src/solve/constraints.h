@@ -38,6 +38,18 @@ struct OpeningConstraints {
   // panel_width_per_opening meters of the panel's width (0: unlimited; panel_opening_limit()).
   int max_openings_per_panel = 0;
   double panel_width_per_opening = 0.0;
+  // Facade composition (solve/composition.h), on flat walls; a facade is the coplanar wall panels,
+  // and takes the rules of its first panel.
+  bool align_sills = false, align_heads = false;  // one sill (head) height per facade
+  bool equal_widths = false;                      // one width per facade
+  bool same_type_in_row = false;                  // openings with one sill on a facade: one size
+  bool symmetric = false;                         // each panel's openings mirror about its vertical axis
+  bool equal_spacing = false;                     // equal piers between a facade's openings in a row
+  std::vector<double> sill_heights;               // allowed sills, meters above the wall's base (empty: any)
+  bool composes() const {
+    return align_sills || align_heads || equal_widths || same_type_in_row || symmetric || equal_spacing ||
+           !sill_heights.empty();
+  }
   // Empty: any size within the limits above. Otherwise every opening's size is one of the
   // catalogue's (on the kind of panel it lists sizes for); openings on the element grid are
   // snapped to it after the grid search (solve/catalogue_snap.h).

@@ -1,6 +1,8 @@
 #include "solve/solver.h"
 
+#include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -146,8 +148,28 @@ OpeningConstraints measured_constraints(const Scene& scene) {
   return constraints;
 }
 
+// Every constraint: each opening's, the counts, and the facades' composition.
+std::vector<std::string> all_violations(const OpeningDomain& domain, const std::vector<PanelRectangle>& openings,
+                                        const OpeningConstraints& constraints) {
+  std::vector<std::string> out = constraint_violations(domain, openings, constraints);
+  for (const std::string& v : composition_violations(domain, constraints, openings)) out.push_back(v);
+  return out;
+}
+
 std::vector<std::string> solved_constraint_violations(const Scene& scene, const std::vector<PanelRectangle>& openings) {
-  return constraint_violations(scene.domain, openings, measured_constraints(scene));
+  return all_violations(scene.domain, openings, measured_constraints(scene));
+}
+
+bool composes(const OpeningDomain& domain, const OpeningConstraints& constraints) {
+  for (size_t p = 0; p < domain.panels().size(); ++p)
+    if (constraints.for_panel(static_cast<int>(p)).composes()) return true;
+  return false;
+}
+
+std::string percent(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f %%", 100.0 * x);
+  return text;
 }
 
 SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress* progress) {
@@ -383,7 +405,47 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.openings.clear();
   for (const PanelRectangle& r : final_rects) out.openings.push_back(to_world(scene.domain, r));
   out.open = open_elements(scene.domain, final_rects);
-  out.constraint_violations = constraint_violations(scene.domain, final_rects, constraints);
+  // Facade composition: the rules' candidates scored by the exact error (records on thin walls,
+  // real cutters when an opening is in a thick wall).
+  std::function<SensorValues(const std::vector<PanelRectangle>&)> values_of =
+      [&](const std::vector<PanelRectangle>& set) {
+        const bool thick = std::any_of(set.begin(), set.end(), [&](const PanelRectangle& r) {
+          return scene.domain.panels()[static_cast<size_t>(r.panel)].thickness > 0.0f;
+        });
+        if (!thick) return c.evaluate(OpenRegion(scene.domain, set), progress);
+        std::vector<OpeningInput> cutters(set.begin(), set.end());
+        return evaluate_openings(scene, cutters, progress, settings.verify_paths);
+      };
+  std::function<std::vector<PanelRectangle>(const std::vector<PanelRectangle>&)> compose;
+  double compose_seconds = 0.0;
+  if (composes(scene.domain, constraints) && !final_rects.empty()) {
+    const auto compose_start = Clock::now();
+    if (progress) progress->start("solving: facade composition", 1);
+    auto error_of = [&](const std::vector<PanelRectangle>& set) {
+      return goal_error(out.goals, values_of(set).value).relative_rms;
+    };
+    const Composition composed = compose_facades(scene.domain, constraints, final_rects, error_of, progress);
+    out.composition = composed.steps;
+    for (const CompositionStep& step : composed.steps)
+      if (!step.met)
+        out.warnings.push_back(step.rule + ": no admissible way to meet it was found on every facade; left as it was");
+      else if (step.error_after > step.error_before + 1e-3)
+        out.warnings.push_back(step.rule + " raises the error from " + percent(step.error_before) + " to " +
+                               percent(step.error_after));
+    if (composed.openings != final_rects) {
+      final_rects = composed.openings;
+      chosen = values_of(final_rects);
+      out.openings.clear();
+      for (const PanelRectangle& r : final_rects) out.openings.push_back(to_world(scene.domain, r));
+      out.open = open_elements(scene.domain, final_rects);
+    }
+    compose = [&](const std::vector<PanelRectangle>& set) {
+      return compose_facades(scene.domain, constraints, set, error_of, progress).openings;
+    };
+    compose_seconds = since(compose_start);
+    out.timings.push_back({"composition", compose_seconds});
+  }
+  out.constraint_violations = all_violations(scene.domain, final_rects, constraints);
   for (const std::string& v : out.constraint_violations) out.warnings.push_back("constraints: " + v);
   out.predicted = chosen.value;
   out.predicted_stderr = chosen.standard_error;
@@ -392,7 +454,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.error = goal_error(out.goals, out.predicted);
   out.linear_error = goal_error(out.goals, out.linear);
   out.compensated_error = goal_error(out.goals, out.compensated);
-  out.timings.push_back({"constraints", since(t) - thick_seconds});
+  out.timings.push_back({"constraints", since(t) - thick_seconds - compose_seconds});
   if (thick_seconds > 0.0) out.timings.push_back({"thick-wall edges", thick_seconds});
   if (progress) progress->throw_if_cancelled();
 
@@ -407,7 +469,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     answer.answer = true;
     out.tradeoffs.push_back(answer);
     for (const Tradeoff& f : fewer_openings(scene, c, objective, constraints, final_rects,
-                                            about ? &about->E : nullptr, settings.verify_paths, progress)) {
+                                            about ? &about->E : nullptr, settings.verify_paths, compose, progress)) {
       TradeoffResult entry;
       for (const PanelRectangle& r : f.openings) entry.openings.push_back(to_world(scene.domain, r));
       entry.predicted = f.values.value;

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "solve/genetic.h"
+#include "solve/composition.h"
 #include "solve/goals.h"
 #include "solve/rectangles.h"
 #include "trace/contributions.h"
@@ -61,6 +62,8 @@ struct SolveResult {
   // What the final openings break of the constraints (solved_constraint_violations): empty unless
   // no admissible answer was found; each line is also a warning.
   std::vector<std::string> constraint_violations;
+  // Facade composition (solve/composition.h): each rule applied and what it cost.
+  std::vector<CompositionStep> composition;
   // The answer, then the best found with fewer openings, down to one (solver.tradeoffs).
   std::vector<TradeoffResult> tradeoffs;
 };

@@ -30,7 +30,8 @@ std::vector<PanelRectangle> without(std::vector<PanelRectangle> openings, size_t
 
 std::vector<Tradeoff> fewer_openings(const Scene& scene, const Contributions& c, const LinearObjective& objective,
                                      const OpeningConstraints& constraints, const std::vector<PanelRectangle>& openings,
-                                     const Eigen::MatrixXd* opening_light, int check_paths, Progress* progress) {
+                                     const Eigen::MatrixXd* opening_light, int check_paths,
+                                     const Recompose& recompose, Progress* progress) {
   std::vector<Tradeoff> out;
   const OpeningDomain& domain = scene.domain;
   const bool cut = any_thick(domain, openings);
@@ -55,7 +56,17 @@ std::vector<Tradeoff> fewer_openings(const Scene& scene, const Contributions& c,
     }
     current = without(current, removed);
     Tradeoff entry;
-    if (!cut) {
+    if (recompose) {
+      current = recompose(current);
+      if (cut) {
+        entry.values = cut_values(current);
+        entry.cut = true;
+      } else {
+        search->try_region(current);
+        search->accept();
+        entry.values = c.evaluate(OpenRegion(domain, current), progress);
+      }
+    } else if (!cut) {
       search->try_region(current);
       search->accept();
       // The rest's edges, searched again (exact on zero-thickness panels).

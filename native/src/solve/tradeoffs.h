@@ -9,6 +9,7 @@
 // wall (whose records are exact only on the element grid) every set is cut for real (evaluate,
 // `check_paths` paths per sensor; 0: the contributions').
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "scene/scene.h"
@@ -29,10 +30,14 @@ struct Tradeoff {
   bool cut = false;     // values from real cutters (thick walls), not the records
 };
 
+using Recompose = std::function<std::vector<PanelRectangle>(const std::vector<PanelRectangle>&)>;
+
 // Entries with fewer openings than `openings`, most openings first. `opening_light` (optional,
-// sensors x elements) screens the edge search as in the solver.
+// sensors x elements) screens the edge search as in the solver. With `recompose` (facade
+// composition rules), it replaces the edge search: each set is composed again.
 std::vector<Tradeoff> fewer_openings(const Scene& scene, const Contributions& c, const LinearObjective& objective,
                                      const OpeningConstraints& constraints, const std::vector<PanelRectangle>& openings,
-                                     const Eigen::MatrixXd* opening_light, int check_paths, Progress* progress);
+                                     const Eigen::MatrixXd* opening_light, int check_paths,
+                                     const Recompose& recompose, Progress* progress);
 
 }  // namespace fenestra

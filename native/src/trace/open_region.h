@@ -16,6 +16,10 @@ struct PanelRectangle {
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   double width() const { return u1 - u0; }
   double height() const { return v1 - v0; }
+  bool operator==(const PanelRectangle& o) const {
+    return panel == o.panel && u0 == o.u0 && u1 == o.u1 && v0 == o.v0 && v1 == o.v1;
+  }
+  bool operator!=(const PanelRectangle& o) const { return !(*this == o); }
 };
 
 // An opening given by its world corners (in order around it), on the panel it lies on; throws
