@@ -356,7 +356,9 @@ class Composer {
         std::sort(a.begin(), a.end(), [](const PanelRectangle& x, const PanelRectangle& y) {
           return std::tie(x.panel, x.u0, x.v0) < std::tie(y.panel, y.u0, y.v0);
         });
-        alternatives.push_back(a);
+        // A half without openings would leave the wall blank: not a way to meet the rule.
+        if (std::any_of(a.begin(), a.end(), [&](const PanelRectangle& r) { return r.panel == p; }))
+          alternatives.push_back(a);
       }
       keep_best(alternatives);
     }
