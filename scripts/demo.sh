@@ -120,7 +120,11 @@ for o in r["openings"]:
     print("  %.2f x %.2f m at (%.2f, %.2f, %.2f), facing (%g, %g, %g)" % ((o["width"], o["height"]) + tuple(o["centre"]) + tuple(round(c, 2) for c in o["normal"])))
 PY
 echo
+echo "== the same study with the residential window catalogue and aligned sills and heads, beside the answer above"
+/usr/bin/python3 scripts/demo_composition.py "$out/apartment_solved_study" "$out/apartment_facades.png" 2>/dev/null
+echo
 echo "Blender outputs in $out/: apartment.blend (the study set up), apartment_solved.blend (solved, cutters"
 echo "and Boolean modifiers, sky previewed in the World), apartment_render.png (Cycles, openings cut, ceiling"
-echo "hidden from the camera), apartment_goals.png (goal and achieved lux per sensor), result.json,"
+echo "hidden from the camera), apartment_goals.png (goal and achieved lux per sensor), apartment_facades.png"
+echo "(the facades in elevation: the answer, and the catalogue with aligned sills and heads), result.json,"
 echo "apartment_solved_study/ (scene.json, scene.obj, result.json, sky.exr: \`fenestra solve\` re-runs it)."
