@@ -1,0 +1,114 @@
+// Window catalogues and facade composition: which sizes a panel allows, which panels form a
+// facade, and the rules' checks.
+#include <gtest/gtest.h>
+
+#include "solve/composition.h"
+#include "solve/window_catalogue.h"
+
+namespace fenestra {
+namespace {
+
+using Quad = std::array<Vec3, 4>;
+
+OpeningDomain domain_of(const std::vector<Quad>& quads, float element_size = 0.25f) {
+  Mesh mesh;
+  for (const Quad& q : quads) {
+    const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), q.begin(), q.end());
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.triangles.push_back({base, base + 2, base + 3});
+    mesh.triangle_material.insert(mesh.triangle_material.end(), 2, 0);
+    mesh.triangle_group.insert(mesh.triangle_group.end(), 2, -1);
+  }
+  OpeningDomainSelection selection;
+  selection.materials = {"domain"};
+  selection.element_size = element_size;
+  return OpeningDomain::build(mesh, {"domain"}, selection);
+}
+
+// Two walls in the plane y = 0 (x 0-4 and 5-9, not touching), a wall in x = 0, and a flat roof.
+OpeningDomain two_facades_and_a_roof() {
+  return domain_of({{Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(4, 0, 3), Vec3(0, 0, 3)},
+                    {Vec3(5, 0, 0), Vec3(9, 0, 0), Vec3(9, 0, 3), Vec3(5, 0, 3)},
+                    {Vec3(0, 4, 0), Vec3(0, 0, 0), Vec3(0, 0, 3), Vec3(0, 4, 3)},
+                    {Vec3(0, 0, 3), Vec3(4, 0, 3), Vec3(4, 4, 3), Vec3(0, 4, 3)}});
+}
+
+TEST(WindowCatalogue, WallsTakeSizesAsGivenRoofsEitherWayRound) {
+  const OpeningDomain d = two_facades_and_a_roof();
+  ASSERT_EQ(d.panels().size(), 4u);
+  const Panel* wall = nullptr;
+  const Panel* roof = nullptr;
+  for (const Panel& p : d.panels()) (is_wall(p) ? wall : roof) = &p;
+  ASSERT_TRUE(wall && roof);
+  WindowCatalogue c;
+  c.walls = {{1.2, 1.5}};
+  c.roofs = {{0.78, 1.18}};
+  EXPECT_TRUE(c.allows(*wall, 1.2, 1.5));
+  EXPECT_TRUE(c.allows(*wall, 1.2 + 5e-5, 1.5));  // within kCatalogueSizeTolerance
+  EXPECT_FALSE(c.allows(*wall, 1.5, 1.2));        // a wall window is not turned
+  EXPECT_FALSE(c.allows(*wall, 1.2, 1.6));
+  EXPECT_TRUE(c.allows(*roof, 0.78, 1.18));
+  EXPECT_TRUE(c.allows(*roof, 1.18, 0.78));
+  EXPECT_EQ(c.sizes_for(*roof).size(), 2u);
+  // A kind of panel without sizes stays free.
+  c.roofs.clear();
+  EXPECT_TRUE(c.allows(*roof, 3.3, 0.1));
+  EXPECT_TRUE(c.sizes_for(*roof).empty());
+  EXPECT_THROW(builtin_catalogue("palace"), std::invalid_argument);
+  for (const std::string& name : catalogue_names()) EXPECT_FALSE(builtin_catalogue(name).walls.empty()) << name;
+}
+
+TEST(Composition, CoplanarWallsFormOneFacadeRoofsNone) {
+  const OpeningDomain d = two_facades_and_a_roof();
+  const std::vector<int> facade = facades_of(d);
+  std::vector<int> south, other;
+  for (size_t p = 0; p < d.panels().size(); ++p) {
+    const Panel& panel = d.panels()[p];
+    if (!is_wall(panel)) EXPECT_EQ(facade[p], -1);
+    else if (std::abs(panel.normal.y()) > 0.5f) south.push_back(facade[p]);
+    else other.push_back(facade[p]);
+  }
+  ASSERT_EQ(south.size(), 2u);
+  ASSERT_EQ(other.size(), 1u);
+  EXPECT_EQ(south[0], south[1]);
+  EXPECT_NE(south[0], other[0]);
+  EXPECT_GE(other[0], 0);
+}
+
+TEST(Composition, ViolationsNameTheRule) {
+  const OpeningDomain d = domain_of({{Vec3(0, 0, 0), Vec3(6, 0, 0), Vec3(6, 0, 3), Vec3(0, 0, 3)}});
+  const double a = d.element_size();
+  const double w = d.panels()[0].cols * a;  // the grid's width: its axis is at w / 2
+  OpeningConstraints c;
+  c.align_sills = c.align_heads = c.equal_widths = c.symmetric = c.equal_spacing = true;
+  // Three openings mirrored about the axis, one sill and head, equal widths and piers.
+  const std::vector<PanelRectangle> good = {{0, w / 2 - 2.5, w / 2 - 1.5, 1.0, 2.0},
+                                            {0, w / 2 - 0.5, w / 2 + 0.5, 1.0, 2.0},
+                                            {0, w / 2 + 1.5, w / 2 + 2.5, 1.0, 2.0}};
+  EXPECT_TRUE(composition_violations(d, c, good).empty());
+  auto broken = [&](int i, double du0, double du1, double dv0, double dv1) {
+    std::vector<PanelRectangle> s = good;
+    s[i].u0 += du0, s[i].u1 += du1, s[i].v0 += dv0, s[i].v1 += dv1;
+    std::string all;
+    for (const std::string& v : composition_violations(d, c, s)) all += v + "\n";
+    return all;
+  };
+  EXPECT_NE(broken(0, 0, 0, 0.1, 0).find("align_sills"), std::string::npos);
+  EXPECT_NE(broken(0, 0, 0, 0, 0.1).find("align_heads"), std::string::npos);
+  EXPECT_NE(broken(0, 0, 0.1, 0, 0).find("equal_widths"), std::string::npos);
+  EXPECT_NE(broken(0, -0.2, -0.2, 0, 0).find("symmetric"), std::string::npos);
+  EXPECT_NE(broken(0, -0.2, -0.2, 0, 0).find("equal_spacing"), std::string::npos);
+  c = {};
+  c.sill_heights = {0.9};
+  EXPECT_NE(broken(0, 0, 0, 0, 0).find("none of sill_heights"), std::string::npos);
+  c.sill_heights = {1.0};
+  EXPECT_TRUE(composition_violations(d, c, good).empty());
+  c = {};
+  c.same_type_in_row = true;
+  EXPECT_NE(broken(1, 0, 0.2, 0, 0).find("same_type_in_row"), std::string::npos);
+  EXPECT_TRUE(composition_violations(d, c, good).empty());
+}
+
+}  // namespace
+}  // namespace fenestra
