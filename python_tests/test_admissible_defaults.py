@@ -323,3 +323,21 @@ def test_facade_rules_need_a_wall(tmp_path):
     d["solver"]["constraints"] = {"align_sills": True}
     with pytest.raises(ValueError, match=r"apply to flat walls, and the opening domain has none"):
         fenestra.scene_from_dict(d, tmp_path)
+
+
+def test_the_command_line_writes_the_tradeoffs_and_the_checks(tmp_path):
+    import subprocess
+    from conftest import CLI
+    d = three_windows_goals(tmp_path, {"align_sills": True})
+    with open(tmp_path / "scene.json", "w") as f:
+        json.dump(d, f)
+    r = subprocess.run([CLI, "solve", str(tmp_path / "scene.json"), "-o", str(tmp_path / "result.json"), "--quiet"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    result = json.load(open(tmp_path / "result.json"))
+    assert result["constraints_met"] is True and result["constraint_violations"] == []
+    assert [s["rule"] for s in result["composition"]] == ["align_sills"]
+    assert result["tradeoffs"][0]["answer"] and len(result["tradeoffs"]) == len(result["openings"])
+    assert result["settings"]["constraints"]["align_sills"] is True
+    assert "align_sills raises the error" in r.stderr or result["composition"][0]["error_after"] <= \
+        result["composition"][0]["error_before"] + 1e-3
