@@ -365,40 +365,6 @@ std::vector<double> panel_top_heights(const OpeningDomain& domain, const Mesh& m
   return top;
 }
 
-std::vector<uint8_t> elements_out_of_bounds(const OpeningDomain& domain, const OpeningConstraints& all) {
-  const double a = domain.element_size();
-  std::vector<uint8_t> out(domain.element_count(), 0);
-  for (size_t p = 0; p < domain.panels().size(); ++p) {
-    const Panel& panel = domain.panels()[p];
-    const int index = static_cast<int>(p);
-    const OpeningConstraints& c = all.for_panel(index);
-    const int m = grid_limits(c, a).margin_elements;
-    auto exists = [&](int row, int col) {
-      return row >= 0 && col >= 0 && row < panel.rows && col < panel.cols &&
-             panel.grid[static_cast<size_t>(row) * panel.cols + col] >= 0;
-    };
-    const bool wall = is_wall(panel);
-    const double base = index < static_cast<int>(all.panel_base_z.size()) ? all.panel_base_z[p] : grid_bottom_z(panel, a);
-    const double top = index < static_cast<int>(all.panel_top_z.size()) ? all.panel_top_z[p] : grid_top_z(panel, a);
-    const double highest_head = std::min(c.head_max, top - base - c.head_clearance);
-    for (int row = 0; row < panel.rows; ++row) {
-      const double z0 = panel.origin.z() + row * a * panel.v_axis.z();
-      const double z1 = panel.origin.z() + (row + 1) * a * panel.v_axis.z();
-      const bool out_of_heights = wall && (std::min(z0, z1) - base < c.sill_min - kHeightTolerance ||
-                                           std::max(z0, z1) - base > highest_head + kHeightTolerance);
-      for (int col = 0; col < panel.cols; ++col) {
-        const int k = panel.grid[static_cast<size_t>(row) * panel.cols + col];
-        if (k < 0) continue;
-        bool clear = !out_of_heights;
-        for (int r = row - m; r <= row + m && clear; ++r)
-          for (int q = col - m; q <= col + m && clear; ++q) clear = exists(r, q);
-        out[static_cast<size_t>(k)] = clear ? 0 : 1;
-      }
-    }
-  }
-  return out;
-}
-
 int panel_opening_limit(const Panel& panel, int panel_index, const OpeningConstraints& all, double a) {
   const OpeningConstraints& c = all.for_panel(panel_index);
   int limit = c.max_openings_per_panel;

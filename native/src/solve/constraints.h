@@ -122,11 +122,6 @@ bool is_wall(const Panel& panel);
 // (true on roofs). Rows are horizontal on walls, so columns do not matter.
 bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const OpeningConstraints& constraints,
                 double element_size, std::string* why = nullptr);
-// Per element of the domain, 1 where no admissible opening of whole elements can cover it: within
-// the margin of its panel's edge (or of a square the panel lacks), or on a wall, a row below
-// sill_min or above head_max or the head clearance. The solver's search leaves them closed.
-std::vector<uint8_t> elements_out_of_bounds(const OpeningDomain& domain, const OpeningConstraints& constraints);
-
 // World Z of the lowest and the highest vertex of each panel's faces.
 std::vector<double> panel_base_heights(const OpeningDomain& domain, const Mesh& mesh);
 std::vector<double> panel_top_heights(const OpeningDomain& domain, const Mesh& mesh);

@@ -63,13 +63,6 @@ LinearObjective linear_objective(const Contributions& c, const SolverGoals& goal
   return o;
 }
 
-// The objective with no light from the elements flagged in `excluded` (their columns zeroed).
-LinearObjective without_elements(LinearObjective o, const std::vector<uint8_t>& excluded) {
-  for (size_t k = 0; k < excluded.size(); ++k)
-    if (excluded[k]) o.E.col(static_cast<Eigen::Index>(k)).setZero();
-  return o;
-}
-
 // Whether the openings `refined` meet the goals better than `start` when both are really cut.
 bool refined_edges_verified_better(const Scene& scene, const std::vector<PanelRectangle>& start,
                                    const std::vector<PanelRectangle>& refined, const SolverGoals& goals,
@@ -187,12 +180,6 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.goals = resolve_goals(scene, c);
   const SolverSettings& settings = scene.solver;
   const LinearObjective objective = linear_objective(c, out.goals, settings.bound_weight);
-  // The search sees no light from elements no admissible opening can cover (margins, below the
-  // sill or above the head limits): they stay closed, and the answer's light comes from elements
-  // the openings can keep.
-  const OpeningConstraints constraints = measured_constraints(scene);
-  const std::vector<uint8_t> out_of_bounds = elements_out_of_bounds(scene.domain, constraints);
-  const LinearObjective search = without_elements(objective, out_of_bounds);
   ExactValues exact_values(c, progress);
   const ElementGrid grid = ElementGrid::from_domain(scene.domain);
   const ShapeWeights shape = shape_of(settings);
@@ -207,7 +194,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   // Stage 1 on the fine grid, and coarse-to-fine starts (4a, then 2a) when the grid is large enough.
   if (progress) progress->start("solving: linear start", 1);
   auto t = Clock::now();
-  const LinearStart fine_start = linear_start(search, grid, progress);
+  const LinearStart fine_start = linear_start(objective, grid, progress);
   out.nnls_relative_rms = fine_start.relative_rms;
   out.nnls_iterations = fine_start.iterations;
   std::vector<std::vector<uint8_t>> seeds = {fine_start.open};
@@ -218,8 +205,8 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
       const CoarseGrid coarse = coarsen(grid, factor);
       if (coarse.grid.size() < 4 || coarse.grid.size() * 2 > grid.size()) continue;
       const auto level_start = Clock::now();
-      LinearObjective level = search;
-      level.E = coarse.columns(search.E);
+      LinearObjective level = objective;
+      level.E = coarse.columns(objective.E);
       std::vector<std::vector<uint8_t>> level_seeds = {linear_start(level, coarse.grid, progress).open};
       if (!carried.empty()) {  // the coarser answer, as well as it fits this grid
         std::vector<uint8_t> mapped(coarse.grid.size(), 0);
@@ -243,7 +230,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   // Stage 2 on the fine grid.
   if (progress) progress->start("solving: genetic algorithm", 1);
   t = Clock::now();
-  const GeneticResult result = run_genetic(search, grid, seeds, ga, progress);
+  const GeneticResult result = run_genetic(objective, grid, seeds, ga, progress);
   out.history = result.history;
   out.generations = result.generations;
   if (progress) progress->throw_if_cancelled();
@@ -260,8 +247,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     SensorValues about_values = exact_values(about);
     double about_fitness = exact_fitness(objective, grid, shape, about, about_values.value - c.closed.value);
     for (int round = 0; round < kLinearisationRounds; ++round) {
-      const LinearObjective local =
-          without_elements(linearised_objective(objective, c, about, about_values.value, progress), out_of_bounds);
+      const LinearObjective local = linearised_objective(objective, c, about, about_values.value, progress);
       GeneticSettings second = ga;
       second.generations = std::max(1, ga.generations / 4);
       second.seed = ga.seed + 1 + round;
@@ -307,6 +293,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   // then a local search over whole openings; the exact evaluation has the last word.
   if (progress) progress->start("solving: openings within the constraints", 1);
   t = Clock::now();
+  const OpeningConstraints constraints = measured_constraints(scene);
   auto exact_of = [&](const std::vector<GridRectangle>& rects, SensorValues* values) {
     const std::vector<uint8_t> open = rectangles_mask(scene.domain, rects);
     *values = exact_values(open);
