@@ -2,6 +2,8 @@
 // facade, and the rules' checks.
 #include <gtest/gtest.h>
 
+#include "test_scenes.h"
+
 #include "solve/composition.h"
 #include "solve/window_catalogue.h"
 
@@ -11,19 +13,7 @@ namespace {
 using Quad = std::array<Vec3, 4>;
 
 OpeningDomain domain_of(const std::vector<Quad>& quads, float element_size = 0.25f) {
-  Mesh mesh;
-  for (const Quad& q : quads) {
-    const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
-    mesh.positions.insert(mesh.positions.end(), q.begin(), q.end());
-    mesh.triangles.push_back({base, base + 1, base + 2});
-    mesh.triangles.push_back({base, base + 2, base + 3});
-    mesh.triangle_material.insert(mesh.triangle_material.end(), 2, 0);
-    mesh.triangle_group.insert(mesh.triangle_group.end(), 2, -1);
-  }
-  OpeningDomainSelection selection;
-  selection.materials = {"domain"};
-  selection.element_size = element_size;
-  return OpeningDomain::build(mesh, {"domain"}, selection);
+  return test::domain_of_quads(quads, element_size);
 }
 
 // Two walls in the plane y = 0 (x 0-4 and 5-9, not touching), a wall in x = 0, and a flat roof.

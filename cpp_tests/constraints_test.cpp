@@ -2,6 +2,8 @@
 // open elements into rectangles, and the local search over whole rectangles.
 #include <gtest/gtest.h>
 
+#include "test_scenes.h"
+
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -23,19 +25,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // A domain made of the given quads (corners counter-clockwise seen from the normal's side).
 OpeningDomain domain_of(const std::vector<Quad>& quads, float element_size) {
-  Mesh mesh;
-  for (const Quad& q : quads) {
-    const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
-    mesh.positions.insert(mesh.positions.end(), q.begin(), q.end());
-    mesh.triangles.push_back({base, base + 1, base + 2});
-    mesh.triangles.push_back({base, base + 2, base + 3});
-    mesh.triangle_material.insert(mesh.triangle_material.end(), 2, 0);
-    mesh.triangle_group.insert(mesh.triangle_group.end(), 2, -1);
-  }
-  OpeningDomainSelection selection;
-  selection.materials = {"domain"};
-  selection.element_size = element_size;
-  return OpeningDomain::build(mesh, {"domain"}, selection);
+  return test::domain_of_quads(quads, element_size);
 }
 
 // A wall in the plane y = 0 from x = 0 to `width` and z = z0 to z0 + `height`; rows run along x.

@@ -36,6 +36,24 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+// An opening domain made of the given quads (corners counter-clockwise seen from the normal's
+// side), all of material "domain".
+inline OpeningDomain domain_of_quads(const std::vector<std::array<Vec3, 4>>& quads, float element_size) {
+  Mesh mesh;
+  for (const auto& q : quads) {
+    const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), q.begin(), q.end());
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.triangles.push_back({base, base + 2, base + 3});
+    mesh.triangle_material.insert(mesh.triangle_material.end(), 2, 0);
+    mesh.triangle_group.insert(mesh.triangle_group.end(), 2, -1);
+  }
+  OpeningDomainSelection selection;
+  selection.materials = {"domain"};
+  selection.element_size = element_size;
+  return OpeningDomain::build(mesh, {"domain"}, selection);
+}
+
 // OBJ text built from quads; each quad is its own group with a material.
 class ObjBuilder {
  public:

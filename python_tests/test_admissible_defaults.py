@@ -191,6 +191,12 @@ def test_bad_catalogues_are_refused_naming_the_key(tmp_path, catalogue, message)
     ({"max_openings_per_panel": 1.5}, r"max_openings_per_panel: expected a whole number"),
     ({"head_clearance": -0.1}, r"head_clearance: must not be negative"),
     ({"panel_width_per_opening": -3}, r"panel_width_per_opening: must not be negative"),
+    ({"align_sills": "yes"}, r"constraints\.align_sills: expected true or false"),
+    ({"sill_heights": []}, r"sill_heights: expected a non-empty list"),
+    ({"sill_heights": [-0.5]}, r"sill_heights\[0\]: expected a height from 0 to 100 m"),
+    ({"sill_heights": [0.2], "sill_min": 0.5}, r"sill_heights\[0\] 0.2 m is below sill_min 0.5 m"),
+    ({"sill_heights": [2.0], "head_max": 2.2, "min_height": 0.5},
+     r"sill_heights\[0\] 2 m \+ min_height 0.5 m is above head_max 2.2 m"),
 ])
 def test_bad_constraint_keys_are_refused_naming_the_key(tmp_path, constraints, message):
     d = small_scene(tmp_path)
@@ -299,21 +305,6 @@ def test_facade_rules_hold_in_the_result_and_say_what_they_cost(tmp_path, rules)
     # The same goals without the rules: the free answer breaks them (the test can fail).
     free = fenestra.solve(fenestra.scene_from_dict(three_windows_goals(tmp_path, {}), tmp_path))
     assert fenestra.constraint_violations(scene, free["openings"]), free["openings"]
-
-
-@pytest.mark.parametrize("constraints, message", [
-    ({"align_sills": "yes"}, r"constraints\.align_sills: expected true or false"),
-    ({"sill_heights": []}, r"sill_heights: expected a non-empty list"),
-    ({"sill_heights": [-0.5]}, r"sill_heights\[0\]: expected a height from 0 to 100 m"),
-    ({"sill_heights": [0.2], "sill_min": 0.5}, r"sill_heights\[0\] 0.2 m is below sill_min 0.5 m"),
-    ({"sill_heights": [2.0], "head_max": 2.2, "min_height": 0.5},
-     r"sill_heights\[0\] 2 m \+ min_height 0.5 m is above head_max 2.2 m"),
-])
-def test_contradictory_composition_keys_are_refused(tmp_path, constraints, message):
-    d = small_scene(tmp_path)
-    d["solver"]["constraints"] = constraints
-    with pytest.raises(ValueError, match=message):
-        fenestra.scene_from_dict(d, tmp_path)
 
 
 def test_facade_rules_need_a_wall(tmp_path):
