@@ -416,14 +416,14 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
         std::vector<OpeningInput> cutters(set.begin(), set.end());
         return evaluate_openings(scene, cutters, progress, settings.verify_paths);
       };
+  // (Outside the block below: the trade-offs call `compose`, which refers to it, after it.)
+  const std::function<double(const std::vector<PanelRectangle>&)> error_of =
+      [&](const std::vector<PanelRectangle>& set) { return goal_error(out.goals, values_of(set).value).relative_rms; };
   std::function<std::vector<PanelRectangle>(const std::vector<PanelRectangle>&)> compose;
   double compose_seconds = 0.0;
   if (composes(scene.domain, constraints) && !final_rects.empty()) {
     const auto compose_start = Clock::now();
     if (progress) progress->start("solving: facade composition", 1);
-    auto error_of = [&](const std::vector<PanelRectangle>& set) {
-      return goal_error(out.goals, values_of(set).value).relative_rms;
-    };
     const Composition composed = compose_facades(scene.domain, constraints, final_rects, error_of, progress);
     out.composition = composed.steps;
     for (const CompositionStep& step : composed.steps)
