@@ -179,34 +179,39 @@ class Composer {
       }
       return;
     }
-    for (int f : facades_with_openings()) {
-      std::vector<double> sills = rules.sill_heights;
-      if (sills.empty())
-        for (const PanelRectangle& r : openings_)
-          if (facade(r) == f) sills.push_back(heights_.sill(r));
-      std::vector<Openings> alternatives;
-      for (double h : distinct(sills)) {
-        Openings a = openings_;
-        for (PanelRectangle& r : a)
-          if (facade(r) == f) r = heights_.with_sill(r, h);
-        alternatives.push_back(a);
-      }
-      keep_best(alternatives);
-    }
+    common_per_facade([this](const PanelRectangle& r) { return heights_.sill(r); },
+                      [this](const PanelRectangle& r, double h) { return heights_.with_sill(r, h); },
+                      rules.sill_heights, false);
   }
 
   void head_candidates() {
     const OpeningConstraints& rules = rules_of_first();
     const bool keep_sill = rules.align_sills || !rules.sill_heights.empty();
+    common_per_facade([this](const PanelRectangle& r) { return heights_.head(r); },
+                      [this, keep_sill](const PanelRectangle& r, double h) { return heights_.with_head(r, h, keep_sill); },
+                      {}, false);
+  }
+
+  // One value per facade: each distinct `value` of its openings (or each of `given`, when there
+  // are any; and their mean, with `and_mean`) made the common one by `with`; the best kept.
+  using Value = std::function<double(const PanelRectangle&)>;
+  using WithValue = std::function<PanelRectangle(const PanelRectangle&, double)>;
+  void common_per_facade(const Value& value, const WithValue& with, const std::vector<double>& given, bool and_mean) {
     for (int f : facades_with_openings()) {
-      std::vector<double> heads;
-      for (const PanelRectangle& r : openings_)
-        if (facade(r) == f) heads.push_back(heights_.head(r));
+      std::vector<double> values = given;
+      if (values.empty())
+        for (const PanelRectangle& r : openings_)
+          if (facade(r) == f) values.push_back(value(r));
+      if (and_mean) {
+        double mean = 0.0;
+        for (double v : values) mean += v / static_cast<double>(values.size());
+        values.push_back(mean);
+      }
       std::vector<Openings> alternatives;
-      for (double h : distinct(heads)) {
+      for (double v : distinct(values)) {
         Openings a = openings_;
         for (PanelRectangle& r : a)
-          if (facade(r) == f) r = heights_.with_head(r, h, keep_sill);
+          if (facade(r) == f) r = with(r, v);
         alternatives.push_back(a);
       }
       keep_best(alternatives);
@@ -227,22 +232,8 @@ class Composer {
   }
 
   void width_candidates() {
-    for (int f : facades_with_openings()) {
-      std::vector<double> widths;
-      for (const PanelRectangle& r : openings_)
-        if (facade(r) == f) widths.push_back(r.width());
-      double mean = 0.0;
-      for (double w : widths) mean += w / static_cast<double>(widths.size());
-      widths.push_back(mean);
-      std::vector<Openings> alternatives;
-      for (double w : distinct(widths)) {
-        Openings a = openings_;
-        for (PanelRectangle& r : a)
-          if (facade(r) == f) r = with_width(r, w);
-        alternatives.push_back(a);
-      }
-      keep_best(alternatives);
-    }
+    common_per_facade([](const PanelRectangle& r) { return r.width(); },
+                      [this](const PanelRectangle& r, double w) { return with_width(r, w); }, {}, true);
   }
 
   // The rules fix relations, not positions: a local search over moves that keep them (a facade's

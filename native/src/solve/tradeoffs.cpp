@@ -55,30 +55,21 @@ std::vector<Tradeoff> fewer_openings(const Scene& scene, const Contributions& c,
       if (e < best) best = e, removed = i;
     }
     current = without(current, removed);
-    Tradeoff entry;
-    if (recompose) {
-      current = recompose(current);
-      if (cut) {
-        entry.values = cut_values(current);
-        entry.cut = true;
-      } else {
-        search->try_region(current);
-        search->accept();
-        entry.values = c.evaluate(OpenRegion(domain, current), progress);
-      }
-    } else if (!cut) {
+    if (recompose) current = recompose(current);
+    if (!cut) {
       search->try_region(current);
       search->accept();
       // The rest's edges, searched again (exact on zero-thickness panels).
-      EdgeSearchScope scope;
-      scope.opening_light = opening_light;
-      scope.coarsest_finest_step = kTradeoffEdgeStep;
-      current = refine_edges(domain, c, objective, constraints, &*search, progress, scope).openings;
-      entry.values = c.evaluate(OpenRegion(domain, current), progress);
-    } else {
-      entry.values = cut_values(current);
-      entry.cut = true;
+      if (!recompose) {
+        EdgeSearchScope scope;
+        scope.opening_light = opening_light;
+        scope.coarsest_finest_step = kTradeoffEdgeStep;
+        current = refine_edges(domain, c, objective, constraints, &*search, progress, scope).openings;
+      }
     }
+    Tradeoff entry;
+    entry.cut = cut;
+    entry.values = cut ? cut_values(current) : c.evaluate(OpenRegion(domain, current), progress);
     entry.openings = current;
     out.push_back(std::move(entry));
   }
