@@ -166,6 +166,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
       {"timings_s", timings},
       {"genetic", {{"generations", r.generations}, {"coarse_factors", r.coarse_factors}, {"history", history}}},
       {"edge_moves", r.edge_moves},
+      {"second_start", {{"run", r.second_start}, {"kept", r.second_start_kept}}},
       {"settings", {{"paths_per_sensor", s.paths_per_sensor > 0 ? s.paths_per_sensor : scene.render.paths_per_sensor},
                     {"population", s.population},
                     {"generations", s.generations},

@@ -32,9 +32,7 @@ class WallHeights {
   WallHeights(const OpeningDomain& domain, const OpeningConstraints& c) : domain_(domain), c_(c) {}
 
   double base(int panel) const {
-    if (static_cast<size_t>(panel) < c_.panel_base_z.size()) return c_.panel_base_z[static_cast<size_t>(panel)];
-    const Panel& p = domain_.panels()[static_cast<size_t>(panel)];
-    return p.origin.z() + std::min(0.0, p.v_lines.back() * static_cast<double>(p.v_axis.z()));
+    return wall_heights(domain_.panels()[static_cast<size_t>(panel)], panel, c_, domain_.element_size()).base;
   }
   double z(int panel, double v) const {
     const Panel& p = domain_.panels()[static_cast<size_t>(panel)];

@@ -95,14 +95,21 @@ bool some_size_fits(const GridLimits& g) {
   return false;
 }
 
+// Extents of a panel's grid along u and v (m): its last grid lines (multiples of the element
+// size, or a refined grid's).
+double grid_extent(const std::vector<float>& lines, int cells, double a) {
+  return lines.empty() ? cells * a : static_cast<double>(lines.back());
+}
 double grid_bottom_z(const Panel& panel, double a) {
   const double z0 = panel.origin.z();
-  const double rise_v = panel.rows * a * panel.v_axis.z(), rise_u = panel.cols * a * panel.u_axis.z();
+  const double rise_v = grid_extent(panel.v_lines, panel.rows, a) * panel.v_axis.z();
+  const double rise_u = grid_extent(panel.u_lines, panel.cols, a) * panel.u_axis.z();
   return z0 + std::min(0.0, rise_v) + std::min(0.0, rise_u);
 }
 double grid_top_z(const Panel& panel, double a) {
   const double z0 = panel.origin.z();
-  const double rise_v = panel.rows * a * panel.v_axis.z(), rise_u = panel.cols * a * panel.u_axis.z();
+  const double rise_v = grid_extent(panel.v_lines, panel.rows, a) * panel.v_axis.z();
+  const double rise_u = grid_extent(panel.u_lines, panel.cols, a) * panel.u_axis.z();
   return z0 + std::max(0.0, rise_v) + std::max(0.0, rise_u);
 }
 
@@ -313,21 +320,32 @@ void check_feasible(const OpeningConstraints& c, double a) {
 
 bool is_wall(const Panel& panel) { return std::abs(panel.normal.z()) <= kWallCosine; }
 
-bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const OpeningConstraints& all, double a,
-                std::string* why) {
-  if (!is_wall(panel)) return true;
+PanelHeights wall_heights(const Panel& panel, int panel_index, const OpeningConstraints& all, double a) {
   const std::vector<double>& base_z = all.panel_base_z;
-  const OpeningConstraints& c = all.for_panel(panel_index);
   if (!base_z.empty() && panel_index >= static_cast<int>(base_z.size()))
     throw std::invalid_argument("opening constraints: panel_base_z has " + std::to_string(base_z.size()) +
                                 " values, panel " + std::to_string(panel_index) + " has none");
-  const double base = base_z.empty() ? grid_bottom_z(panel, a) : base_z[panel_index];
   const std::vector<double>& top_z = all.panel_top_z;
-  const bool has_top = panel_index < static_cast<int>(top_z.size());
-  const double top = has_top ? top_z[panel_index] : grid_top_z(panel, a);
+  PanelHeights h;
+  h.base = base_z.empty() ? grid_bottom_z(panel, a) : base_z[panel_index];
+  h.top = panel_index < static_cast<int>(top_z.size()) ? top_z[panel_index] : grid_top_z(panel, a);
+  return h;
+}
+
+RowHeights row_heights(const Panel& panel, int row0, int row1, const PanelHeights& wall, double a) {
   const double z0 = panel.origin.z() + row0 * a * panel.v_axis.z();
   const double z1 = panel.origin.z() + (row1 + 1) * a * panel.v_axis.z();
-  const double sill = std::min(z0, z1) - base, head = std::max(z0, z1) - base;
+  return {std::min(z0, z1) - wall.base, std::max(z0, z1) - wall.base};
+}
+
+bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const OpeningConstraints& all, double a,
+                std::string* why) {
+  if (!is_wall(panel)) return true;
+  const OpeningConstraints& c = all.for_panel(panel_index);
+  const PanelHeights wall = wall_heights(panel, panel_index, all, a);
+  const double base = wall.base, top = wall.top;
+  const RowHeights rows = row_heights(panel, row0, row1, wall, a);
+  const double sill = rows.sill, head = rows.head;
   auto fail = [&](const std::string& what) {
     if (why) *why = what;
     return false;
@@ -363,6 +381,37 @@ std::vector<double> panel_top_heights(const OpeningDomain& domain, const Mesh& m
     top.push_back(z);
   }
   return top;
+}
+
+std::vector<uint8_t> elements_out_of_bounds(const OpeningDomain& domain, const OpeningConstraints& all) {
+  const double a = domain.element_size();
+  std::vector<uint8_t> out(domain.element_count(), 0);
+  for (size_t p = 0; p < domain.panels().size(); ++p) {
+    const Panel& panel = domain.panels()[p];
+    const int index = static_cast<int>(p);
+    const OpeningConstraints& c = all.for_panel(index);
+    const int m = grid_limits(c, a).margin_elements;
+    auto exists = [&](int row, int col) {
+      return row >= 0 && col >= 0 && row < panel.rows && col < panel.cols &&
+             panel.grid[static_cast<size_t>(row) * panel.cols + col] >= 0;
+    };
+    const PanelHeights wall = wall_heights(panel, index, all, a);
+    const double highest_head = std::min(c.head_max, wall.top - wall.base - c.head_clearance);
+    for (int row = 0; row < panel.rows; ++row) {
+      const RowHeights h = row_heights(panel, row, row, wall, a);
+      const bool out_of_heights = is_wall(panel) && (h.sill < c.sill_min - kHeightTolerance ||
+                                                     h.head > highest_head + kHeightTolerance);
+      for (int col = 0; col < panel.cols; ++col) {
+        const int k = panel.grid[static_cast<size_t>(row) * panel.cols + col];
+        if (k < 0) continue;
+        bool clear = !out_of_heights;
+        for (int r = row - m; r <= row + m && clear; ++r)
+          for (int q = col - m; q <= col + m && clear; ++q) clear = exists(r, q);
+        out[static_cast<size_t>(k)] = clear ? 0 : 1;
+      }
+    }
+  }
+  return out;
 }
 
 int panel_opening_limit(const Panel& panel, int panel_index, const OpeningConstraints& all, double a) {

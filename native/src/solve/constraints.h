@@ -118,10 +118,27 @@ GridLimits grid_limits(const OpeningConstraints& constraints, double element_siz
 
 // Panels whose normal lies within 30 degrees of horizontal: sill and head limits apply there.
 bool is_wall(const Panel& panel);
+// World heights (m) of a panel's base and top: from panel_base_z / panel_top_z where the
+// constraints carry them (the faces' lowest and highest vertex), else its element grid's.
+struct PanelHeights {
+  double base = 0.0, top = 0.0;
+};
+PanelHeights wall_heights(const Panel& panel, int panel_index, const OpeningConstraints& constraints,
+                          double element_size);
+// Sill and head (m above the panel's base) of rows [row0, row1] of a panel's element grid.
+struct RowHeights {
+  double sill = 0.0, head = 0.0;
+};
+RowHeights row_heights(const Panel& panel, int row0, int row1, const PanelHeights& wall, double element_size);
 // Sill and head limits of an opening spanning rows [row0, row1] of panel `panel_index`
 // (true on roofs). Rows are horizontal on walls, so columns do not matter.
 bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const OpeningConstraints& constraints,
                 double element_size, std::string* why = nullptr);
+// Per element of the domain, 1 where no admissible opening of whole elements can cover it: within
+// the margin of its panel's edge (or of a square the panel lacks), or on a wall, a row below
+// sill_min or above head_max or the head clearance. The solver's search leaves them closed.
+std::vector<uint8_t> elements_out_of_bounds(const OpeningDomain& domain, const OpeningConstraints& constraints);
+
 // World Z of the lowest and the highest vertex of each panel's faces.
 std::vector<double> panel_base_heights(const OpeningDomain& domain, const Mesh& mesh);
 std::vector<double> panel_top_heights(const OpeningDomain& domain, const Mesh& mesh);

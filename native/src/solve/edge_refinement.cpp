@@ -230,18 +230,13 @@ bool admissible(const PanelRectangle& r, const OpeningDomain& domain, const Open
     return fail("has an aspect ratio out of its limits");
   if (!c.catalogue.allows(panel, w, h)) return fail("is " + meters(w) + " x " + meters(h) + ", not a size of the catalogue");
   if (is_wall(panel)) {
-    const std::vector<double>& base_z = all.panel_base_z;
-    const double grid_bottom = panel.origin.z() + std::min(0.0, panel.v_lines.back() * static_cast<double>(panel.v_axis.z()));
-    const double base = base_z.empty() ? grid_bottom : base_z[static_cast<size_t>(r.panel)];
+    const PanelHeights wall = wall_heights(panel, r.panel, all, domain.element_size());
     const double z0 = panel.origin.z() + r.v0 * panel.v_axis.z(), z1 = panel.origin.z() + r.v1 * panel.v_axis.z();
-    const double sill = std::min(z0, z1) - base, head = std::max(z0, z1) - base;
+    const double sill = std::min(z0, z1) - wall.base, head = std::max(z0, z1) - wall.base;
     if (sill < c.sill_min - kTolerance || sill > c.sill_max + kTolerance) return fail("has its sill out of its limits");
     if (head < c.head_min - kTolerance || head > c.head_max + kTolerance) return fail("has its head out of its limits");
     if (c.head_clearance > 0.0) {
-      const std::vector<double>& top_z = all.panel_top_z;
-      const double grid_top = panel.origin.z() + std::max(0.0, panel.v_lines.back() * static_cast<double>(panel.v_axis.z()));
-      const double top = top_z.empty() ? grid_top : top_z[static_cast<size_t>(r.panel)];
-      if (std::max(z0, z1) > top - c.head_clearance + kTolerance)
+      if (std::max(z0, z1) > wall.top - c.head_clearance + kTolerance)
         return fail("has its head less than head_clearance " + meters(c.head_clearance) + " below the wall's top");
     }
   }

@@ -138,6 +138,62 @@ LinearObjective linearised_objective(const LinearObjective& objective, const Con
   return local;
 }
 
+// The objective with no light from the elements flagged in `excluded` (their columns zeroed).
+LinearObjective without_elements(LinearObjective o, const std::vector<uint8_t>& excluded) {
+  for (size_t k = 0; k < excluded.size(); ++k)
+    if (excluded[k]) o.E.col(static_cast<Eigen::Index>(k)).setZero();
+  return o;
+}
+
+std::vector<uint8_t> without_elements(std::vector<uint8_t> open, const std::vector<uint8_t>& excluded) {
+  for (size_t k = 0; k < open.size(); ++k)
+    if (excluded[k]) open[k] = 0;
+  return open;
+}
+
+bool opens_any(const std::vector<uint8_t>& open, const std::vector<uint8_t>& flagged) {
+  for (size_t k = 0; k < open.size(); ++k)
+    if (open[k] && flagged[k]) return true;
+  return false;
+}
+
+// A set of open elements with its exact values and fitness.
+struct ElementChoice {
+  std::vector<uint8_t> open;
+  SensorValues values;
+  double fitness = std::numeric_limits<double>::infinity();
+};
+
+// The element search again with the elements flagged in `excluded` kept closed: a genetic run
+// (half the generations) on the exact linear model about the free answer less those elements,
+// seeded with it and with the linear start without them; the exact evaluation picks among its best.
+ElementChoice search_within_bounds(const LinearObjective& objective, const Contributions& c, const ElementGrid& grid,
+                                   const ShapeWeights& shape, const GeneticSettings& ga, ExactValues& exact_values,
+                                   const std::vector<uint8_t>& linear_start_open, const std::vector<uint8_t>& free_open,
+                                   const std::vector<uint8_t>& excluded, Progress* progress) {
+  const std::vector<uint8_t> clipped = without_elements(free_open, excluded);
+  const SensorValues clipped_values = exact_values(clipped);
+  const LinearObjective local =
+      without_elements(linearised_objective(objective, c, clipped, clipped_values.value, progress), excluded);
+  GeneticSettings within = ga;
+  within.generations = std::max(1, ga.generations / 2);
+  within.time_budget_s = ga.time_budget_s / 2.0;
+  within.seed = ga.seed + 0x5EC0;
+  const GeneticResult r =
+      run_genetic(local, grid, {clipped, without_elements(linear_start_open, excluded)}, within, progress);
+  if (progress) progress->throw_if_cancelled();
+  ElementChoice best;
+  std::vector<std::vector<uint8_t>> candidates = r.elite;
+  candidates.push_back(clipped);
+  for (const std::vector<uint8_t>& candidate : candidates) {
+    const std::vector<uint8_t> open = without_elements(candidate, excluded);
+    const SensorValues& exact = exact_values(open);
+    const double f = exact_fitness(objective, grid, shape, open, exact.value - c.closed.value);
+    if (f < best.fitness) best.open = open, best.values = exact, best.fitness = f;
+  }
+  return best;
+}
+
 }  // namespace
 
 // The constraints as the solver applies them: sills and heads measured from each panel's faces.
@@ -299,36 +355,67 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     *values = exact_values(open);
     return exact_fitness(objective, grid, shape, open, values->value - c.closed.value);
   };
-  // Rectangles are scored by the exact linear model about the chosen state (the elements' joint light).
-  const LinearObjective about_chosen = linearised_objective(objective, c, out.open, chosen.value, progress);
   // With a catalogue, the grid's openings keep near its sizes; they take them exactly below.
   const OpeningConstraints grid_constraints = grid_search_constraints(scene.domain, constraints);
-  std::vector<GridRectangle> rects = refine_openings(scene.domain, out.open, about_chosen, grid_constraints, progress);
-  best = exact_of(rects, &chosen);
-  out.refined_error = goal_error(out.goals, chosen.value);
-  // The exact linear model about the current openings (the local search's, then the edge
-  // search's screen).
-  std::optional<LinearObjective> about;
-  auto linearise_about_rects = [&] {
-    about = linearised_objective(objective, c, rectangles_mask(scene.domain, rects), chosen.value, progress);
+  // Openings within the constraints from a set of open elements, and the exact linear model about
+  // them (the local search's, then the edge search's screen).
+  struct Constrained {
+    std::vector<GridRectangle> rects;
+    SensorValues values;
+    double fitness = 0.0;
+    GoalError refined_error;
+    std::optional<LinearObjective> about;
   };
-  if (settings.improve_iterations > 0) {
+  auto constrain = [&](const std::vector<uint8_t>& open, const SensorValues& open_values) {
+    Constrained k;
+    // Rectangles are scored by the exact linear model about the state (the elements' joint light).
+    const LinearObjective about_open = linearised_objective(objective, c, open, open_values.value, progress);
+    k.rects = refine_openings(scene.domain, open, about_open, grid_constraints, progress);
+    k.fitness = exact_of(k.rects, &k.values);
+    k.refined_error = goal_error(out.goals, k.values.value);
+    if (settings.improve_iterations <= 0) return k;
     if (progress) progress->start("solving: local search over openings", 1);
     // Each round searches the exact linear model about the current openings, and is kept only if
     // the exact evaluation agrees; the next round linearises about its answer.
-    linearise_about_rects();
+    auto linearise = [&] {
+      k.about = linearised_objective(objective, c, rectangles_mask(scene.domain, k.rects), k.values.value, progress);
+    };
+    linearise();
     for (int round = 0; round < kLinearisationRounds; ++round) {
       const std::vector<GridRectangle> improved = improve_rectangles(
-          scene.domain, rects, *about, grid_constraints, settings.seed + round, settings.improve_iterations, progress);
+          scene.domain, k.rects, *k.about, grid_constraints, settings.seed + round, settings.improve_iterations,
+          progress);
       SensorValues improved_values;
       const double f = exact_of(improved, &improved_values);
-      if (!(f < best * (1.0 - 1e-6))) break;
-      best = f;
-      rects = improved;
-      chosen = improved_values;
-      linearise_about_rects();
+      if (!(f < k.fitness * (1.0 - 1e-6))) break;
+      k.fitness = f;
+      k.rects = improved;
+      k.values = improved_values;
+      linearise();
     }
+    return k;
+  };
+  Constrained kept = constrain(out.open, chosen);
+  // When the free answer takes light from elements no admissible opening can cover (margins,
+  // rows below the sill or above the head limits), the openings made from it can land far from
+  // the best: a second start searches the elements again without those, and the better is kept.
+  const std::vector<uint8_t> out_of_bounds = elements_out_of_bounds(scene.domain, grid_constraints);
+  if (opens_any(out.open, out_of_bounds)) {
+    if (progress) progress->start("solving: elements within the constraints", 1);
+    const ElementChoice within = search_within_bounds(objective, c, grid, shape, ga, exact_values, fine_start.open,
+                                                      out.open, out_of_bounds, progress);
+    Constrained second = constrain(within.open, within.values);
+    out.second_start = true;
+    if (second.fitness < kept.fitness) kept = std::move(second), out.second_start_kept = true;
   }
+  std::vector<GridRectangle> rects = std::move(kept.rects);
+  chosen = kept.values;
+  best = kept.fitness;
+  out.refined_error = kept.refined_error;
+  std::optional<LinearObjective> about = std::move(kept.about);
+  auto linearise_about_rects = [&] {
+    about = linearised_objective(objective, c, rectangles_mask(scene.domain, rects), chosen.value, progress);
+  };
   out.open = rectangles_mask(scene.domain, rects);
   out.openings.clear();
   for (const GridRectangle& r : rects) out.openings.push_back(to_world(scene.domain, r));

@@ -49,6 +49,9 @@ struct SolveResult {
   std::vector<GenerationRecord> history;     // the fine-grid genetic stage
   int generations = 0;
   int edge_moves = 0;  // edges moved off the element grid (refine_edges)
+  // Whether the constraints stage also started from a search without the elements no admissible
+  // opening can cover (run when the free answer opened some), and whether that start was kept.
+  bool second_start = false, second_start_kept = false;
   double fitness = 0.0;                      // the chosen state's fitness with exact predictions
   std::vector<int> coarse_factors;           // coarse grids solved first (e.g. 4, 2)
   struct Timing {
