@@ -312,6 +312,39 @@ TEST(ConstraintsSatisfies, HeadClearanceCountsFromTheWallsTop) {
   EXPECT_TRUE(satisfies({0, 0, 7, 0, 7}, roof.panels()[0], r, roof.element_size(), &why)) << why;
 }
 
+// The elements flagged out of bounds are exactly those no admissible one-element-high opening
+// of the grid can cover (the solver's second start keeps them closed).
+TEST(ConstraintsOutOfBounds, FlagsWhatNoAdmissibleOpeningCovers) {
+  const OpeningDomain d = wall(5, 2.5, 0.25);  // 20 columns x 10 rows, base 0, top 2.5 m
+  const Panel& p = d.panels()[0];
+  const double a = d.element_size();
+  OpeningConstraints c;
+  c.margin = 0.2;          // one whole element
+  c.sill_min = 0.3;        // rows 0 and 1 (sills 0, 0.25 m)
+  c.head_clearance = 0.2;  // row 9 (head 2.5 m)
+  const std::vector<uint8_t> out = elements_out_of_bounds(d, c);
+  ASSERT_EQ(out.size(), d.element_count());
+  int flagged = 0;
+  for (int row = 0; row < p.rows; ++row)
+    for (int col = 0; col < p.cols; ++col) {
+      const int k = p.grid[static_cast<size_t>(row) * p.cols + col];
+      const bool expected = row < 2 || row > 8 || col < 1 || col > 18;
+      EXPECT_EQ(out[static_cast<size_t>(k)] != 0, expected) << "row " << row << ", column " << col;
+      // Agreement with satisfies() for the smallest opening there.
+      EXPECT_EQ(out[static_cast<size_t>(k)] != 0, !satisfies({0, row, row, col, col}, p, c, a))
+          << "row " << row << ", column " << col;
+      flagged += out[static_cast<size_t>(k)];
+    }
+  EXPECT_EQ(flagged, 20 * 10 - 7 * 18);  // rows 2-8, columns 1-18 are clear
+  // Roofs: only the margin.
+  const OpeningDomain roof = domain_of({{Vec3(0, 0, 3), Vec3(0, 2, 3), Vec3(2, 2, 3), Vec3(2, 0, 3)}}, 0.25);
+  const std::vector<uint8_t> roof_out = elements_out_of_bounds(roof, c);
+  EXPECT_EQ(std::count(roof_out.begin(), roof_out.end(), 1), 64 - 36);
+  // Nothing flagged without constraints.
+  const std::vector<uint8_t> none = elements_out_of_bounds(d, OpeningConstraints{});
+  EXPECT_EQ(std::count(none.begin(), none.end(), 1), 0);
+}
+
 TEST(ConstraintsSatisfies, OpeningsPerPanelFollowTheWidthAndTheCount) {
   const OpeningDomain d = wall(5, 2.5, 0.25);  // 5 m wide
   const Panel& p = d.panels()[0];

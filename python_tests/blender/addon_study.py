@@ -215,6 +215,26 @@ class Solve(unittest.TestCase):
             self.assertTrue(any(abs(o["width"] - w) < 1e-3 and abs(o["height"] - h) < 1e-3 for w, h in sizes), o)
         self.assertEqual(len(cutters()), len(result["openings"]))
 
+    def test_facade_composition_reaches_the_study_and_bad_sill_heights_are_refused(self):
+        study()
+        c = bpy.context.scene.fenestra.solve.constraints
+        c.align_sills, c.same_type_in_row, c.sill_heights = True, True, " 0.9 m, 1.2;"
+        path = os.path.join(OUT, "study", "scene.json")
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        self.assertEqual(json.load(open(path))["solver"]["constraints"],
+                         {"align_sills": True, "same_type_in_row": True, "sill_heights": [0.9, 1.2]})
+        result = json.load(open(os.path.join(OUT, "study", "result.json")))
+        self.assertTrue(result["openings"] and result["constraints_met"], result["constraint_violations"])
+        self.assertEqual([s["rule"] for s in result["composition"]][:1], ["align_sills"])
+        sills = {round(min(p[2] for p in o["corners"]), 3) for o in result["openings"]}
+        self.assertEqual(len(sills), 1, sills)  # aligned
+        before = os.path.getmtime(path)
+        c.sill_heights = "0.9, high"
+        with self.assertRaises(RuntimeError) as caught:  # the operator's error report
+            bpy.ops.fenestra.solve_openings()
+        self.assertIn("Sill Heights: 'high' is not a height", str(caught.exception))
+        self.assertEqual(os.path.getmtime(path), before)  # the study is not rewritten
+
     def test_a_tradeoff_replaces_the_cutters_without_solving_again(self):
         study()
         c = bpy.context.scene.fenestra.solve.constraints

@@ -183,7 +183,17 @@ class FENESTRA_PT_constraints(FenestraPanel, bpy.types.Panel):
                 row.prop(c, key, text="%s (%s)" % (c.bl_rna.properties[key].name, automatic[key]))
             else:
                 col.prop(c, key)
-        if native.unavailable() is None and c.as_dict() and not native.accepts_constraints():
+        layout.label(text="Facade Composition")
+        grid = layout.grid_flow(columns=2, even_columns=True, align=True)
+        for key in c.COMPOSITION:
+            grid.prop(c, key)
+        layout.prop(c, "sill_heights")
+        try:
+            chosen = c.as_dict()
+        except ValueError as exc:
+            draw_warning(layout, str(exc))
+            chosen = True
+        if native.unavailable() is None and chosen and not native.accepts_constraints():
             draw_warning(layout, "This build of the solver does not take constraints yet: they are not used.")
 
 

@@ -139,6 +139,23 @@ class FenestraConstraints(PropertyGroup):
     head_clearance: FloatProperty(name="Head Clearance", min=0.0, default=0.0, unit='LENGTH',
                                   description="Least distance between a head and the wall's top")
 
+    # Facade composition (coplanar walls): each rule is solver.constraints' key of the same name.
+    align_sills: BoolProperty(name="Align Sills", default=False, description="One sill height per facade")
+    align_heads: BoolProperty(name="Align Heads", default=False, description="One head height per facade")
+    equal_widths: BoolProperty(name="Equal Widths", default=False, description="One opening width per facade")
+    same_type_in_row: BoolProperty(name="Same Type in a Row", default=False,
+                                   description="The openings of a row (one sill) have one size")
+    symmetric: BoolProperty(name="Symmetric", default=False,
+                            description="Each wall's openings mirror about its vertical axis")
+    equal_spacing: BoolProperty(name="Equal Spacing", default=False,
+                                description="Equal piers between the openings of each row of three or more")
+    sill_heights: StringProperty(
+        name="Sill Heights", default="",
+        description="Allowed sill heights in meters above the wall's base, separated by commas "
+                    "(e.g. 0.9 or 0.45, 0.9); empty: any")
+
+    COMPOSITION = ("align_sills", "align_heads", "equal_widths", "same_type_in_row", "symmetric", "equal_spacing")
+
     KEYS = ("min_area", "max_area", "min_aspect", "max_aspect", "min_width", "max_width", "min_height",
             "max_height", "max_openings", "max_openings_per_panel", "panel_width_per_opening", "min_gap",
             "margin", "sill_min", "head_max", "head_clearance")
@@ -153,7 +170,26 @@ class FenestraConstraints(PropertyGroup):
             out["full_height"] = True
         if self.catalogue != 'NONE':
             out["catalogue"] = self.catalogue
+        out.update({k: True for k in self.COMPOSITION if getattr(self, k)})
+        heights = sill_heights_of(self.sill_heights)
+        if heights:
+            out["sill_heights"] = heights
         return out
+
+
+def sill_heights_of(text):
+    """The Sill Heights field as a list of meters; ValueError naming the entry that is not a number."""
+    heights = []
+    for item in text.replace(";", ",").split(","):
+        item = item.strip().removesuffix("m").strip()
+        if not item:
+            continue
+        try:
+            heights.append(float(item))
+        except ValueError:
+            raise ValueError("Sill Heights: %r is not a height in meters (write e.g. 0.9 or 0.45, 0.9)"
+                             % item) from None
+    return heights
 
 
 QUALITY = {'PREVIEW': (2048, 150, 32), 'FINAL': (16384, 500, 64)}  # paths, generations, population

@@ -45,6 +45,9 @@ CONSTRAINTS = {
     "head_max": "Max Head", "head_clearance": "Head Clearance", "max_openings_per_panel": "Max per Panel",
     "panel_width_per_opening": "Width per Opening", "automatic": "Automatic",
     "full_height": "Doors / Full-Height Glazing", "catalogue": "Catalogue",
+    "align_sills": "Align Sills", "align_heads": "Align Heads", "equal_widths": "Equal Widths",
+    "same_type_in_row": "Same Type in a Row", "symmetric": "Symmetric", "equal_spacing": "Equal Spacing",
+    "sill_heights": "Sill Heights",
 }
 FIELDS.update({"solver.constraints." + k: v for k, v in CONSTRAINTS.items()})
 # What is left of a key the tab has no field for: the part of the study it belongs to.
