@@ -118,6 +118,49 @@ def test_gap_between_openings_by_default(tmp_path):
             assert gap >= 0.5 - 1e-6
 
 
+def test_the_result_says_which_constraints_keep_it_from_the_goals(tmp_path):
+    """Goals from a full-height door: no opening within the automatic sill, head and margin gives
+    them. The result names those limits together, and the scene solved with full_height (which
+    lifts just those) does come close to the goals."""
+    d = small_scene(tmp_path)
+    d["opening_domain"]["element_size"] = 0.25
+    scene = fenestra.scene_from_dict(d, tmp_path)
+    scene.render.paths_per_sensor = 8192
+    door = [[0.75, 0, 0], [1.75, 0, 0], [1.75, 0, 2.5], [0.75, 0, 2.5]]
+    goals, _ = fenestra.evaluate(scene, [door])
+    d["sensors"]["goals"] = [float(g) for g in goals]
+    d["sensors"]["goal_units"] = "lux"
+    d["solver"] = dict(FAST, paths=4096, generations=200)
+    with pytest.warns(RuntimeWarning, match="meet the goals at"):
+        result = fenestra.solve(fenestra.scene_from_dict(d, tmp_path))
+    costs = result["constraint_costs"]
+    assert costs, result["warnings"]
+    best = costs[0]
+    assert {"margin", "sill_min", "head_clearance"} <= set(best["keys"]), costs
+    before = result["error"]["before_constraints"]["relative_rms"]
+    refined = result["error"]["refined"]["relative_rms"]
+    assert best["error_without"] < 0.5 * (before + refined), costs
+    assert any("without " + best["keys"][0] in w for w in result["warnings"]), result["warnings"]
+    d["solver"]["constraints"] = {"full_height": True}
+    door_allowed = fenestra.solve(fenestra.scene_from_dict(d, tmp_path))
+    assert door_allowed["constraint_costs"] == []
+    # Lifting what the result named does give what it said: a door, within the same halfway.
+    assert door_allowed["error"]["relative_rms"] < 0.5 * (before + refined), door_allowed["error"]
+    assert max(o["height"] for o in door_allowed["openings"]) > 2.0
+
+
+def test_no_constraint_costs_when_the_constraints_cost_little(tmp_path):
+    d = small_scene(tmp_path)
+    scene = fenestra.scene_from_dict(d, tmp_path)
+    scene.render.paths_per_sensor = 8192
+    goals, _ = fenestra.evaluate(scene, [grid_window(scene, (2, 5), (2, 5))])  # admissible
+    d["sensors"]["goals"] = [float(g) for g in goals]
+    d["sensors"]["goal_units"] = "lux"
+    d["solver"] = dict(FAST, paths=4096, generations=200)
+    result = fenestra.solve(fenestra.scene_from_dict(d, tmp_path))
+    assert result["constraint_costs"] == [] and not any("meet the goals at" in w for w in result["warnings"])
+
+
 CATALOGUE = [[0.7, 0.7], [1.05, 1.4], [1.2, 1.5], [1.8, 1.2]]
 
 

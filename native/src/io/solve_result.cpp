@@ -167,6 +167,12 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
       {"genetic", {{"generations", r.generations}, {"coarse_factors", r.coarse_factors}, {"history", history}}},
       {"edge_moves", r.edge_moves},
       {"second_start", {{"run", r.second_start}, {"kept", r.second_start_kept}}},
+      {"constraint_costs", [&] {
+         json costs = json::array();
+         for (const ConstraintCost& c : r.constraint_costs)
+           costs.push_back({{"keys", c.keys}, {"error_without", c.error_without}});
+         return costs;
+       }()},
       {"settings", {{"paths_per_sensor", s.paths_per_sensor > 0 ? s.paths_per_sensor : scene.render.paths_per_sensor},
                     {"population", s.population},
                     {"generations", s.generations},

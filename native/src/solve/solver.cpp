@@ -15,6 +15,7 @@
 #include "solve/nnls.h"
 #include "solve/prediction_check.h"
 #include "solve/refine_openings.h"
+#include "solve/constraint_costs.h"
 #include "io/sky_output.h"
 #include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
@@ -366,7 +367,8 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     GoalError refined_error;
     std::optional<LinearObjective> about;
   };
-  auto constrain = [&](const std::vector<uint8_t>& open, const SensorValues& open_values) {
+  auto constrain = [&](const std::vector<uint8_t>& open, const SensorValues& open_values,
+                       const OpeningConstraints& grid_constraints) {
     Constrained k;
     // Rectangles are scored by the exact linear model about the state (the elements' joint light).
     const LinearObjective about_open = linearised_objective(objective, c, open, open_values.value, progress);
@@ -395,7 +397,8 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     }
     return k;
   };
-  Constrained kept = constrain(out.open, chosen);
+  const SensorValues free_values = chosen;
+  Constrained kept = constrain(out.open, chosen, grid_constraints);
   // When the free answer takes light from elements no admissible opening can cover (margins,
   // rows below the sill or above the head limits), the openings made from it can land far from
   // the best: a second start searches the elements again without those, and the better is kept.
@@ -404,9 +407,20 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     if (progress) progress->start("solving: elements within the constraints", 1);
     const ElementChoice within = search_within_bounds(objective, c, grid, shape, ga, exact_values, fine_start.open,
                                                       out.open, out_of_bounds, progress);
-    Constrained second = constrain(within.open, within.values);
+    Constrained second = constrain(within.open, within.values, grid_constraints);
     out.second_start = true;
     if (second.fitness < kept.fitness) kept = std::move(second), out.second_start_kept = true;
+  }
+  // When the constraints cost much light, which of them: each family lifted in turn.
+  const double free_rms = out.unconstrained_error.relative_rms;
+  const double constrained_rms = goal_error(out.goals, kept.values.value).relative_rms;
+  if (constraints_cost_much(free_rms, constrained_rms)) {
+    if (progress) progress->start("solving: what the constraints cost", 1);
+    out.constraint_costs = constraint_costs(constraints, [&](const OpeningConstraints& lifted) {
+      const Constrained k = constrain(out.open, free_values, grid_search_constraints(scene.domain, lifted));
+      return goal_error(out.goals, k.values.value).relative_rms;
+    }, free_rms, constrained_rms);
+    out.warnings.push_back(constraint_cost_warning(free_rms, constrained_rms, out.constraint_costs));
   }
   std::vector<GridRectangle> rects = std::move(kept.rects);
   chosen = kept.values;

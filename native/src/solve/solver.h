@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include "solve/constraint_costs.h"
 #include "solve/genetic.h"
 #include "solve/composition.h"
 #include "solve/goals.h"
@@ -52,6 +53,9 @@ struct SolveResult {
   // Whether the constraints stage also started from a search without the elements no admissible
   // opening can cover (run when the free answer opened some), and whether that start was kept.
   bool second_start = false, second_start_kept = false;
+  // When the constraints cost much light (constraints_cost_much), the error without each family
+  // of limits, least first (solve/constraint_costs.h); else empty.
+  std::vector<ConstraintCost> constraint_costs;
   double fitness = 0.0;                      // the chosen state's fitness with exact predictions
   std::vector<int> coarse_factors;           // coarse grids solved first (e.g. 4, 2)
   struct Timing {
