@@ -51,6 +51,19 @@ TEST(ConstraintCosts, LimitsThatBindTogetherAreLiftedTogether) {
   EXPECT_NE(warning.find("without margin, sill_min, head_clearance it would be 3.0 %"), std::string::npos) << warning;
 }
 
+TEST(ConstraintCosts, LimitsThatOnlyCostTogetherAreLiftedAllAtOnce) {
+  // Each family adds 0.05: none alone blocks, none alone explains the cost.
+  auto sum = [](const OpeningConstraints& c) {
+    return 0.01 + 0.05 * ((c.min_width > 0.0) + (c.margin > 0.0) + (c.sill_min > 0.0) + (c.min_gap > 0.0));
+  };
+  const std::vector<ConstraintCost> costs = constraint_costs(automatic_like(), sum, 0.01, 0.21);
+  ASSERT_EQ(costs.size(), 5u);
+  EXPECT_EQ(costs[0].keys, (std::vector<std::string>{"min_width", "min_height", "margin", "sill_min",
+                                                     "head_clearance", "min_gap"}));
+  EXPECT_DOUBLE_EQ(costs[0].error_without, 0.01);
+  EXPECT_DOUBLE_EQ(costs[1].error_without, 0.16);
+}
+
 TEST(ConstraintCosts, CatalogueAndPerPanelLimitsCount) {
   OpeningConstraints c;
   c.catalogue.walls = {{1.2, 1.5}};

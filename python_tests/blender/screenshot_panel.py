@@ -56,11 +56,14 @@ def setup():
                 bpy.utils.unregister_class(cls)
             except RuntimeError:
                 pass
-    # The Constraints sub-panel open, so that its automatic values show.
-    constraints_panel = bpy.types.FENESTRA_PT_constraints
-    bpy.utils.unregister_class(constraints_panel)
-    constraints_panel.bl_options = set()
-    bpy.utils.register_class(constraints_panel)
+    # The Constraints sub-panel open, so that its automatic values show; Sky and Checks closed, so
+    # that the Results fit below.
+    for name, options in (("FENESTRA_PT_constraints", set()), ("FENESTRA_PT_sky", {'DEFAULT_CLOSED'}),
+                          ("FENESTRA_PT_checks", {'DEFAULT_CLOSED'})):
+        panel = getattr(bpy.types, name)
+        bpy.utils.unregister_class(panel)
+        panel.bl_options = options
+        bpy.utils.register_class(panel)
     window, area, region = view3d()
     space = area.spaces.active
     space.show_region_ui = True
@@ -100,6 +103,7 @@ def wait_and_shoot():
         bpy.ops.screen.screenshot_area(filepath=OUT)
     r = bpy.context.scene.fenestra.results
     print("SOLVED %d openings, %.3f relative RMS; screenshot %s" % (r.openings, r.relative_rms, OUT))
+    print("WARNINGS %s" % r.warnings)
     bpy.ops.wm.quit_blender()
     return None
 

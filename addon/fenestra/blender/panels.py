@@ -184,10 +184,11 @@ class FENESTRA_PT_constraints(FenestraPanel, bpy.types.Panel):
             else:
                 col.prop(c, key)
         layout.label(text="Facade Composition")
-        grid = layout.grid_flow(columns=2, even_columns=True, align=True)
+        grid = layout.grid_flow(row_major=True, columns=0, even_columns=True, align=True)  # as many as fit
         for key in c.COMPOSITION:
             grid.prop(c, key)
-        layout.prop(c, "sill_heights")
+        layout.label(text="Sill Heights (m, e.g. 0.9, 1.2):")
+        layout.prop(c, "sill_heights", text="")
         try:
             chosen = c.as_dict()
         except ValueError as exc:

@@ -110,7 +110,7 @@ std::vector<ConstraintCost> constraint_costs(
   if (set.size() < 2 || out.front().error_without <= halfway) return out;
   // No family alone explains the cost: limits that bind together (a margin and a sill both keep an
   // opening off the floor). Each family alone, the others lifted: those that cost more than half
-  // the way on their own are lifted together.
+  // the way on their own are lifted together; when fewer than two do, all of them.
   OpeningConstraints without_binding = constraints;
   ConstraintCost binding;
   int binding_families = 0;
@@ -121,7 +121,16 @@ std::vector<ConstraintCost> constraint_costs(
     binding.keys.insert(binding.keys.end(), keys.begin(), keys.end());
     ++binding_families;
   }
-  if (binding_families >= 2) {
+  if (binding_families < 2) {  // no family blocks on its own either: they cost together
+    without_binding = constraints;
+    binding.keys.clear();
+    for (const Family* family : set) {
+      without_binding = lifted(without_binding, *family);
+      const std::vector<std::string> keys = set_keys(constraints, *family);
+      binding.keys.insert(binding.keys.end(), keys.begin(), keys.end());
+    }
+  }
+  {
     binding.error_without = error_with(without_binding);
     out.push_back(binding);
     std::stable_sort(out.begin(), out.end(), by_error);

@@ -23,7 +23,8 @@ struct ConstraintCost {
 // The families of `constraints` that constrain anything, each with the error `error_with` gives
 // with that family lifted (on every panel), least error first. When none alone brings the error
 // halfway from `constrained_error` back to `free_error`, the families that on their own (the
-// others lifted) keep it beyond halfway bind together: one more entry lifts them all at once.
+// others lifted) keep it beyond halfway bind together: one more entry lifts them at once (every
+// family, when fewer than two do so on their own).
 // `error_with` is called at most 2 x families + 1 times.
 std::vector<ConstraintCost> constraint_costs(
     const OpeningConstraints& constraints, const std::function<double(const OpeningConstraints&)>& error_with,
