@@ -265,7 +265,9 @@ def validate_scene(name, config, out_root, scale):
         "stages": {k: float(v) for k, v in result["timings_s"].items()},
         "element_size": float(scene.element_size),
         "paths": paths,
-        "solver": dict(result.get("settings", {}), **solver),
+        # The constraints the scene sets (the automatic ones apply to every row alike).
+        "solver": dict(result.get("settings", {}), constraints=solver.get("constraints"), **{
+            k: v for k, v in solver.items() if k != "constraints"}),
         "openings_truth": len(truth["openings"]),
         "openings_solution": len(result["openings"]),
         "elements_truth": int(truth_mask.sum()),
@@ -339,12 +341,21 @@ def table(rows):
             r["scene"], r["triangles"], t.get("contributions", 0.0),
             t.get("linear start", 0.0) + t.get("coarse grids", 0.0), t.get("genetic", 0.0),
             t.get("constraints", 0.0), percent(r["after_genetic"]), percent(r["after_constraints"])))
-    settings = sorted({json.dumps(r["solver"], sort_keys=True) for r in rows})
     lines.append("")
     lines.append("Goals and checks: %s paths per sensor; solver settings: %s." % (
-        ", ".join("%s %d" % (r["scene"], r["paths"]) for r in rows),
-        "; ".join(_settings_text(json.loads(s)) for s in settings)))
+        ", ".join("%s %d" % (r["scene"], r["paths"]) for r in rows), _settings_by_scene(rows)))
     return "\n".join(lines) + "\n"
+
+
+def _settings_by_scene(rows):
+    """Each distinct solver setting once: the most common unlabelled, the others with their scenes."""
+    groups = {}
+    for r in rows:
+        groups.setdefault(_settings_text(r["solver"]), []).append(r["scene"])
+    common = max(groups, key=lambda text: len(groups[text]))
+    parts = [common + (" (the other scenes)" if len(groups) > 1 else "")]
+    parts += ["%s (%s)" % (text, ", ".join(scenes)) for text, scenes in groups.items() if text != common]
+    return "; ".join(parts)
 
 
 def _settings_text(s):
@@ -355,6 +366,9 @@ def _settings_text(s):
     if shape:
         text += ", shape weights isolated %g, boundary %g, regions %g" % (
             shape.get("isolated"), shape.get("boundary"), shape.get("regions"))
+    constraints = s.get("constraints")
+    if constraints:
+        text += ", constraints %s" % json.dumps(constraints, separators=(", ", ": "))
     return text
 
 
