@@ -42,10 +42,12 @@ TEST(ConstraintCosts, LimitsThatBindTogetherAreLiftedTogether) {
   int calls = 0;
   const std::vector<ConstraintCost> costs =
       constraint_costs(automatic_like(), [&](const OpeningConstraints& c) { return ++calls, both(c); }, 0.02, 0.2);
-  ASSERT_EQ(costs.size(), 5u);
-  EXPECT_EQ(calls, 4 + 4 + 1);
+  ASSERT_EQ(costs.size(), 6u);  // four families, the two that bind, all at once
+  EXPECT_EQ(calls, 4 + 4 + 2);
   EXPECT_EQ(costs[0].keys, (std::vector<std::string>{"margin", "sill_min", "head_clearance"}));
   EXPECT_DOUBLE_EQ(costs[0].error_without, 0.03);
+  EXPECT_EQ(costs[1].keys.size(), 6u);  // every key set
+  EXPECT_DOUBLE_EQ(costs[1].error_without, 0.03);
   const std::string warning = constraint_cost_warning(0.02, 0.2, costs);
   EXPECT_NE(warning.find("at 20.0 % on the element grid, the free answer at 2.0 %"), std::string::npos) << warning;
   EXPECT_NE(warning.find("without margin, sill_min, head_clearance it would be 3.0 %"), std::string::npos) << warning;
@@ -75,6 +77,17 @@ TEST(ConstraintCosts, CatalogueAndPerPanelLimitsCount) {
   EXPECT_EQ(costs[0].keys, (std::vector<std::string>{"catalogue"}));
   EXPECT_EQ(costs[1].keys, (std::vector<std::string>{"min_gap"}));
   EXPECT_TRUE(constraint_costs(OpeningConstraints{}, [](const OpeningConstraints&) { return 1.0; }, 0.0, 1.0).empty());
+}
+
+TEST(ConstraintCosts, SaysSoWhenLiftingTheLimitsDoesNotHelp) {
+  // The search within the limits, not the limits, keeps the answer from the goals.
+  const std::vector<ConstraintCost> costs =
+      constraint_costs(automatic_like(), [](const OpeningConstraints&) { return 0.2; }, 0.03, 0.2);
+  ASSERT_EQ(costs.size(), 5u);  // four families, then all at once (none binds more than another)
+  const std::string warning = constraint_cost_warning(0.03, 0.2, costs);
+  EXPECT_NE(warning.find("lifting the constraints, alone or together, does not bring it lower"), std::string::npos)
+      << warning;
+  EXPECT_EQ(warning.find("without"), std::string::npos) << warning;
 }
 
 TEST(ConstraintCosts, OnlyWhenTheConstraintsCostMuch) {

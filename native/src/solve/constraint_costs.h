@@ -22,10 +22,11 @@ struct ConstraintCost {
 
 // The families of `constraints` that constrain anything, each with the error `error_with` gives
 // with that family lifted (on every panel), least error first. When none alone brings the error
-// halfway from `constrained_error` back to `free_error`, the families that on their own (the
-// others lifted) keep it beyond halfway bind together: one more entry lifts them at once (every
-// family, when fewer than two do so on their own).
-// `error_with` is called at most 2 x families + 1 times.
+// halfway from `constrained_error` back to `free_error`, two more entries may follow: the families
+// that on their own (the others lifted) keep it beyond halfway, lifted at once (when two or more,
+// but not all, do so), and every family lifted at once.
+// `error_with` is called at most 2 x families + 2 times; it should not return more than
+// `constrained_error` (lifting a limit never excludes the openings found within it).
 std::vector<ConstraintCost> constraint_costs(
     const OpeningConstraints& constraints, const std::function<double(const OpeningConstraints&)>& error_with,
     double free_error, double constrained_error);
@@ -35,7 +36,8 @@ std::vector<ConstraintCost> constraint_costs(
 bool constraints_cost_much(double free_error, double constrained_error);
 
 // "the openings within the constraints meet the goals at 5.7 % on the element grid, the free
-// answer at 1.9 %; without margin, sill_min, ... it would be 2.0 % (constraint_costs in the result)".
+// answer at 1.9 %; without margin, sill_min, ... it would be 2.0 % (constraint_costs in the result)",
+// or, when no entry gets a tenth of the way back to the free answer, that lifting them does not.
 std::string constraint_cost_warning(double free_error, double constrained_error,
                                     const std::vector<ConstraintCost>& costs);
 

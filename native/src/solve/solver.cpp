@@ -416,9 +416,15 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   const double constrained_rms = goal_error(out.goals, kept.values.value).relative_rms;
   if (constraints_cost_much(free_rms, constrained_rms)) {
     if (progress) progress->start("solving: what the constraints cost", 1);
+    // Searched from the free answer and from the openings found within the constraints (which
+    // stay admissible when a limit is lifted), so lifting never reports more error than keeping.
+    const std::vector<uint8_t> kept_open = rectangles_mask(scene.domain, kept.rects);
     out.constraint_costs = constraint_costs(constraints, [&](const OpeningConstraints& lifted) {
-      const Constrained k = constrain(out.open, free_values, grid_search_constraints(scene.domain, lifted));
-      return goal_error(out.goals, k.values.value).relative_rms;
+      const OpeningConstraints lifted_grid = grid_search_constraints(scene.domain, lifted);
+      const Constrained from_free = constrain(out.open, free_values, lifted_grid);
+      const Constrained from_kept = constrain(kept_open, kept.values, lifted_grid);
+      return std::min({constrained_rms, goal_error(out.goals, from_free.values.value).relative_rms,
+                       goal_error(out.goals, from_kept.values.value).relative_rms});
     }, free_rms, constrained_rms);
     out.warnings.push_back(constraint_cost_warning(free_rms, constrained_rms, out.constraint_costs));
   }
