@@ -11,6 +11,7 @@
 
 #include "cost/load_checks.h"
 #include "daylight/sky_models.h"
+#include "math/gauss_legendre.h"
 #include "scene/sky.h"
 
 namespace fenestra {
@@ -23,43 +24,16 @@ void check(bool ok, const std::string& key, const std::string& message) {
   if (!ok) throw std::invalid_argument("sky." + key + ": " + message);
 }
 
-// Gauss-Legendre nodes and weights on [0, 1] (Newton on the Legendre polynomial).
 using RadianceOf = std::function<Rgb(const Vec3&)>;
-
-void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double>* weights) {
-  nodes->resize(n);
-  weights->resize(n);
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(3.14159265358979323846 * (i + 0.75) / (n + 0.5)), dp = 1.0;
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      double p0 = 1.0, p1 = x;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);
-      const double dx = p1 / dp;
-      x -= dx;
-      if (std::abs(dx) < 1e-15) break;
-    }
-    (*nodes)[i] = 0.5 * (1.0 - x);
-    (*weights)[i] = 1.0 / ((1.0 - x * x) * dp * dp);  // 2 / ((1 - x^2) P'^2), halved for [0, 1]
-  }
-}
 
 // Horizontal illuminance of an analytic sky: Gauss-Legendre in cos(theta), trapezoid in azimuth
 // (periodic, so spectrally accurate); fill_row evaluates one ring of directions.
 Rgb analytic_horizontal_illuminance(const std::function<void(const Vec3*, int, Rgb*)>& fill_row) {
   constexpr int kRings = 96, kAzimuths = 192;
-  static const auto rule = [] {
-    std::pair<std::vector<double>, std::vector<double>> r;
-    gauss_legendre(kRings, &r.first, &r.second);
-    return r;
-  }();
+  static const QuadratureRule rule = gauss_legendre(kRings);
   std::vector<Eigen::Array3d> rings(kRings);
   tbb::parallel_for(0, kRings, [&](int i) {
-    const double mu = rule.first[i], s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+    const double mu = rule.nodes[i], s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
     Vec3 directions[kAzimuths];
     Rgb values[kAzimuths];
     for (int j = 0; j < kAzimuths; ++j) {
@@ -69,7 +43,7 @@ Rgb analytic_horizontal_illuminance(const std::function<void(const Vec3*, int, R
     fill_row(directions, kAzimuths, values);
     Eigen::Array3d ring = Eigen::Array3d::Zero();
     for (const Rgb& v : values) ring += v.cast<double>();
-    rings[i] = rule.second[i] * mu * ring * (2.0 * 3.14159265358979323846 / kAzimuths);
+    rings[i] = rule.weights[i] * mu * ring * (2.0 * 3.14159265358979323846 / kAzimuths);
   });
   Eigen::Array3d sum = Eigen::Array3d::Zero();
   for (const auto& r : rings) sum += r;

@@ -11,7 +11,8 @@ namespace fenestra {
 struct PerezCoefficients {
   double A = 0, B = 0, C = 0, D = 0, E = 0;
   // 1 + A exp(B / cos theta), with cos theta held at kMinCosTheta or above: B < 0 for every
-  // Preetham turbidity, so the factor tends to 1 at the horizon and the floor only avoids 0 / 0.
+  // Preetham turbidity (and the all-weather sky holds B at 0 or below), so the factor tends to 1 at
+  // the horizon and the floor only avoids 0 / 0.
   static constexpr double kMinCosTheta = 0.01;
   double theta_factor(double cos_theta) const;
   double gamma_factor(double gamma, double cos_gamma) const;  // 1 + C exp(D gamma) + E cos^2 gamma
