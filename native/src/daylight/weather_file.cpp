@@ -1,5 +1,7 @@
 #include "daylight/weather_file.h"
 
+#include "daylight/perez_all_weather.h"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -19,9 +21,7 @@ namespace fenestra {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kPi = 3.14159265358979323846;
 
-constexpr double kSolarConstant = 1367.0;  // W/m^2 (WMO 1981), the value of NREL's TMY3 files
 // Luminous solar constant: published values run from 127.5 klx (IES) to 133.3 klx (Darula,
 // Kittler & Gueymard 2005); 134 klx bounds them all, so no file is refused over the choice.
 constexpr double kLuminousSolarConstant = 134000.0;  // lux
@@ -157,12 +157,9 @@ bool valid_date(int month, int day) { return month >= 1 && month <= 12 && day >=
 
 int day_of_year(int month, int day) { return month == 2 && day == 29 ? 60 : kDaysBeforeMonth[month - 1] + day; }
 
-// (mean Sun-Earth distance / distance)^2 on a date: Spencer's (1971) Fourier series, as given by
-// Iqbal (1983, eq. 1.2.1), accurate to 1e-4.
+// (mean Sun-Earth distance / distance)^2 on a date: the Perez sky's series (Spencer 1971).
 double eccentricity_factor(int month, int day) {
-  const double g = 2.0 * kPi * (day_of_year(month, day) - 1) / 365.0;
-  return 1.000110 + 0.034221 * std::cos(g) + 0.001280 * std::sin(g) + 0.000719 * std::cos(2.0 * g) +
-         0.000077 * std::sin(2.0 * g);
+  return extraterrestrial_normal_irradiance(day_of_year(month, day)) / kPerezSolarConstant;
 }
 
 std::string date_text(int month, int day) { return std::to_string(month) + "/" + std::to_string(day); }
@@ -481,7 +478,7 @@ bool earlier(const WeatherHour& a, const WeatherHour& b) {
 double extraterrestrial_normal_irradiance(int month, int day) {
   if (!valid_date(month, day))
     throw std::invalid_argument("extraterrestrial_normal_irradiance: " + date_text(month, day) + " is not a date");
-  return kSolarConstant * eccentricity_factor(month, day);
+  return extraterrestrial_normal_irradiance(day_of_year(month, day));
 }
 
 WeatherData read_epw(const std::string& path) {
