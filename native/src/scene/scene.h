@@ -14,6 +14,7 @@
 namespace fenestra {
 
 struct Daylight;  // daylight/daylight.h
+struct Climate;   // daylight/sky_matrix.h
 class Progress;   // util/progress.h
 
 struct Sensors {
@@ -43,6 +44,7 @@ struct Scene {
   std::shared_ptr<const Sky> sky;
   SunLights suns;  // a daylight sky's sun, one disk per time step (empty for other skies)
   std::shared_ptr<const Daylight> daylight;  // how a daylight sky was built (null for others)
+  std::shared_ptr<const Climate> climate;    // a "climate" sky: the weather file and its sky matrix
   RenderSettings render;
   SolverSettings solver;
   // Files the scene was read from: the scene file (when loaded from one), the OBJ, an

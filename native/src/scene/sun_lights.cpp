@@ -20,6 +20,7 @@ SunLights::Sample SunLights::sample(float u_pick, const Vec2& u_disk) const {
   pick_.sample(u_pick, &index, &density);
   const float probability = pick_.cell_pdf(index) / static_cast<float>(pick_.size());  // density on [0,1) -> mass
   const SunLight& sun = suns_[index];
+  out.index = index;
   // Uniform in the cone: cos theta uniform in [cos_half_angle, 1].
   const float cos_t = 1.0f - u_disk.x() * (1.0f - cos_half_angle_);
   const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));

@@ -30,6 +30,7 @@ class SunLights {
   struct Sample {
     Vec3 direction;                // a uniform direction within the chosen sun's disk
     Rgb illuminance = Rgb::Zero(); // its normal illuminance divided by the probability of the choice
+    int index = -1;                // which sun
   };
   // Picks a sun in proportion to its normal illuminance, then a direction in its disk (soft shadows).
   Sample sample(float u_pick, const Vec2& u_disk) const;

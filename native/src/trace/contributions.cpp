@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "annual/annual_records.h"
 #include "trace/parallel.h"
 #include "trace/path_tracer.h"
 #include "trace/replicates.h"
@@ -142,12 +143,17 @@ SensorValues Contributions::evaluate(const OpenRegion& region, const Progress* p
 size_t Contributions::memory_bytes() const {
   size_t bytes = sizeof(double) * (E.size() * 3 + T.size());
   for (const auto& r : records) bytes += r.memory_bytes();
+  if (annual) bytes += annual->memory_bytes();
   return bytes;
 }
 
 Contributions compute_contributions(const Scene& scene, Progress* progress, bool transport) {
   const auto start = std::chrono::steady_clock::now();
-  const PathTracer tracer(scene, {}, Mesh{});
+  // A climate sky is traced as unit sources (sky patches, sun clusters): the records then hold
+  // daylight coefficients beside their values under the mean sky of the occupied hours.
+  std::shared_ptr<AnnualRecords> annual = scene.climate ? prepare_annual(scene) : nullptr;
+  const Scene traced = annual ? annual_tracing_scene(scene, annual->sources) : Scene();
+  const PathTracer tracer(annual ? traced : scene, {}, Mesh{}, annual ? &scene.climate->sky->patches : nullptr);
   tracer.check_sensors();
 
   const size_t sensors = scene.sensors.size();
@@ -163,10 +169,12 @@ Contributions compute_contributions(const Scene& scene, Progress* progress, bool
       const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
       const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
       SensorRecord& rec = chunks[task];
+      rec.sourced = annual != nullptr;
       for (size_t p = first; p < last; ++p) {
         Rng rng = path_rng(scene.render.seed, sensor, p);
         tracer.record_sensor_path(sensor, p, rng, &rec);
       }
+      if (annual) convert_to_design_values(*annual, &rec);
     });
 
     c.paths_per_sensor = paths;
@@ -187,6 +195,10 @@ Contributions compute_contributions(const Scene& scene, Progress* progress, bool
       analyse_sensor(rec, i, elements, &c, progress);
     });
     if (transport) c.T = transport_matrix(c.records, elements, paths, scene.render.threads, progress);
+    if (annual) {
+      record_direct_sun(scene, tracer, annual.get(), scene.render.threads);
+      c.annual = annual;
+    }
   } catch (const Cancelled&) {
     release_in_background(std::move(chunks));  // the path records: hundreds of megabytes
     release_in_background(std::move(c));

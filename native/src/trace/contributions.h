@@ -1,6 +1,7 @@
 #pragma once
 // The opening contribution matrix and everything kept with it, from one set of paths per sensor.
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "scene/scene.h"
@@ -10,6 +11,8 @@
 #include "util/progress.h"
 
 namespace fenestra {
+
+struct AnnualRecords;  // annual/annual_records.h
 
 struct SensorValues {
   Eigen::VectorXd value;   // luminance-weighted irradiance per sensor (lux for a sky in cd/m^2)
@@ -32,6 +35,9 @@ struct Contributions {
   uint64_t events = 0;
   // The scene it was computed for (set by the callers that hand it on: Python, solve_openings).
   ContributionsOrigin origin;
+  // A climate scene's annual pass: the records' events name their sources (sky patches, sun
+  // clusters) and carry their coefficients; values are the mean of the occupied hours.
+  std::shared_ptr<const AnnualRecords> annual;
 
   size_t sensor_count() const { return records.size(); }
   size_t element_count() const { return static_cast<size_t>(E.cols()); }

@@ -15,6 +15,9 @@ void SensorRecord::append(const SensorRecord& other) {
   conditions.insert(conditions.end(), other.conditions.begin(), other.conditions.end());
   event_points.insert(event_points.end(), other.event_points.begin(), other.event_points.end());
   condition_points.insert(condition_points.end(), other.condition_points.begin(), other.condition_points.end());
+  sourced = sourced || other.sourced;
+  event_sources.insert(event_sources.end(), other.event_sources.begin(), other.event_sources.end());
+  event_coefficients.insert(event_coefficients.end(), other.event_coefficients.begin(), other.event_coefficients.end());
 }
 
 bool SensorRecord::holds(const PathEvent& e, const std::vector<uint8_t>& open) const {

@@ -39,6 +39,12 @@ struct SensorRecord {
   // whole elements, can be evaluated (path_value_in_region).
   std::vector<PanelPoint> event_points;
   std::vector<PanelPoint> condition_points;
+  // An annual pass only (`sourced`), parallel to `events`: the light source of each event (a sky
+  // patch or a sun cluster, AnnualSources) and its daylight coefficient, the value it has with
+  // that source at unit strength (`value` is then its value under the scene's design sky).
+  bool sourced = false;
+  std::vector<uint16_t> event_sources;
+  std::vector<float> event_coefficients;
 
   size_t path_count() const { return path_begin.size() - 1; }
   void end_path() { path_begin.push_back(static_cast<uint32_t>(events.size())); }
@@ -47,7 +53,8 @@ struct SensorRecord {
   bool holds(const PathEvent& e, const std::vector<uint8_t>& open) const;
   size_t memory_bytes() const {
     return path_begin.capacity() * sizeof(uint32_t) + events.capacity() * (sizeof(PathEvent) + sizeof(PanelPoint)) +
-           conditions.capacity() * (sizeof(int32_t) + sizeof(PanelPoint));
+           conditions.capacity() * (sizeof(int32_t) + sizeof(PanelPoint)) +
+           event_sources.capacity() * sizeof(uint16_t) + event_coefficients.capacity() * sizeof(float);
   }
 };
 
@@ -57,10 +64,12 @@ void path_elements(const SensorRecord& record, size_t p, std::vector<int32_t>* o
 // Value of path p of `record` when exactly the elements with open[k] != 0 are open.
 double path_value(const SensorRecord& record, size_t p, const std::vector<uint8_t>& open);
 
-// Value of path p from which of its points are open: event_open(i) for the escape that is event i,
-// condition_open(j) for entry j of the conditions.
-template <typename EventOpen, typename ConditionOpen>
-double path_value_by_point(const SensorRecord& r, size_t p, EventOpen event_open, ConditionOpen condition_open) {
+// Calls count(i) for every event i of path p whose light reaches the sensor, given which of its
+// points are open: event_open(i) for the escape that is event i, condition_open(j) for entry j of
+// the conditions.
+template <typename EventOpen, typename ConditionOpen, typename Count>
+void for_each_counting_event(const SensorRecord& r, size_t p, EventOpen event_open, ConditionOpen condition_open,
+                             Count count) {
   auto holds = [&](const PathEvent& e) {
     for (uint32_t i = e.conditions_begin; i < e.conditions_begin + e.open_count; ++i)
       if (!condition_open(i)) return false;
@@ -68,20 +77,35 @@ double path_value_by_point(const SensorRecord& r, size_t p, EventOpen event_open
       if (condition_open(i)) return false;
     return true;
   };
-  double sum = 0.0;
   const uint32_t end = r.path_begin[p + 1];
   for (uint32_t i = r.path_begin[p]; i < end; ++i) {
     const PathEvent& e = r.events[i];
     if (e.is_light()) {
-      if (holds(e)) sum += e.value;
+      if (holds(e)) count(i);
     } else if (e.is_escape() && event_open(i)) {
-      sum += e.value;
+      count(i);
       for (uint32_t j = i + 1; j < end && r.events[j].is_escape_part(); ++j)
-        if (holds(r.events[j])) sum += r.events[j].value;
-      return sum;
+        if (holds(r.events[j])) count(j);
+      return;
     }
   }
+}
+
+// Value of path p from which of its points are open (see for_each_counting_event).
+template <typename EventOpen, typename ConditionOpen>
+double path_value_by_point(const SensorRecord& r, size_t p, EventOpen event_open, ConditionOpen condition_open) {
+  double sum = 0.0;
+  for_each_counting_event(r, p, event_open, condition_open, [&](uint32_t i) { sum += r.events[i].value; });
   return sum;
+}
+
+// Calls count(i) for every counting event of path p when the domain is open where
+// is_open(element, point) holds.
+template <typename IsOpen, typename Count>
+void for_each_counting_event_in_region(const SensorRecord& r, size_t p, IsOpen is_open, Count count) {
+  for_each_counting_event(
+      r, p, [&](uint32_t i) { return is_open(r.events[i].element, r.event_points[i]); },
+      [&](uint32_t i) { return is_open(r.conditions[i], r.condition_points[i]); }, count);
 }
 
 // Value of path p when the domain is open where is_open(element, point) holds: the point is

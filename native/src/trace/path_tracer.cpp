@@ -9,6 +9,7 @@
 
 #include "sampling/warp.h"
 #include "scene/bsdf.h"
+#include "annual/annual_sources.h"
 #include "trace/replicates.h"
 
 namespace fenestra {
@@ -113,17 +114,24 @@ class PathTracer::Sink {
   bool recording() const { return record_ != nullptr; }
   bool outside_element() const { return outside_; }
 
-  void light(const Rgb& c, const Crossing* crossed, int count) { light(luminance(c), crossed, count); }
-  void light(float v, const Crossing* crossed, int count) {
+  // `source`: the light's source in an annual pass (AnnualSources), else 0.
+  void light(const Rgb& c, const Crossing* crossed, int count, uint16_t source) {
+    light(luminance(c), crossed, count, source);
+  }
+  void light(float v, const Crossing* crossed, int count, uint16_t source) {
     if (!(v > 0.0f) || !std::isfinite(v)) return;
+    Part& current = parts_[current_];
     if (record_) {
-      push(v, -1, {}, 0, crossed, count, nullptr, 0);
-    } else if (count == 0) {
-      parts_[current_].value += v;
+      push(v, -1, {}, 0, crossed, count, nullptr, 0, source);
+    } else if (count == 0 && (current.source == source || current.value == 0.0)) {
+      current.value += v;
+      current.source = source;
     } else if (condition_count() + count <= kMaxConditions) {
-      // Outside, a shadow ray through other elements: light that needs them open as well.
-      Part part = parts_[current_];
+      // Outside, a shadow ray through other elements: light that needs them open as well (or, in
+      // an annual pass, light of another source under the same conditions).
+      Part part = current;
       part.value = v;
+      part.source = source;
       auto closed = part.conditions.begin() + part.open_count;
       std::copy_backward(closed, closed + part.closed_count, closed + part.closed_count + count);
       std::copy(crossed, crossed + count, closed);
@@ -164,12 +172,12 @@ class PathTracer::Sink {
   }
   // Recording: what `outside` found beyond element k, reached by the path (an escape) ...
   void escape(const Crossing& k, const Sink& outside) {
-    push(finite(outside.parts_[0].value), k.element, k.point, 0, nullptr, 0, nullptr, 0);
+    push(finite(outside.parts_[0].value), k.element, k.point, 0, nullptr, 0, nullptr, 0, outside.parts_[0].source);
     for (size_t n = 1; n < outside.parts_.size(); ++n) {
       const Part& part = outside.parts_[n];
       if (part.value == 0.0) continue;
       push(finite(part.value), k.element, k.point, PathEvent::kEscapePart, part.conditions.data(), part.open_count,
-           part.conditions.data() + part.open_count, part.closed_count);
+           part.conditions.data() + part.open_count, part.closed_count, part.source);
     }
   }
   // ... or reached by a portal sample (light that needs k open).
@@ -180,7 +188,7 @@ class PathTracer::Sink {
       open[0] = k;
       std::copy(part.conditions.begin(), part.conditions.begin() + part.open_count, open.begin() + 1);
       push(static_cast<float>(part.value), -1, {}, 0, open.data(), part.open_count + 1,
-           part.conditions.data() + part.open_count, part.closed_count);
+           part.conditions.data() + part.open_count, part.closed_count, part.source);
     }
   }
   double total() const {
@@ -194,6 +202,7 @@ class PathTracer::Sink {
     double value = 0.0;
     uint8_t open_count = 0, closed_count = 0;
     uint8_t passes = 0;  // element faces gone through
+    uint16_t source = 0;  // of the light it holds (annual pass)
     std::array<Crossing, kMaxConditions> conditions{};  // open ones first
   };
 
@@ -201,10 +210,11 @@ class PathTracer::Sink {
   int condition_count() const { return parts_[current_].open_count + parts_[current_].closed_count; }
   static float finite(double v) { return std::isfinite(v) ? static_cast<float>(v) : 0.0f; }
   void push(float v, int element, const PanelPoint& at, uint8_t flags, const Crossing* open, size_t open_count,
-            const Crossing* closed, size_t closed_count) {
+            const Crossing* closed, size_t closed_count, uint16_t source) {
     record_->events.push_back({v, element, static_cast<uint32_t>(record_->conditions.size()),
                                static_cast<uint16_t>(open_count), static_cast<uint8_t>(closed_count), flags});
     record_->event_points.push_back(at);
+    if (record_->sourced) record_->event_sources.push_back(source);
     append_conditions(open, open_count);
     append_conditions(closed, closed_count);
   }
@@ -221,8 +231,8 @@ class PathTracer::Sink {
   size_t current_ = 0;
 };
 
-PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals)
-    : scene_(scene), openings_(std::move(openings)), reveals_(std::move(reveals)) {
+PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches)
+    : scene_(scene), openings_(std::move(openings)), reveals_(std::move(reveals)), patches_(patches) {
   scene_normals_ = unit_normals(scene_.mesh);
   reveal_normals_ = unit_normals(reveals_);
   const Mesh reveal_grid = scene_.domain.reveal_grid(&reveal_grid_faces_);
@@ -483,7 +493,7 @@ void PathTracer::sample_sky_once(const Vertex& v, const PathState& st, const Cut
                            : 0.0f;
   const float w = power_heuristic(count * light_pdf, bsdf_pdf(*v.material, v.wo, wl_local), portal);
   sink.light(st.beta * f * sky.radiance(wl) * sh.attenuation * (w / (count * light_pdf)), sh.crossed.data(),
-             sh.crossed_count);
+             sh.crossed_count, sky_source(wl));
 }
 
 void PathTracer::sample_sun(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
@@ -499,7 +509,7 @@ void PathTracer::sample_sun(const Vertex& v, const PathState& st, const CutterSe
            sink.recording() || sink.outside_element(), &sh);
     if (!sh.visible) continue;
     sink.light(st.beta * f * sun.illuminance * sh.attenuation / static_cast<float>(count), sh.crossed.data(),
-               sh.crossed_count);
+               sh.crossed_count, sun_source(sun.index));
   }
 }
 
@@ -565,7 +575,8 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
       st.must_reach = 0.0f;
     }
     if (!h.valid()) {
-      sink.light(st.beta * sky.radiance(dir) * strategy_weight(st, st.sky_samples * sky.pdf_toward(dir, st.vertex_normal)), nullptr, 0);
+      sink.light(st.beta * sky.radiance(dir) * strategy_weight(st, st.sky_samples * sky.pdf_toward(dir, st.vertex_normal)), nullptr, 0,
+                 sky_source(dir));
       return;
     }
     const Surface s = surface(h);
@@ -650,7 +661,8 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
     shadow(p, wl, cutters, sink.recording(), &sh);
     if (sh.visible && !(portals && sh.first_is_element)) {  // through elements: portal samples
       const float w = power_heuristic(light_pdf, cos_l * kInvPi);
-      sink.light(sky.radiance(wl) * sh.attenuation * (cos_l * w / light_pdf), sh.crossed.data(), sh.crossed_count);
+      sink.light(sky.radiance(wl) * sh.attenuation * (cos_l * w / light_pdf), sh.crossed.data(), sh.crossed_count,
+                 sky_source(wl));
     }
   }
   if (!scene_.suns.empty()) {
@@ -661,7 +673,8 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
     Shadow sh;
     if (cos_s > 0.0f) shadow(p, sun.direction, cutters, sink.recording(), &sh);
     if (cos_s > 0.0f && sh.visible)
-      sink.light(sun.illuminance * sh.attenuation * cos_s, sh.crossed.data(), sh.crossed_count);
+      sink.light(sun.illuminance * sh.attenuation * cos_s, sh.crossed.data(), sh.crossed_count,
+                 sun_source(sun.index) | (patches_ ? AnnualSources::kDirect : 0));
   }
   PathState st;
   st.beta = Rgb::Constant(kPi);
@@ -689,6 +702,28 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
   st.prev_pdf = square_to_cosine_hemisphere_pdf(local);
   if (st.prev_pdf <= 0.0f) return;
   trace(p, frame.to_world(local), st, cutters, rng, sink);
+}
+
+uint16_t PathTracer::sky_source(const Vec3& dir) const {
+  return patches_ ? static_cast<uint16_t>(patches_->patch_of(dir)) : 0;
+}
+
+uint16_t PathTracer::sun_source(int index) const {
+  return patches_ ? static_cast<uint16_t>(patches_->count() + index) : 0;
+}
+
+PathTracer::DirectSun PathTracer::direct_sun(size_t sensor, const Vec3& direction) const {
+  DirectSun out;
+  const Vec3& n = scene_.sensors.normals[sensor];
+  out.cosine = direction.dot(n);
+  if (!(out.cosine > 0.0f)) return out;
+  Shadow sh;
+  shadow(scene_.sensors.points[sensor] + kRayEpsilon * n, direction, nullptr, true, &sh);
+  if (!sh.visible) return out;
+  out.visible = true;
+  out.attenuation = luminance(sh.attenuation);
+  out.crossed.assign(sh.crossed.begin(), sh.crossed.begin() + sh.crossed_count);
+  return out;
 }
 
 float PathTracer::sensor_sample(size_t sensor, Rng& rng) const {

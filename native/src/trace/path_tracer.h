@@ -13,6 +13,7 @@
 //  - closed: plain radiance estimates with the given cutters really cut (ground truth `evaluate`).
 #include <memory>
 
+#include "daylight/sky_patches.h"
 #include "scene/scene.h"
 #include "trace/path_record.h"
 #include "trace/ray_scene.h"
@@ -27,7 +28,10 @@ class PathTracer {
   static constexpr size_t kSensorPortals = 4;
 
   // `openings` are cut (closed mode); `reveals` line them through the wall (materials per face).
-  PathTracer(const Scene& scene, CutterSet openings, Mesh reveals);
+  // With `patches` (an annual pass: the scene's sky is unit and its suns are the sun clusters), every
+  // recorded event names its source: the patch of the sky it came from, or the sun cluster
+  // (AnnualSources; records must be `sourced`).
+  PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches = nullptr);
 
   // Closed mode: one-path estimate of sensor i's value (luminance-weighted irradiance).
   float sensor_sample(size_t sensor, Rng& rng) const;
@@ -37,14 +41,24 @@ class PathTracer {
   // Throws std::invalid_argument naming the first sensor that sits inside a closed solid.
   void check_sensors() const;
 
- private:
-  struct PathState;
-  struct Surface;
+  // The sun seen straight from a sensor along `direction` (a point source): its cosine at the
+  // sensor, and, when nothing opaque is in the way with the domain closed except for elements,
+  // the elements the ray crosses (all must be open for it to arrive) and the glass's attenuation.
   // An element met by a ray, and where on its panel.
   struct Crossing {
     int32_t element = -1;
     PanelPoint point;
   };
+  struct DirectSun {
+    bool visible = false;
+    float cosine = 0.0f, attenuation = 1.0f;
+    std::vector<Crossing> crossed;
+  };
+  DirectSun direct_sun(size_t sensor, const Vec3& direction) const;
+
+ private:
+  struct PathState;
+  struct Surface;
   struct Shadow;
   struct Vertex;
   class Sink;
@@ -112,6 +126,9 @@ class PathTracer {
   // One portal sample from a vertex inside: a random element, a random point on it.
   void sample_interior_portal(const Vertex& v, const PathState& st, Rng& rng, Sink& sink) const;
   Surface surface(const Hit& hit) const;
+  // Source of light from the sky along dir, and of sun `index` (0 outside an annual pass).
+  uint16_t sky_source(const Vec3& dir) const;
+  uint16_t sun_source(int index) const;
   void shadow(const Vec3& org, const Vec3& dir, const CutterSet* cutters, bool collect, Shadow* out) const;
 
   const Scene& scene_;
@@ -121,6 +138,7 @@ class PathTracer {
   std::vector<RevealGridFace> reveal_grid_faces_;
   std::unique_ptr<RayScene> rays_;
   std::vector<Portal> portals_;
+  const SkyPatches* patches_ = nullptr;
 };
 
 }  // namespace fenestra
