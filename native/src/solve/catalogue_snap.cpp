@@ -48,7 +48,7 @@ class Snapper {
         closed_(c.closed.value),
         progress_(progress),
         shifts_(shifts(domain.element_size())),
-        search_(c, domain, start) {
+        search_(c, domain, start, progress) {
     slots_.assign(start.begin(), start.end());
     values_ = search_.values();
   }

@@ -285,7 +285,7 @@ std::vector<std::string> constraint_violations(const OpeningDomain& domain, cons
 EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
                             const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start,
                             Progress* progress, const EdgeSearchScope& scope) {
-  RegionSearch search(c, domain, start);
+  RegionSearch search(c, domain, start, progress);
   return refine_edges(domain, c, objective, constraints, &search, progress, scope);
 }
 

@@ -5,12 +5,16 @@
 #include <algorithm>
 #include <atomic>
 
+#include "util/progress.h"
+
 namespace fenestra {
 namespace {
 
 // Meters added around a strip: met points are stored as floats, and a path found in excess is only
 // evaluated once more, unchanged.
 constexpr double kStripSlack = 1e-5;
+// Paths between two polls of cancellation while the index is built.
+constexpr size_t kPollPaths = 4096;
 
 double value_of_flags(const SensorRecord& r, size_t p, const std::vector<uint8_t>& event, const std::vector<uint8_t>& condition) {
   return path_value_by_point(r, p, [&](uint32_t i) { return event[i] != 0; }, [&](uint32_t i) { return condition[i] != 0; });
@@ -62,7 +66,8 @@ std::vector<PanelRectangle> strips_between(const std::vector<PanelRectangle>& fr
 
 }  // namespace
 
-RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, const std::vector<PanelRectangle>& start)
+RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, const std::vector<PanelRectangle>& start,
+                           const Progress* progress)
     : c_(c), domain_(domain), rectangles_(start), candidate_region_(domain, start) {
   const size_t sensors = c.records.size(), elements = c.element_count();
   path_values_.resize(sensors);
@@ -79,14 +84,17 @@ RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, 
     PointFlags& open = open_[i];
     // Every point where a path met an element: its escapes' and its conditions'.
     auto for_each_point = [&](auto visit) {
-      for (size_t p = 0; p < r.path_count(); ++p)
+      for (size_t p = 0; p < r.path_count(); ++p) {
+        if (progress && p % kPollPaths == 0 && progress->cancelled()) return;
         for (uint32_t e = r.path_begin[p]; e < r.path_begin[p + 1]; ++e) {
           const PathEvent& ev = r.events[e];
           if (ev.is_escape()) visit(ev.element, r.event_points[e], p, e, true);
           for (uint32_t k = ev.conditions_begin; k < ev.conditions_begin + ev.open_count + ev.closed_count; ++k)
             visit(r.conditions[k], r.condition_points[k], p, k, false);
         }
+      }
     };
+    if (progress && progress->cancelled()) return;
     begin.assign(elements + 1, 0);
     for_each_point([&](int32_t k, const PanelPoint&, size_t, uint32_t, bool) { ++begin[k + 1]; });
     for (size_t k = 0; k < elements; ++k) begin[k + 1] += begin[k];
@@ -107,6 +115,7 @@ RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, 
     for (size_t p = 0; p < r.path_count(); ++p) sum += path_values_[i][p] = value_of_flags(r, p, open.event, open.condition);
     values_[static_cast<Eigen::Index>(i)] = r.path_count() ? sum / static_cast<double>(r.path_count()) : 0.0;
   });
+  if (progress) progress->throw_if_cancelled();
 }
 
 template <typename Visit>

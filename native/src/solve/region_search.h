@@ -15,7 +15,10 @@ class Progress;
 
 class RegionSearch {
  public:
-  RegionSearch(const Contributions& c, const OpeningDomain& domain, const std::vector<PanelRectangle>& start);
+  // With `progress`, building the index polls cancellation (throws Cancelled): on records of a
+  // hundred thousand paths per sensor it takes most of a second.
+  RegionSearch(const Contributions& c, const OpeningDomain& domain, const std::vector<PanelRectangle>& start,
+               const Progress* progress = nullptr);
 
   const Eigen::VectorXd& values() const { return values_; }  // per sensor, mean over its paths
   const std::vector<PanelRectangle>& rectangles() const { return rectangles_; }
