@@ -11,12 +11,11 @@
 
 #include "cost/load_checks.h"
 #include "daylight/perez_all_weather.h"
-#include "daylight/sky_matrix.h"
 #include "daylight/sky_models.h"
 #include "daylight/weather_file.h"
 #include "daylight/weather_site.h"
+#include "math/equirect.h"
 #include "math/gauss_legendre.h"
-#include "scene/sky.h"
 
 namespace fenestra {
 namespace {
@@ -317,7 +316,7 @@ Daylight make_daylight(const DaylightSettings& s, Progress* progress) {
 
   out.analytic_sky_horizontal = analytic.cast<float>();
   out.sky_horizontal = map_total.cast<float>();
-  out.sun_horizontal = SunLights(out.suns).horizontal_illuminance();
+  out.sun_horizontal = horizontal_illuminance(out.suns);
   // Below the horizon, a diffuse ground lit by the sky and the sun of each step.
   const Rgb ground =
       (out.sky_horizontal + out.sun_horizontal) * static_cast<float>(s.ground_reflectance / kPi);
@@ -325,7 +324,7 @@ Daylight make_daylight(const DaylightSettings& s, Progress* progress) {
   for (size_t i = 0; i < upper_size; ++i) out.pixels[i] = sum[i].cast<float>();
   if (s.model == DaylightSettings::Model::Perez && s.weather) {
     out.warnings = s.weather->warnings;
-    const std::string far = far_place_warning(s.place, *s.weather, ClimateSettings::kFarKm);
+    const std::string far = far_place_warning(s.place, *s.weather, kFarFromStationKm);
     if (!far.empty()) out.warnings.push_back(far);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

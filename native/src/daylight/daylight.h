@@ -9,7 +9,7 @@
 
 #include "daylight/local_time.h"
 #include "daylight/solar_position.h"
-#include "scene/sun_lights.h"
+#include "daylight/sun_light.h"
 #include "util/progress.h"
 
 namespace fenestra {

@@ -13,6 +13,7 @@
 #include "daylight/sky_patches.h"
 #include "daylight/solar_position.h"  // Place
 #include "daylight/weather_file.h"
+#include "daylight/weather_site.h"  // kFarFromStationKm
 #include "math/vec.h"
 
 namespace fenestra {
@@ -29,7 +30,7 @@ struct ClimateSettings {
   double ground_reflectance = 0.2;
   int subdivision = 1;             // sky patches: 1 Tregenza (145), 2 (577), 4 (2305) Reinhart
   double occupied_start_hour = 8.0, occupied_end_hour = 18.0;  // local standard time, every day
-  static constexpr double kFarKm = 100.0;
+  static constexpr double kFarKm = kFarFromStationKm;  // daylight/weather_site.h: 100 km
   std::string describe() const;
 
   // The settings of a weather file as it stands: its path, place and time zone, the defaults else.

@@ -53,6 +53,10 @@ class WeatherClock {
   std::vector<int> slots_;        // kDaySlots x 24: row index or -1
 };
 
+// A place farther than this from a weather file's station is warned about: the file then
+// describes another climate (ClimateSettings::kFarKm).
+constexpr double kFarFromStationKm = 100.0;
+
 // Great-circle distance between two places on a sphere of the Earth's mean radius (6371 km), km.
 double distance_km(double latitude1_deg, double longitude1_deg, double latitude2_deg, double longitude2_deg);
 

@@ -195,8 +195,8 @@ void parse_resolution(const ScenePath& sp, const json& r, int* width, int* heigh
 
 // The cumulative map of a climate sky averages thousands of hours (the occupied hours of a year:
 // 3650 from 08:00 to 18:00): a coarser default than one day's map keeps it to about a second.
-// 1.4 degree pixels still resolve the circumsolar brightening (it falls by e within 8 degrees or
-// more); the suns are separate sources.
+// 1.4 degree pixels still resolve the circumsolar brightening (it falls by a factor e over 8
+// degrees or more); the suns are separate sources.
 constexpr int kClimateMapWidth = 256, kClimateMapHeight = 128;
 
 // A weather file named by sky.weather (relative to the scene file), read and checked whole.
