@@ -19,14 +19,15 @@ def load_scene(path, progress=None, callback=None, max_memory=None):
     max_memory (bytes or "8G"; default what the system has available) bounds the cost checks
     made while reading (docs/cost.md). Runs like contributions(): on a worker thread without the
     GIL, a daylight sky's build reporting to `progress` / `callback` and stopping on cancel
-    (raises Cancelled)."""
+    (raises Cancelled). A weather file's warnings (and a scene place more than 100 km from its
+    station) are issued as RuntimeWarnings."""
     path = os.fspath(path)
 
     def work(p):
         with _cost.loading(max_memory):  # on the thread that loads
             return Scene.load(path, p)
 
-    return _run(work, progress, callback)
+    return _warn_sky(_run(work, progress, callback))
 
 
 def scene_from_dict(scene, base_dir=".", progress=None, callback=None, max_memory=None):
@@ -38,7 +39,14 @@ def scene_from_dict(scene, base_dir=".", progress=None, callback=None, max_memor
         with _cost.loading(max_memory):
             return Scene.from_json(text, base_dir, "<dict>", p)
 
-    return _run(work, progress, callback)
+    return _warn_sky(_run(work, progress, callback))
+
+
+def _warn_sky(scene):
+    """A weather file's oddities and a scene place far from its station, as RuntimeWarnings."""
+    for message in _core.sky_warnings(scene):
+        warnings.warn(message, RuntimeWarning, stacklevel=3)
+    return scene
 
 
 def _plain(value):

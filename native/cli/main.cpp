@@ -217,6 +217,7 @@ int run(const Args& a) {
   if (a.overrides.count("--seed")) scene.render.seed = static_cast<uint64_t>(a.overrides.at("--seed"));
   if (a.overrides.count("--threads")) scene.render.threads = static_cast<int>(a.overrides.at("--threads"));
   if (!a.quiet) std::fprintf(stderr, "%s\n", scene.to_string().c_str());
+  for (const std::string& w : sky_warnings(scene)) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
   if (a.command == "contributions" || a.command == "evaluate") {
     const std::string dark = dark_sky_warning(scene);  // solve refuses such a sky
     if (!dark.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", dark.c_str());

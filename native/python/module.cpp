@@ -431,6 +431,16 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("scene"), py::arg("path"), "Writes the scene's sky map (.exr or .hdr).");
   m.def(
+      "sky_warnings",
+      [](const Scene& scene) {
+        py::list out;
+        for (const std::string& w : sky_warnings(scene)) out.append(text_of(w));
+        return out;
+      },
+      py::arg("scene"),
+      "What the sky's weather file says against itself or the scene (a place far from its station), one "
+      "sentence each.");
+  m.def(
       "dark_sky_warning", [](const Scene& scene) { return text_of(dark_sky_warning(scene)); }, py::arg("scene"),
       "A sentence when the scene's daylight sky gives no light at all (the sun never up), else \"\".");
   m.def(

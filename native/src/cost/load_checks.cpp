@@ -22,6 +22,10 @@ constexpr double kObjBytesPerFileByte = 12.0;
 constexpr double kDomainBytesPerElement = 2.0 * sizeof(Element), kDomainBytesPerCell = sizeof(int);
 constexpr double kDaylightBytesPerPixel = 80.0;
 constexpr double kDaylightSecondsPerPixel = 40e-9, kDaylightSecondsPerStep = 5e-6;
+// The sky matrix: one float per patch and hour, and per hour a HourStamp, a sun direction and
+// illuminance, two doubles; the Perez sky of an hour takes about 0.1 ms to create.
+constexpr double kSkyMatrixBytesPerHour = sizeof(double) * 2 + 16 + 12 + 4, kSkyMatrixSecondsPerHour = 1e-4;
+constexpr double kSkyMatrixSecondsPerEvaluation = 15e-9;  // one luminance of a patch mean, 2 cores
 // A domain this large is probably not in meters.
 constexpr double kSuspiciousSide = 1000.0;
 
@@ -161,6 +165,33 @@ void check_daylight_cost(const DaylightSettings& settings) {
     << format_count(seconds) << " s on the 2-core reference machine; at most " << format_count(kMaxDaylightSeconds)
     << " s): use a larger sky.step_minutes, a shorter interval (sky.date_end, sky.start, sky.end) or a smaller "
        "sky.resolution";
+  throw CostError(s.str());
+}
+
+double sky_matrix_bytes(int patches, size_t hours) {
+  return (4.0 * patches + kSkyMatrixBytesPerHour) * static_cast<double>(hours);
+}
+
+double sky_matrix_build_seconds(int patches, size_t hours_with_light, int points_per_side) {
+  const double evaluations = static_cast<double>(patches) * points_per_side * points_per_side;
+  return static_cast<double>(hours_with_light) * (evaluations * kSkyMatrixSecondsPerEvaluation + kSkyMatrixSecondsPerHour);
+}
+
+void check_sky_matrix_cost(int subdivision, int patches, size_t hours, size_t hours_with_light, int points_per_side) {
+  const MemoryLimit limit = memory_limit();
+  const double need = sky_matrix_bytes(patches, hours);
+  std::ostringstream s;
+  s << "patches " << subdivision << " gives " << format_count(patches) << " patches x " << format_count(static_cast<double>(hours))
+    << " hours: ";
+  if (need > static_cast<double>(limit.bytes)) {
+    s << memory_refusal("the sky matrix", need, need, limit, "fewer sky patches (sky.patches 1, 2 or 4)");
+    throw CostError(s.str());
+  }
+  const double seconds = sky_matrix_build_seconds(patches, hours_with_light, points_per_side);
+  if (seconds <= kMaxSkyMatrixSeconds) return;
+  s << "building the sky matrix would take about " << std::lround(seconds / 60.0) << " min ("
+    << format_count(seconds) << " s on the 2-core reference machine; at most " << format_count(kMaxSkyMatrixSeconds)
+    << " s): use fewer sky patches (sky.patches 1, 2 or 4)";
   throw CostError(s.str());
 }
 

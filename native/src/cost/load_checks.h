@@ -1,6 +1,7 @@
 #pragma once
 // Cost checks made while a scene is read, before the large allocations of reading it: the OBJ
-// file, the dicing of the opening domain, an environment map's pixels, a daylight sky's steps.
+// file, the dicing of the opening domain, an environment map's pixels, a daylight sky's steps, a
+// climate's sky matrix.
 // Each throws CostError (a std::invalid_argument; the loader prefixes the scene and the key)
 // naming the estimated figure, the limit and the setting to change. Limits: cost/memory_limit.h.
 #include <cstdint>
@@ -43,5 +44,13 @@ void check_image_cost(const std::string& path, int width, int height, int channe
 inline constexpr double kMaxDaylightSeconds = 300.0;
 double daylight_build_seconds(const DaylightSettings& settings, size_t* steps = nullptr, size_t* steps_with_sun = nullptr);
 void check_daylight_cost(const DaylightSettings& settings);
+
+// A climate's sky matrix (daylight/sky_matrix.h): its patches x hours floats and per-hour vectors
+// must fit in memory, and its patch means (points^2 Perez evaluations per sky patch for every hour
+// with light) take at most kMaxSkyMatrixSeconds on the reference machine.
+inline constexpr double kMaxSkyMatrixSeconds = 300.0;
+double sky_matrix_bytes(int patches, size_t hours);
+double sky_matrix_build_seconds(int patches, size_t hours_with_light, int points_per_side);
+void check_sky_matrix_cost(int subdivision, int patches, size_t hours, size_t hours_with_light, int points_per_side);
 
 }  // namespace fenestra

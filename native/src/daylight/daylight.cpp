@@ -10,9 +10,12 @@
 #include <stdexcept>
 
 #include "cost/load_checks.h"
+#include "daylight/perez_all_weather.h"
 #include "daylight/sky_models.h"
+#include "daylight/weather_file.h"
+#include "daylight/weather_site.h"
+#include "math/equirect.h"
 #include "math/gauss_legendre.h"
-#include "scene/sky.h"
 
 namespace fenestra {
 namespace {
@@ -71,6 +74,13 @@ void rasterise_sky(int width, int height, const std::vector<Vec3>& directions, c
   });
 }
 
+// Day of the year (1..365) of the UTC date of an instant: the Earth-Sun distance for constant
+// Perez irradiances.
+int utc_day_of_year(double utc_seconds) {
+  const LocalDate d = add_days(LocalDate{1970, 1, 1}, static_cast<int>(std::floor(utc_seconds / 86400.0)));
+  return day_of_year(d.month, d.day);
+}
+
 std::string clock(double minutes) {
   const int m = static_cast<int>(std::lround(minutes));
   std::ostringstream s;
@@ -82,9 +92,12 @@ std::string clock(double minutes) {
 
 std::string DaylightSettings::describe() const {
   std::ostringstream s;
-  const char* names[] = {"Preetham", "CIE overcast", "CIE clear"};
+  const char* names[] = {"Preetham", "CIE overcast", "CIE clear", "Perez"};
   s << names[static_cast<int>(model)] << " sky";
-  if (model != Model::CieOvercast) {
+  if (model == Model::Perez && weather && !weather_rows.empty()) {
+    s << " over " << weather_rows.size() << " hours of '" << weather->path << "' at " << place.latitude_deg << ", "
+      << place.longitude_deg;
+  } else if (model != Model::CieOvercast) {
     s << " at " << place.latitude_deg << ", " << place.longitude_deg << " (" << time_zone.name() << "), "
       << to_string(date);
     if (days_between(date, date_end) > 0) s << " to " << to_string(date_end);
@@ -92,12 +105,28 @@ std::string DaylightSettings::describe() const {
       s << " at " << clock(start_minutes);
     else
       s << ", " << clock(start_minutes) << "-" << clock(end_minutes) << " every " << step_minutes << " min";
-    s << ", turbidity " << turbidity;
+    if (model == Model::Perez && weather)
+      s << ", weather '" << weather->path << "'";
+    else if (model == Model::Perez)
+      s << ", direct normal " << direct_normal_w_m2 << " W/m2, diffuse horizontal " << diffuse_horizontal_w_m2 << " W/m2";
+    else
+      s << ", turbidity " << turbidity;
   }
   return s.str();
 }
 
 std::vector<TimeStep> time_steps(const DaylightSettings& settings) {
+  const bool from_weather = settings.model == DaylightSettings::Model::Perez && settings.weather;
+  if (from_weather && !settings.weather_rows.empty()) {  // the rows are the steps
+    const WeatherClock clock(*settings.weather);
+    std::vector<TimeStep> steps;
+    const double weight = 1.0 / static_cast<double>(settings.weather_rows.size());
+    for (const size_t row : settings.weather_rows) {
+      check(row < clock.rows(), "weather", "row " + std::to_string(row) + " is not in '" + settings.weather->path + "'");
+      steps.push_back({clock.utc_seconds(row), weight, static_cast<int>(row)});
+    }
+    return steps;
+  }
   check(std::isfinite(settings.step_minutes) && settings.step_minutes > 0.0, "step_minutes", "must be positive");
   const int days = days_between(settings.date, settings.date_end) + 1;
   check(days >= 1, "date_end", "must not be before sky.date");
@@ -120,6 +149,14 @@ std::vector<TimeStep> time_steps(const DaylightSettings& settings) {
   double total = 0.0;
   for (const TimeStep& s : steps) total += s.weight;
   for (TimeStep& s : steps) s.weight /= total;
+  if (from_weather) {  // each step takes the row whose hour holds it
+    const WeatherClock clock(*settings.weather);
+    for (TimeStep& step : steps) {
+      step.weather_row = clock.row_at(step.utc_seconds);
+      check(step.weather_row >= 0, "date",
+            "the weather file '" + settings.weather->path + "' has no row for " + clock.hour_text(step.utc_seconds));
+    }
+  }
   return steps;
 }
 
@@ -153,7 +190,13 @@ Daylight make_daylight(const DaylightSettings& s, Progress* progress) {
   check(std::isfinite(s.zenith_luminance) && s.zenith_luminance >= 0.0, "zenith_luminance", "must not be negative");
   check(std::isfinite(s.horizontal_illuminance) && s.horizontal_illuminance >= 0.0, "horizontal_illuminance",
         "must not be negative");
-  if (s.model != DaylightSettings::Model::CieOvercast)
+  if (s.model == DaylightSettings::Model::Perez && !s.weather) {
+    check(std::isfinite(s.direct_normal_w_m2) && s.direct_normal_w_m2 >= 0.0, "direct_normal",
+          "must be a number of W/m^2, 0 or more");
+    check(std::isfinite(s.diffuse_horizontal_w_m2) && s.diffuse_horizontal_w_m2 >= 0.0, "diffuse_horizontal",
+          "must be a number of W/m^2, 0 or more");
+  }
+  if (s.model == DaylightSettings::Model::Preetham || s.model == DaylightSettings::Model::CieClear)
     check(std::isfinite(s.turbidity) && s.turbidity >= PreethamSky::kMinTurbidity &&
               s.turbidity <= PreethamSky::kMaxTurbidity,
           "turbidity", "must be in [1.7, 10], the range the Preetham model was fitted for");
@@ -175,8 +218,9 @@ Daylight make_daylight(const DaylightSettings& s, Progress* progress) {
   const std::vector<Vec3> directions = upper_directions(s.width, s.height);
   // Adds one step's sky: rasterised, then scaled so that its map has the analytic horizontal
   // illuminance (the map is piecewise constant; the correction is a fraction of a percent).
-  auto add_sky = [&](const RowFiller& fill_row, double weight) {
-    const Rgb exact = analytic_horizontal_illuminance(fill_row);
+  // `known`: the sky's horizontal illuminance when the model gives it (the Perez sky's).
+  auto add_sky = [&](const RowFiller& fill_row, double weight, const Rgb* known = nullptr) {
+    const Rgb exact = known ? *known : analytic_horizontal_illuminance(fill_row);
     rasterise_sky(s.width, s.height, directions, fill_row, &step_pixels);
     if (progress) progress->throw_if_cancelled();  // large maps take a while per step
     const Rgb mapped = map_horizontal_illuminance(s.width, s.height, step_pixels);  // reads the upper half only
@@ -184,6 +228,42 @@ Daylight make_daylight(const DaylightSettings& s, Progress* progress) {
     tbb::parallel_for(size_t(0), upper_size, [&](size_t i) { sum[i] += (weight * scale) * step_pixels[i].cast<double>(); });
     analytic += weight * exact.cast<double>();
     map_total += (weight * scale) * mapped.cast<double>();
+  };
+
+  // One step of a Perez sky: the sky into the map, the sun as its own source.
+  auto add_perez_step = [&](const TimeStep& step, const SunPosition& position, const Vec3& sun, bool sun_up) {
+    const WeatherHour* row = step.weather_row >= 0 ? &s.weather->hours[static_cast<size_t>(step.weather_row)] : nullptr;
+    PerezSkyInput input;
+    input.sun = sun;
+    if (row) {
+      input.day_of_year = day_of_year(row->month, row->day);
+      input.direct_normal_w_m2 = row->direct_normal_w_m2;
+      input.diffuse_horizontal_w_m2 = row->diffuse_horizontal_w_m2;
+      input.dew_point_c = row->dew_point_c;
+      input.where = s.weather->path + " line " + std::to_string(row->line);
+      if (!sun_up && row->diffuse_horizontal_w_m2 == 0.0) return;  // night
+    } else {
+      if (!sun_up) return;  // constant irradiances describe the day: no twilight
+      input.day_of_year = utc_day_of_year(step.utc_seconds);
+      input.direct_normal_w_m2 = s.direct_normal_w_m2;
+      input.diffuse_horizontal_w_m2 = s.diffuse_horizontal_w_m2;
+      input.dew_point_c = s.dew_point_c;
+      input.where = "sky.direct_normal, sky.diffuse_horizontal";
+    }
+    const PerezAllWeatherSky sky = PerezAllWeatherSky::create(input);
+    if (sky.diffuse_horizontal_illuminance() > 0.0) {
+      const Rgb known = Rgb::Constant(static_cast<float>(sky.diffuse_horizontal_illuminance()));
+      const RowFiller rows = [&sky](const Vec3* d, int count, Rgb* out) {
+        const PerezAllWeatherSky::Row row = sky.row(d[0].z());
+        for (int x = 0; x < count; ++x)
+          out[x] = Rgb::Constant(static_cast<float>(sky.luminance(row, d[x].cast<double>())));
+      };
+      add_sky(rows, step.weight, &known);
+    }
+    const double direct = sun_up ? sky.direct_normal_illuminance() : 0.0;
+    if (direct > 0.0)
+      out.suns.push_back({sun, Rgb::Constant(static_cast<float>(direct * step.weight)), step.weight, step.utc_seconds,
+                          position.zenith_deg, position.azimuth_deg});
   };
 
   if (s.model == DaylightSettings::Model::CieOvercast) {
@@ -204,11 +284,15 @@ Daylight make_daylight(const DaylightSettings& s, Progress* progress) {
         progress->advance();
       }
       ++out.steps;
-      SunPosition position = solar_position(step.utc_seconds, s.place, true);
-      position.azimuth_deg = std::fmod(position.azimuth_deg + s.north_offset_deg + 720.0, 360.0);
+      const SunPosition position = model_sun_position(step.utc_seconds, s.place, s.north_offset_deg);
       const Vec3 sun = sun_direction(position);
-      if (!(position.zenith_deg < 90.0) || !(sun.z() > 0.0f)) continue;  // night: no sky, no sun in these models
-      ++out.steps_with_sun;
+      const bool sun_up = position.zenith_deg < 90.0 && sun.z() > 0.0f;
+      out.steps_with_sun += sun_up;
+      if (s.model == DaylightSettings::Model::Perez) {
+        add_perez_step(step, position, sun, sun_up);
+        continue;
+      }
+      if (!sun_up) continue;  // night: no sky, no sun in these models
       if (s.model == DaylightSettings::Model::Preetham) {
         const PreethamSky sky(s.turbidity, sun);
         const RowFiller rows = [&sky](const Vec3* d, int count, Rgb* out) {
@@ -232,12 +316,17 @@ Daylight make_daylight(const DaylightSettings& s, Progress* progress) {
 
   out.analytic_sky_horizontal = analytic.cast<float>();
   out.sky_horizontal = map_total.cast<float>();
-  out.sun_horizontal = SunLights(out.suns).horizontal_illuminance();
+  out.sun_horizontal = horizontal_illuminance(out.suns);
   // Below the horizon, a diffuse ground lit by the sky and the sun of each step.
   const Rgb ground =
       (out.sky_horizontal + out.sun_horizontal) * static_cast<float>(s.ground_reflectance / kPi);
   out.pixels.assign(static_cast<size_t>(s.width) * s.height, ground);
   for (size_t i = 0; i < upper_size; ++i) out.pixels[i] = sum[i].cast<float>();
+  if (s.model == DaylightSettings::Model::Perez && s.weather) {
+    out.warnings = s.weather->warnings;
+    const std::string far = far_place_warning(s.place, *s.weather, kFarFromStationKm);
+    if (!far.empty()) out.warnings.push_back(far);
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

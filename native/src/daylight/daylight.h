@@ -2,18 +2,22 @@
 // Daylight for a place and a time interval: the sky of every time step, averaged into one
 // equirectangular environment map (sky above the horizon, ground below), and the sun of every
 // step kept as an explicit directional source. Units: radiance in cd/m^2, illuminance in lux.
+#include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "daylight/local_time.h"
 #include "daylight/solar_position.h"
-#include "scene/sun_lights.h"
+#include "daylight/sun_light.h"
 #include "util/progress.h"
 
 namespace fenestra {
 
+struct WeatherData;  // daylight/weather_file.h
+
 struct DaylightSettings {
-  enum class Model { Preetham, CieOvercast, CieClear };
+  enum class Model { Preetham, CieOvercast, CieClear, Perez };
   Model model = Model::Preetham;
   Place place;
   TimeZone time_zone = TimeZone::fixed(0.0);
@@ -26,6 +30,16 @@ struct DaylightSettings {
   double zenith_luminance = 0.0;             // cd/m^2; CIE skies (0: see docs/sky.md)
   double horizontal_illuminance = 0.0;       // lux; CIE overcast alternative to zenith_luminance
   int width = 1024, height = 512;            // map size in pixels
+  // Perez all-weather sky (daylight/perez_all_weather.h): the irradiance of every step, either
+  // constant (W/m^2; dew point deg C, NaN when unknown; only steps with the sun up give light) ...
+  double direct_normal_w_m2 = 0.0, diffuse_horizontal_w_m2 = 0.0;
+  double dew_point_c = std::numeric_limits<double>::quiet_NaN();
+  // ... or from a weather file: each step takes the row whose hour of the file's standard time holds
+  // it (month and day only; twilight rows light the sky as in the sky matrix).
+  std::shared_ptr<const WeatherData> weather;
+  // With `weather`: when not empty, these rows are the steps, each at its own instant and weighted
+  // equally, instead of the date and interval above (a climate's occupied hours).
+  std::vector<size_t> weather_rows;
   std::string describe() const;
 };
 
@@ -34,6 +48,7 @@ struct DaylightSettings {
 struct TimeStep {
   double utc_seconds = 0.0;
   double weight = 0.0;  // sums to 1 over the steps
+  int weather_row = -1;  // Perez sky from a weather file: the row that gives the step's irradiance
 };
 std::vector<TimeStep> time_steps(const DaylightSettings& settings);
 
@@ -46,6 +61,7 @@ struct Daylight {
   Rgb analytic_sky_horizontal = Rgb::Zero();  // lux, mean of the per-step values of the analytic model
   size_t steps = 0, steps_with_sun = 0;
   double seconds = 0.0;            // time taken to build it
+  std::vector<std::string> warnings;  // a weather file's, and a place far from its station
 };
 
 // Throws std::invalid_argument naming the setting at fault. With `progress`, reports the time

@@ -348,10 +348,23 @@ double PerezAllWeatherSky::coefficient_brightness() const {
 }
 
 double PerezAllWeatherSky::luminance(const Vec3& dir) const {
-  if (dir.z() < 0.0f) return 0.0;
-  if (uniform_) return scale_;
-  const double cos_gamma = std::clamp(dir.cast<double>().dot(model_sun_), -1.0, 1.0);
-  return scale_ * std::max(0.0, coefficients_(dir.z(), std::acos(cos_gamma), cos_gamma));
+  const Eigen::Vector3d d = dir.cast<double>();
+  return luminance(row(d.z()), d);
+}
+
+PerezAllWeatherSky::Row PerezAllWeatherSky::row(double cos_theta) const {
+  Row r;
+  r.cos_theta = cos_theta;
+  if (cos_theta < 0.0) return r;  // below the horizon: 0
+  r.scaled_gradation = uniform_ ? scale_ : scale_ * coefficients_.theta_factor(cos_theta);
+  return r;
+}
+
+double PerezAllWeatherSky::luminance(const Row& row, const Eigen::Vector3d& dir) const {
+  if (row.cos_theta < 0.0 || uniform_) return row.scaled_gradation;
+  const double cos_gamma = std::clamp(dir.dot(model_sun_), -1.0, 1.0);
+  // max(0, F): F < 0 where the model leaves its domain (clipped()); scale_ >= 0.
+  return std::max(0.0, row.scaled_gradation * coefficients_.gamma_factor(std::acos(cos_gamma), cos_gamma));
 }
 
 double PerezAllWeatherSky::zenith_luminance() const {

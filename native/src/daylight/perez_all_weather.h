@@ -81,6 +81,14 @@ class PerezAllWeatherSky {
   // or scale() alone for a uniform() sky.
   double luminance(const Vec3& dir) const;
   double zenith_luminance() const;  // cd/m^2
+  // The same for many directions sharing a zenith angle (a map row, a ring of patch points): the
+  // gradation factor is computed once per row. luminance(dir) is luminance(row(dir.z()), dir).
+  struct Row {
+    double cos_theta = 0.0;
+    double scaled_gradation = 0.0;  // scale() (1 + a exp(b / cos theta)), or scale() for a uniform sky
+  };
+  Row row(double cos_theta) const;
+  double luminance(const Row& row, const Eigen::Vector3d& dir) const;  // dir unit, dir.z() == row.cos_theta
 
   double diffuse_horizontal_illuminance() const { return diffuse_lux_; }  // lux: the integral of L cos
   double direct_normal_illuminance() const { return direct_lux_; }        // lux, for an explicit sun

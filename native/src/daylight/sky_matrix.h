@@ -13,9 +13,12 @@
 #include "daylight/sky_patches.h"
 #include "daylight/solar_position.h"  // Place
 #include "daylight/weather_file.h"
+#include "daylight/weather_site.h"  // kFarFromStationKm
 #include "math/vec.h"
 
 namespace fenestra {
+
+class Progress;  // util/progress.h
 
 struct ClimateSettings {
   std::string weather_path;        // .epw or .wea, as given (resolved against the scene file)
@@ -27,8 +30,13 @@ struct ClimateSettings {
   double ground_reflectance = 0.2;
   int subdivision = 1;             // sky patches: 1 Tregenza (145), 2 (577), 4 (2305) Reinhart
   double occupied_start_hour = 8.0, occupied_end_hour = 18.0;  // local standard time, every day
-  static constexpr double kFarKm = 100.0;
+  static constexpr double kFarKm = kFarFromStationKm;  // daylight/weather_site.h: 100 km
   std::string describe() const;
+
+  // The settings of a weather file as it stands: its path, place and time zone, the defaults else.
+  static ClimateSettings for_weather(const WeatherData& weather);
+  // Patch means use n x n points per patch (SkyPatches::patch_means).
+  static constexpr int kPointsPerSide = 4;
 };
 
 struct SkyMatrix {
@@ -50,6 +58,13 @@ struct SkyMatrix {
 // Throws std::invalid_argument naming the file, the record and the value for a record the Perez
 // model refuses (see PerezAllWeatherSky::create).
 SkyMatrix make_sky_matrix(const WeatherData& weather, const ClimateSettings& settings);
+// The same, reporting the hours done to `progress` and polling its cancellation (throws Cancelled).
+// Also refuses (CostError) a matrix beyond the memory limit or the time limit (cost/load_checks.h).
+SkyMatrix make_sky_matrix(const WeatherData& weather, const ClimateSettings& settings, Progress* progress);
+
+// Indices of the hours whose clock hour lies in [occupied_start_hour, occupied_end_hour) (local
+// standard time), as the annual metrics count them.
+std::vector<size_t> occupied_hours(const std::vector<HourStamp>& hours, const ClimateSettings& settings);
 
 // What a "climate" sky of a scene holds (scene.h: Scene::climate).
 struct Climate {

@@ -136,6 +136,12 @@ double SkyPatches::solid_angle(int patch) const {
   return (std::sin(b.alt1) - std::sin(b.alt0)) * (b.az1 - b.az0);
 }
 
+double SkyPatches::projected_solid_angle(int patch) const {
+  const Bounds b = bounds(patch);
+  const double s0 = std::sin(b.alt0), s1 = std::sin(b.alt1);
+  return std::abs(0.5 * (s1 - s0) * (s1 + s0) * (b.az1 - b.az0));
+}
+
 Vec3d SkyPatches::centre(int patch) const {
   const Bounds b = bounds(patch);
   const int ring = patch_ring_[patch];

@@ -69,6 +69,9 @@ class SkyPatches {
   Bounds bounds(int patch) const;
   // sr: (sin alt1 - sin alt0)(az1 - az0); the ground is 2 pi, the sky patches sum to 2 pi.
   double solid_angle(int patch) const;
+  // sr: the integral of |cos theta| over the patch, (az1 - az0)(sin^2 alt1 - sin^2 alt0) / 2: the
+  // horizontal illuminance of a unit luminance over it. The sky patches sum to pi; the ground is pi.
+  double projected_solid_angle(int patch) const;
   // Unit world direction of the patch centre as gendaymtx places it: mid-altitude of the ring and
   // the centre azimuth; the zenith for the cap, the nadir for the ground.
   Vec3d centre(int patch) const;

@@ -227,6 +227,14 @@ Vec3 sun_direction(const SunPosition& p) {
               static_cast<float>(std::sin(zenith) * std::cos(azimuth)), static_cast<float>(std::cos(zenith)));
 }
 
+SunPosition model_sun_position(double utc_seconds, const Place& place, double north_offset_deg) {
+  SunPosition p = solar_position(utc_seconds, place, true);
+  const double turned = std::fmod(p.azimuth_deg + north_offset_deg, 360.0);
+  p.azimuth_deg = turned < 0.0 ? turned + 360.0 : turned;
+  if (p.azimuth_deg >= 360.0) p.azimuth_deg = 0.0;  // -1e-17 + 360 rounds to 360
+  return p;
+}
+
 // ---- Sunrise and sunset ----
 
 namespace {

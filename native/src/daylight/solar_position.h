@@ -35,6 +35,12 @@ SunPosition solar_position(double utc_seconds, const Place& place, const Atmosph
 // Unit world direction toward the sun (+Z up, +Y north, +X east).
 Vec3 sun_direction(const SunPosition& position);
 
+// The apparent position (standard-atmosphere refraction) in a model whose true north lies
+// `north_offset_deg` clockwise from +Y seen from above: the azimuth is turned by the offset, so it
+// is measured clockwise from +Y, in [0, 360), and sun_direction() gives the world direction. What
+// every daylight sky uses, so that the sky and the sun of one instant agree.
+SunPosition model_sun_position(double utc_seconds, const Place& place, double north_offset_deg);
+
 // Delta T = TT - UT in seconds at a decimal year (Espenak & Meeus polynomials), what turns the
 // clock time of the Earth's rotation into the uniform time of the planets' motion.
 double delta_t_seconds(double decimal_year);

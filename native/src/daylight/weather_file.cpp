@@ -155,8 +155,6 @@ constexpr int kDaysBeforeMonth[12] = {0, 31, 59, 90, 120, 151, 181, 212, 243, 27
 
 bool valid_date(int month, int day) { return month >= 1 && month <= 12 && day >= 1 && day <= kDaysInMonth[month - 1]; }
 
-int day_of_year(int month, int day) { return month == 2 && day == 29 ? 60 : kDaysBeforeMonth[month - 1] + day; }
-
 // (mean Sun-Earth distance / distance)^2 on a date: the Perez sky's series (Spencer 1971).
 double eccentricity_factor(int month, int day) {
   return extraterrestrial_normal_irradiance(day_of_year(month, day)) / kPerezSolarConstant;
@@ -371,6 +369,7 @@ WeatherHour read_epw_row(const Source& at, const std::string& line) {
     refuse(at, "data row has " + std::to_string(fields.size()) + " fields; " + std::to_string(kEpwFields) + " expected");
   auto text = [&](int field) -> const std::string& { return fields[field - 1]; };
   WeatherHour hour;
+  hour.line = at.line;
   integer_field(at, epw_field_name(kYear), text(kYear));
   read_date(at, epw_field_name(kMonth), text(kMonth), epw_field_name(kDay), text(kDay), &hour);
   const int hour_ending = integer_field(at, epw_field_name(kHour), text(kHour));
@@ -454,6 +453,7 @@ WeatherHour read_wea_row(const Source& at, const std::string& line) {
                    " columns; 5 expected (month day hour direct-normal diffuse-horizontal), or 7 with aerosol "
                    "optical depth and sky cover");
   WeatherHour hour;
+  hour.line = at.line;
   read_date(at, kWeaColumns[0], columns[0], kWeaColumns[1], columns[1], &hour);
   hour.clock_hours = number_field(at, kWeaColumns[2], columns[2]);
   if (hour.clock_hours < 0.0 || hour.clock_hours > 24.0)
@@ -474,6 +474,11 @@ bool earlier(const WeatherHour& a, const WeatherHour& b) {
 }
 
 }  // namespace
+
+int day_of_year(int month, int day) {
+  if (!valid_date(month, day)) throw std::invalid_argument("day_of_year: " + date_text(month, day) + " is not a date");
+  return month == 2 && day == 29 ? 60 : kDaysBeforeMonth[month - 1] + day;
+}
 
 double extraterrestrial_normal_irradiance(int month, int day) {
   if (!valid_date(month, day))

@@ -34,6 +34,7 @@ struct WeatherHour {
   double diffuse_horizontal_lux = 0.0;   // NaN when missing (always for .wea)
   double global_horizontal_lux = 0.0;    // NaN when missing (always for .wea)
   double dew_point_c = 0.0;              // NaN when missing (always for .wea)
+  int line = 0;                          // line of the file the row was read from (1-based), for messages
 };
 
 struct WeatherData {
@@ -55,6 +56,10 @@ WeatherData read_epw(const std::string& path);
 WeatherData read_wea(const std::string& path);
 // By extension, case-insensitive: .epw or .wea; any other extension is refused.
 WeatherData read_weather(const std::string& path);
+
+// Day of the year, 1..365, of a month and day, for the Earth-Sun distance: 29 February counts as day
+// 60, like 1 March (weather rows carry no year). Throws std::invalid_argument for an impossible date.
+int day_of_year(int month, int day);
 
 // The solar irradiance at normal incidence outside the atmosphere on a date, W/m^2: the solar
 // constant 1367 W/m^2 times the orbit's eccentricity factor (Spencer 1971, in Iqbal 1983 eq.

@@ -79,6 +79,7 @@ nlohmann::json sky_summary(const Scene& scene) {
     j["build_seconds"] = d.seconds;
     if (!dark_sky_warning(scene).empty())
       j["warning"] = "the sun is below the horizon at every time step: the sky is dark";
+    if (!d.warnings.empty()) j["warnings"] = d.warnings;
   }
   j["suns"] = nlohmann::json::array();
   for (const SunLight& s : scene.suns.suns()) {
@@ -92,6 +93,10 @@ nlohmann::json sky_summary(const Scene& scene) {
                          {"normal_illuminance_rgb", rgb(instant)}});
   }
   return j;
+}
+
+std::vector<std::string> sky_warnings(const Scene& scene) {
+  return scene.daylight ? scene.daylight->warnings : std::vector<std::string>{};
 }
 
 std::string dark_sky_warning(const Scene& scene) {
@@ -116,10 +121,19 @@ std::string sky_report(const nlohmann::json& j) {
     s << line;
   }
   if (j.contains("warning")) s << "warning: " << j["warning"].get<std::string>() << "\n";
+  if (j.contains("warnings"))
+    for (const auto& w : j["warnings"]) s << "warning: " << w.get<std::string>() << "\n";
   if (!j["suns"].empty()) {
     s << "suns (one per step; normal illuminance at that instant):\n"
       << "  UTC                   zenith  azimuth   weight  normal lx\n";
+    // A climate's thousands of suns: the first ones, the rest in the --json summary.
+    constexpr size_t kListed = 48;
+    size_t listed = 0;
     for (const auto& sun : j["suns"]) {
+      if (++listed > kListed) {
+        s << "  ... and " << j["suns"].size() - kListed << " more (all in the --json summary)\n";
+        break;
+      }
       std::snprintf(line, sizeof line, "  %s  %6.2f  %7.2f  %7.4f  %9.0f\n", sun["utc"].get<std::string>().c_str(),
                     sun["zenith_deg"].get<double>(), sun["azimuth_deg"].get<double>(), sun["weight"].get<double>(),
                     sun["normal_illuminance"].get<double>());

@@ -28,6 +28,9 @@ double unobstructed_horizontal_illuminance(const Scene& scene);
 // When a daylight sky gives no light at all (the sun below the horizon at every time step: polar
 // night, or an interval at night), a sentence naming the sky, place and dates; otherwise "".
 std::string dark_sky_warning(const Scene& scene);
+// What the sky's weather file says against itself or the scene (its own warnings, a scene place
+// far from its station), one sentence each; empty for other skies.
+std::vector<std::string> sky_warnings(const Scene& scene);
 // Human-readable form of the summary, for the command line.
 std::string sky_report(const nlohmann::json& summary);
 

@@ -47,6 +47,7 @@ inline constexpr IntegerRange kSkyHeight{"sky.resolution[1]", 2, 8192};
 inline constexpr std::uintmax_t kMaxSceneFileBytes = 256ull << 20;     // scene and openings JSON
 inline constexpr std::uintmax_t kMaxGeometryFileBytes = 2ull << 30;    // OBJ
 inline constexpr std::uintmax_t kMaxImageFileBytes = 2ull << 30;       // environment maps
+inline constexpr std::uintmax_t kMaxWeatherFileBytes = 256ull << 20;   // .epw, .wea (a year of hours: 1.6 MB)
 
 }  // namespace limits
 

@@ -44,11 +44,13 @@ struct Scene {
   std::shared_ptr<const Sky> sky;
   SunLights suns;  // a daylight sky's sun, one disk per time step (empty for other skies)
   std::shared_ptr<const Daylight> daylight;  // how a daylight sky was built (null for others)
-  std::shared_ptr<const Climate> climate;    // a "climate" sky: the weather file and its sky matrix
+  // A "climate" sky: its settings, weather and hourly sky matrix, for annual studies. `sky` and
+  // `suns` then hold the cumulative sky of its occupied hours (null for other skies).
+  std::shared_ptr<const Climate> climate;
   RenderSettings render;
   SolverSettings solver;
   // Files the scene was read from: the scene file (when loaded from one), the OBJ, an
-  // environment map. Outputs must not overwrite them.
+  // environment map, a weather file. Outputs must not overwrite them.
   std::vector<std::string> input_files;
 
   std::vector<std::string> material_names() const;

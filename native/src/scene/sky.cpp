@@ -99,13 +99,6 @@ Vec2 EnvironmentMap::direction_to_uv(const Vec3& dir) const {
   return Vec2(std::min(u, std::nextafter(1.0f, 0.0f)), std::min(v, std::nextafter(1.0f, 0.0f)));
 }
 
-Vec3 equirect_direction(const Vec2& uv) {
-  const float theta = uv.y() * kPi;
-  const float phi = (0.5f - uv.x()) * 2.0f * kPi;
-  const float st = std::sin(theta);
-  return Vec3(st * std::cos(phi), st * std::sin(phi), std::cos(theta));
-}
-
 Vec3 EnvironmentMap::uv_to_direction(const Vec2& uv) const {
   const Vec3 d = equirect_direction(uv);
   return Vec3(cos_rot_ * d.x() - sin_rot_ * d.y(), sin_rot_ * d.x() + cos_rot_ * d.y(), d.z());

@@ -5,14 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "math/equirect.h"  // equirect_direction
 #include "math/vec.h"
 #include "sampling/distribution.h"
 
 namespace fenestra {
-
-// Blender's equirectangular projection: map coordinates uv in [0,1)^2 (u across, v down from the
-// zenith) to the world direction they show, +Z up; u = 0.5 looks along +X.
-Vec3 equirect_direction(const Vec2& uv);
 
 class Sky {
  public:

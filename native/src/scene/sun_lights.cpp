@@ -31,10 +31,6 @@ SunLights::Sample SunLights::sample(float u_pick, const Vec2& u_disk) const {
   return out;
 }
 
-Rgb SunLights::horizontal_illuminance() const {
-  Rgb e = Rgb::Zero();
-  for (const SunLight& s : suns_) e += s.normal_illuminance * std::max(0.0f, s.direction.z());
-  return e;
-}
+Rgb SunLights::horizontal_illuminance() const { return fenestra::horizontal_illuminance(suns_); }
 
 }  // namespace fenestra

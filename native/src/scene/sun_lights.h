@@ -4,18 +4,11 @@
 // (the environment map holds the sky without the sun, so no other strategy ever finds them).
 #include <vector>
 
+#include "daylight/sun_light.h"  // SunLight
 #include "math/vec.h"
 #include "sampling/distribution.h"
 
 namespace fenestra {
-
-struct SunLight {
-  Vec3 direction;            // unit, toward the sun's centre (+Z up, +Y north, +X east)
-  Rgb normal_illuminance;    // lux on a surface facing the sun, times the step's share of the interval
-  double weight = 1.0;       // the step's share of the interval (normal_illuminance / weight: the instant's)
-  double utc_seconds = 0.0;  // the step's instant (POSIX seconds)
-  double zenith_deg = 0.0, azimuth_deg = 0.0;  // apparent position (azimuth clockwise from north)
-};
 
 class SunLights {
  public:
