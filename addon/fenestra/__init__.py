@@ -38,6 +38,7 @@ try:
     )
     from .api import (
         Cancelled,
+        annual,
         Contributions,
         Progress,
         Scene,
@@ -66,6 +67,7 @@ else:
 
 
 __all__ = [
+    "annual",
     "automatic_constraints",
     "Cancelled",
     "catalogues",

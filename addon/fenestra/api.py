@@ -169,6 +169,29 @@ def evaluate(scene, openings, progress=None, callback=None, max_memory=None):
     return _run(lambda p: _core.evaluate(scene, rects, p), progress, callback)
 
 
+def annual(scene, openings, contributions=None, output=None, progress=None, callback=None, max_memory=None):
+    """The annual study of a "climate" scene with the openings open (as for evaluate): every sensor's
+    illuminance at every hour of the weather file's year and the climate-based metrics (docs/annual.md).
+
+    Returns a dict: "illuminance" and "direct_sun" (sensors x hours, float32, lux; the direct part is
+    the sun straight to the sensor, for ASE), "hour_month", "hour_day", "hour_clock" (local standard
+    time, the instant each hour stands for), "occupied" (bool per hour) and "summary" (the metrics,
+    as `fenestra annual` writes them to OUT.json). `contributions` (from contributions(scene)) are
+    reused: a new set of openings then takes a fraction of a second. With `output`, also writes
+    OUTPUT.npz and OUTPUT.json."""
+    rects = openings_argument(openings)
+    if not scene.has_climate:
+        raise ValueError("annual needs a scene whose sky is \"climate\" (a weather file, docs/scene-format.md); "
+                         "scene '%s' has another sky" % scene.source)
+    if contributions is None:
+        _cost.check_cost(scene, "contributions", max_memory)
+        contributions = _run(lambda p: _core.compute_contributions(scene, p), progress, callback)
+    result = _run(lambda p: contributions.annual_openings(scene, rects, p), progress, callback)
+    if output is not None:
+        contributions.save_annual(scene, rects, str(output))
+    return result
+
+
 def constraint_violations(scene, openings):
     """What the openings (as for evaluate) break of the scene's solver.constraints: a list of
     lines, empty when every opening is admissible."""

@@ -25,6 +25,7 @@
 #include "scene/scene.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
+#include "annual/annual_study.h"
 
 namespace {
 
@@ -39,6 +40,11 @@ const char* kUsage = R"(usage:
       Contributions, then the opening solver (NNLS start, genetic algorithm, exact re-ranking):
       writes the openings (rectangles, readable by evaluate --openings), predicted values, errors,
       timings and the genetic history. Settings from the scene's "goals" and "solver" sections.
+  fenestra annual SCENE.json --openings OPENINGS.json -o OUT[.npz] [options]
+      A scene whose sky is "climate" (a weather file): one pass of paths per sensor, then every
+      sensor's illuminance at every hour of the year with the openings open, its direct-sun part,
+      and the climate-based metrics (DA, cDA, UDI, sDA, ASE, EN 17037). Writes OUT.npz (arrays,
+      lux) and OUT.json (space and per-sensor metrics). See docs/annual.md.
   fenestra sky SCENE.json -o SKY.exr [--json SUMMARY.json]
       Writes the scene's sky as an equirectangular map (.exr or .hdr, cd/m^2, Blender's convention)
       and prints the horizontal illuminances and the sun list (also as JSON with --json).
@@ -127,12 +133,14 @@ Args parse_args(int argc, char** argv) {
   }
   if (positional.empty()) usage_error("no command given");
   a.command = positional[0];
-  if (a.command != "contributions" && a.command != "evaluate" && a.command != "sky" &&
-      a.command != "solve") usage_error("unknown command '" + a.command + "'");
+  if (a.command != "contributions" && a.command != "evaluate" && a.command != "sky" && a.command != "solve" &&
+      a.command != "annual")
+    usage_error("unknown command '" + a.command + "'");
   if (positional.size() != 2) usage_error(a.command + " takes exactly one scene file");
   a.scene = positional[1];
   if (a.output.empty()) usage_error(a.command + " needs -o OUT");
-  if (a.command == "evaluate" && a.openings.empty()) usage_error("evaluate needs --openings OPENINGS.json");
+  if ((a.command == "evaluate" || a.command == "annual") && a.openings.empty())
+    usage_error(a.command + " needs --openings OPENINGS.json");
   if (a.command != "sky" && !a.summary.empty()) usage_error("--json belongs to the sky command");
   return a;
 }
@@ -188,7 +196,7 @@ void install_signal_handlers() {
 
 // Every file the command writes, in the order written.
 std::vector<std::string> output_paths(const Args& a) {
-  if (a.command == "contributions") {  // as write_contributions names them
+  if (a.command == "contributions" || a.command == "annual") {  // as write_contributions / write_annual name them
     const bool npz = a.output.size() > 4 && a.output.compare(a.output.size() - 4, 4, ".npz") == 0;
     const std::string stem = npz ? a.output.substr(0, a.output.size() - 4) : a.output;
     return {stem + ".npz", stem + ".json"};
@@ -197,10 +205,29 @@ std::vector<std::string> output_paths(const Args& a) {
   return {a.output};
 }
 
+int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& progress) {
+  using namespace fenestra;
+  if (!scene.climate)
+    throw std::invalid_argument("scene '" + a.scene + "': annual needs a sky of type \"climate\" (a weather file; " +
+                                "docs/scene-format.md)");
+  const OpenRegion region = region_of_openings(scene, read_openings(a.openings));  // before the long pass
+  const Contributions c =
+      with_progress(progress, a.quiet, [&] { return compute_contributions(scene, &progress, /*transport=*/false); });
+  const AnnualStudy study = with_progress(progress, a.quiet, [&] { return annual_study(scene, c, region, &progress); });
+  const auto paths = write_annual(scene, c, study, a.output);
+  const AnnualMetrics& m = study.metrics;
+  std::printf("annual: %zu sensors x %d hours (%d occupied), %d paths per sensor; contributions %.2f s, year %.3f s\n"
+              "%s\nwrote %s\nwrote %s\n",
+              c.sensor_count(), m.hours, m.occupied_hours, c.paths_per_sensor, c.seconds, study.seconds,
+              m.to_string().c_str(), paths.first.c_str(), paths.second.c_str());
+  return 0;
+}
+
 int run(const Args& a) {
   using namespace fenestra;
   g_stage = "loading scene '" + a.scene + "'";
-  set_cost_context({a.max_memory, cost_command(a.command)});  // the loader's cost checks see both
+  const CostCommand cost = cost_command(a.command == "annual" ? "contributions" : a.command);
+  set_cost_context({a.max_memory, cost});  // the loader's cost checks see both
   // Outputs are checked before any work (docs/outputs.md): writable, regular files, not inputs.
   const std::vector<std::string> outputs = output_paths(a);
   std::vector<std::string> inputs = {a.scene};
@@ -223,7 +250,7 @@ int run(const Args& a) {
     if (!dark.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", dark.c_str());
   }
 
-  if (a.command != "solve") check_cost(scene, cost_command(a.command));  // docs/cost.md; solve below
+  if (a.command != "solve") check_cost(scene, cost);  // docs/cost.md; solve below
   if (a.command == "sky") {
     const nlohmann::json summary = sky_summary(scene);
     const SkyImage image = sky_image(scene);
@@ -273,6 +300,7 @@ int run(const Args& a) {
     if (!sparse.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", sparse.c_str());
     return 0;
   }
+  if (a.command == "annual") return run_annual(a, scene, progress);
   const auto openings = read_openings(a.openings);
   const auto start = std::chrono::steady_clock::now();
   const SensorValues v = with_progress(progress, a.quiet, [&] { return evaluate_openings(scene, openings, &progress); });

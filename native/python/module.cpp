@@ -25,6 +25,7 @@
 #include "trace/contributions.h"
 #include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
+#include "annual/annual_study.h"
 
 namespace py = pybind11;
 using namespace fenestra;
@@ -134,6 +135,37 @@ std::vector<OpeningInput> openings_from(const py::object& openings) {
   return std::vector<OpeningInput>(rects.begin(), rects.end());
 }
 
+// A sensors x hours float matrix as a C-ordered NumPy array (a copy).
+py::array_t<float> float_array(const Eigen::MatrixXf& m) {
+  py::array_t<float> a({m.rows(), m.cols()});
+  Eigen::Map<Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(a.mutable_data(), m.rows(), m.cols()) = m;
+  return a;
+}
+
+// An annual study as a dict of arrays (lux) and its summary (the JSON of `fenestra annual`).
+py::dict annual_dict(const Contributions& c, const AnnualStudy& s) {
+  py::dict d;
+  d["illuminance"] = float_array(s.illuminance.total);
+  d["direct_sun"] = float_array(s.illuminance.direct);
+  const size_t hours = s.hours.size();
+  py::array_t<int32_t> month(hours), day(hours);
+  py::array_t<double> clock(hours);
+  py::array_t<bool> occupied(hours);
+  for (size_t h = 0; h < hours; ++h) {
+    month.mutable_at(h) = s.hours[h].month;
+    day.mutable_at(h) = s.hours[h].day;
+    clock.mutable_at(h) = s.hours[h].clock_hour;
+    occupied.mutable_at(h) = s.occupied[h] != 0;
+  }
+  d["hour_month"] = month;
+  d["hour_day"] = day;
+  d["hour_clock"] = clock;
+  d["occupied"] = occupied;
+  d["summary"] = py::module_::import("json").attr("loads")(
+      text_of(annual_json(c, s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)));
+  return d;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -232,6 +264,8 @@ PYBIND11_MODULE(_core, m) {
       .def_property(
           "render", [](Scene& s) -> RenderSettings& { return s.render; },
           [](Scene& s, const RenderSettings& r) { s.render = r; }, py::return_value_policy::reference_internal)
+      .def_property_readonly("has_climate", [](const Scene& s) { return s.climate != nullptr; },
+                             "Whether the sky is \"climate\" (a weather file): annual studies need it.")
       .def_property_readonly("sensor_count", [](const Scene& s) { return s.sensors.size(); })
       .def_property_readonly("element_count", [](const Scene& s) { return s.domain.element_count(); })
       .def_property_readonly("triangle_count", [](const Scene& s) { return s.mesh.triangle_count(); })
@@ -338,6 +372,45 @@ PYBIND11_MODULE(_core, m) {
           "Exact (value, stderr) per sensor with the openings open (an (n, 4, 3) array of corners, or the JSON "
           "text of an openings file), their edges anywhere on their panels (in thick walls on the element grid's "
           "lines), from the recorded paths.")
+      .def_property_readonly("has_annual", [](const Contributions& c) { return c.annual != nullptr; })
+      .def(
+          "annual",
+          [](const Contributions& c, py::array_t<uint8_t, py::array::c_style | py::array::forcecast> open,
+             std::shared_ptr<Progress> progress) {
+            if (open.ndim() != 1) throw std::invalid_argument("open mask must be one-dimensional");
+            const std::vector<uint8_t> mask(open.data(), open.data() + open.size());
+            AnnualStudy study;
+            {
+              py::gil_scoped_release release;
+              study = while_doing("computing the annual illuminance", [&] { return annual_study(c, mask, progress.get()); });
+            }
+            return annual_dict(c, study);
+          },
+          py::arg("open"), py::arg("progress") = nullptr,
+          "Every sensor's illuminance at every hour of the weather file's year with the elements where open is "
+          "true open (contributions of a \"climate\" scene): a dict of arrays (lux) and the metrics summary.")
+      .def(
+          "annual_openings",
+          [](const Contributions& c, const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress) {
+            const OpenRegion region = region_of_openings(scene, openings_from(openings));
+            AnnualStudy study;
+            {
+              py::gil_scoped_release release;
+              study = while_doing("computing the annual illuminance",
+                                  [&] { return annual_study(scene, c, region, progress.get()); });
+            }
+            return annual_dict(c, study);
+          },
+          py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
+          "The annual study of openings (as for evaluate_openings).")
+      .def("save_annual",
+           [](const Contributions& c, const Scene& scene, const py::object& openings, const std::string& out) {
+             const OpenRegion region = region_of_openings(scene, openings_from(openings));
+             py::gil_scoped_release release;
+             return write_annual(scene, c, annual_study(scene, c, region), out);
+           },
+           py::arg("scene"), py::arg("openings"), py::arg("path"),
+           "Writes the annual study of openings as PATH.npz and PATH.json (as `fenestra annual`); returns both paths.")
       .def("save", [](const Contributions& c, const Scene& s, const std::string& out) { return write_contributions(s, c, out); },
            py::arg("scene"), py::arg("path"), "Writes PATH.npz and PATH.json; returns both paths.")
       .def("__repr__", [](const Contributions& c) {

@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "annual/annual_study.h"  // annual_metric_settings
 #include "scene/scene.h"
 #include "trace/parallel.h"
 #include "trace/path_tracer.h"
@@ -40,6 +41,8 @@ std::shared_ptr<AnnualRecords> prepare_annual(const Scene& scene) {
   if (!scene.climate || !scene.climate->sky) throw std::invalid_argument("the scene has no climate sky");
   auto annual = std::make_shared<AnnualRecords>();
   annual->climate = scene.climate;
+  annual->scene_source = scene.source;
+  annual->metric_settings = annual_metric_settings(scene);
   const SkyMatrix& sky = *scene.climate->sky;
   const ClimateSettings& settings = scene.climate->settings;
   AnnualSources& sources = annual->sources;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "annual/annual_sources.h"
+#include "daylight/annual_metrics.h"
 #include "daylight/sky_matrix.h"
 #include "trace/path_record.h"
 
@@ -17,6 +18,8 @@ struct Scene;
 
 struct AnnualRecords {
   std::shared_ptr<const Climate> climate;
+  std::string scene_source;           // for messages and outputs
+  AnnualMetricSettings metric_settings;  // the standards' defaults, the climate's occupied hours
   AnnualSources sources;
   // Per source, its mean strength over the occupied hours: cd/m^2 for a patch, lux of normal
   // illuminance for a sun cluster. The records' values are their coefficients times this: the

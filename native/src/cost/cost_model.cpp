@@ -10,6 +10,7 @@
 #include "cost/element_size_hint.h"
 #include "cost/load_checks.h"
 #include "daylight/daylight.h"
+#include "daylight/sky_matrix.h"
 #include "scene/scene.h"
 #include "solve/genetic.h"
 
@@ -85,6 +86,23 @@ std::string element_size_text(const Scene& scene) {
   return s.str();
 }
 
+// A climate sky's annual pass: each event's source and coefficient (6 of its kBytesPerEvent), the
+// sun straight to each sensor at each sunny hour (an event, its point and a condition or two: 48
+// bytes), and a study's hourly illuminance (total and direct sun, floats) with the file's copy.
+void add_annual(const Scene& scene, double records, CostEstimate* e) {
+  const double S = static_cast<double>(e->sensors);
+  const SkyMatrix& sky = *scene.climate->sky;
+  double sunny = 0.0;
+  for (float x : sky.sun_normal_illuminance) sunny += x > 0.0f;
+  const double hours = static_cast<double>(sky.hours.size());
+  e->memory.push_back({"annual_sources", "the events' sources and daylight coefficients", records * 6.0 / kBytesPerEvent,
+                       "", "fewer paths (render.paths_per_sensor, --paths)"});
+  e->memory.push_back({"direct_sun", "the sun seen from each sensor at each sunny hour", 48.0 * S * sunny, "",
+                       "fewer sensors"});
+  e->memory.push_back({"annual_illuminance", "the hourly illuminance of an annual study (sensors x hours, twice, and "
+                       "its file)", 4.0 * 4.0 * S * hours, "writing", "fewer sensors"});
+}
+
 void add_contributions(const Scene& scene, long long paths, CostEstimate* e) {
   const double S = static_cast<double>(e->sensors), N = static_cast<double>(e->elements);
   const std::string fewer_elements = kLargerElementSize;
@@ -107,6 +125,7 @@ void add_contributions(const Scene& scene, long long paths, CostEstimate* e) {
                        fewer_elements, true});
   e->memory.push_back({"analysis", "per-thread analysis buffers", kAnalysisBytesPerElement * N * worker_threads(scene),
                        "tracing", fewer_elements});
+  if (scene.climate && scene.climate->sky) add_annual(scene, records, e);
   e->time.push_back({"tracing", "tracing the contribution paths",
                      S * static_cast<double>(paths) * expected_vertices(scene) * kTraceSecondsPerVertex *
                          (scene.domain.has_thick_walls() ? kThickWallTraceFactor : 1.0),

@@ -44,6 +44,10 @@ void NpzWriter::add(const std::string& name, const std::vector<int32_t>& data, c
   add_raw(name, "<i4", data.data(), data.size() * sizeof(int32_t), shape);
 }
 
+void NpzWriter::add(const std::string& name, const std::vector<float>& data, const std::vector<size_t>& shape) {
+  add_raw(name, "<f4", data.data(), data.size() * sizeof(float), shape);
+}
+
 void NpzWriter::write(std::ostream& out) const {
   std::string central;
   uint64_t offset = 0;

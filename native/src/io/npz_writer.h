@@ -12,6 +12,7 @@ class NpzWriter {
   // Row-major data of the given shape.
   void add(const std::string& name, const std::vector<double>& data, const std::vector<size_t>& shape);
   void add(const std::string& name, const std::vector<int32_t>& data, const std::vector<size_t>& shape);
+  void add(const std::string& name, const std::vector<float>& data, const std::vector<size_t>& shape);
   void write(std::ostream& out) const;
 
  private:

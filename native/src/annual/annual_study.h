@@ -1,0 +1,49 @@
+#pragma once
+// An annual study of one set of openings: every sensor's hourly illuminance over the weather
+// file's year, its direct-sun part, and the climate-based metrics (daylight/annual_metrics.h),
+// from a climate scene's contributions. See docs/annual.md.
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "annual/annual_illuminance.h"
+#include "daylight/annual_metrics.h"
+#include "trace/contributions.h"
+#include "trace/evaluate.h"
+#include "trace/open_region.h"
+
+namespace fenestra {
+
+struct AnnualStudy {
+  AnnualIlluminance illuminance;  // sensors x hours, lux
+  std::vector<HourStamp> hours;
+  std::vector<char> occupied;     // per hour
+  // The mean illuminance of the occupied hours per sensor straight from the records (the scene's
+  // design values), with its Monte Carlo standard error (lux).
+  SensorValues occupied_mean;
+  AnnualMetricSettings settings;
+  AnnualMetrics metrics;
+  double seconds = 0.0;  // coefficients, product and metrics
+};
+
+// The metric settings of a climate scene: the standards' defaults, its occupied hours.
+AnnualMetricSettings annual_metric_settings(const Scene& scene);
+
+// Throws std::invalid_argument when the contributions were not computed for a climate sky (or,
+// with a scene, for another scene).
+AnnualStudy annual_study(const Scene& scene, const Contributions& c, const OpenRegion& region,
+                         const Progress* progress = nullptr);
+AnnualStudy annual_study(const Contributions& c, const std::vector<uint8_t>& open, const Progress* progress = nullptr);
+
+// The openings as a region of the contributions' domain: each on its panel, on elements, and in a
+// thick wall on the grid's lines (throws std::invalid_argument naming the opening).
+OpenRegion region_of_openings(const Scene& scene, const std::vector<OpeningInput>& openings);
+
+// The study's summary (settings, space and per-sensor metrics) and its arrays as an .npz:
+// OUT.npz and OUT.json, written together or not at all. Returns both paths.
+nlohmann::json annual_json(const Contributions& c, const AnnualStudy& study);
+std::pair<std::string, std::string> write_annual(const Scene& scene, const Contributions& c, const AnnualStudy& study,
+                                                 const std::string& out);
+
+}  // namespace fenestra
