@@ -31,6 +31,8 @@ bench: build
 	$(BUILD)/bench/fenestra_sky_bench
 	$(BUILD)/bench/fenestra_solver_bench
 	$(BUILD)/bench/fenestra_bench
+	$(BUILD)/bench/fenestra_annual_metrics_bench
+	$(BUILD)/bench/fenestra_annual_bench
 
 # Ground truth: known openings' light as goals, solved for and checked (out/validate/, README table).
 validate: build examples-blend
