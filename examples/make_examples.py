@@ -489,7 +489,7 @@ def annual_room():
         "opening_domain": {"materials": ["wall_south"], "element_size": 0.25, "thickness": 0.0},
         "sensors": {"points": sensors, "normals": [0, 0, 1]},
         # The place and clock of the Chicago weather file; the annual study takes its skies from
-        # examples/weather (see README.md here), this day's sky only pins the place.
+        # examples/weather (see annual_room/README.md), this day's sky only pins the place.
         "sky": dict({"type": "preetham", "date": "2026-03-21", "start": "08:00", "end": "18:00",
                      "step_minutes": 30, "ground_reflectance": 0.2}, **CHICAGO),
         "render": {"paths_per_sensor": 4096, "max_bounces": 16, "seed": 1, "threads": 0},

@@ -1,7 +1,7 @@
 """Helper of scripts/radiance_annual_reference.sh: the parts of the Radiance annual reference that
 are bookkeeping, not light transport (which suns go where, the matrix products, the metrics).
 
-    radiance_annual_reference.py prepare WORK            # after gendaymtx: writes WORK/{sky,suns1,sunp}.rad
+    radiance_annual_reference.py prepare WORK            # after gendaymtx: writes WORK/{sky,suns1,sunsf}.rad
     radiance_annual_reference.py assemble WORK OUT ...   # after rcontrib: writes the reference to OUT
     radiance_annual_reference.py perez WORK OUT EPW      # after gendaylit/rtrace: hours.json
 
@@ -20,7 +20,6 @@ import numpy as np
 EFFICACY = 179.0               # lm/W, Radiance's WHTEFFICACY
 SUN_ANGLE_DEG = 0.533          # the solar disc of gendaymtx -D and gendaylit
 SKY_MF = 4                     # sky patches: Reinhart MF 4, 2305 + the ground
-SUN_MF = 6                     # sun-patch centres for the sun's interreflected light (5-phase)
 OCCUPIED = (8.0, 18.0)         # local standard time, [start, end), the LM-83 analysis period
 TREGENZA_ROW = [30, 30, 24, 24, 18, 12, 6]
 
@@ -106,20 +105,18 @@ def prepare(work):
             f.write("void light solar%d\n0\n0\n3 1 1 1\n\nsolar%d source sun%d\n0\n0\n4 %.6f %.6f %.6f %g\n\n"
                     % (sid, sid, sid, d[0], d[1], d[2], SUN_ANGLE_DEG))
             m.write("solar%d\n" % sid)
-    # The sun's interreflected light: a unit sun at the centre of the MF 6 patch nearest each
-    # hour's sun (largest dot product, as gendaymtx -5 chooses), for suns in front of the south
-    # wall (direction y < 0: only they can shine through its window).
-    centres, _ = reinhart_patches(SUN_MF)
+    # The sun's interreflected light: the same actual suns (unit radiance), only those that can
+    # shine into the room: lit, and in front of the south wall (direction y < 0), the only side
+    # with an opening. (Suns moved to sun-patch centres, as the 5-phase method does, are not
+    # good enough here: for a sensor 0.25 m from a sunlit side wall, moving the sun by 0.9 degrees
+    # changed its interreflected sunlight by 17 %.)
     lit = [(sid, rad, d) for sid, rad, d in suns if rad > 0 and d[1] < 0]
-    nearest = sorted({int(np.argmax(centres @ d)) for _, _, d in lit})
-    with open(os.path.join(work, "sunp.rad"), "w") as f, open(os.path.join(work, "sunp.mod"), "w") as m:
-        for p in nearest:
-            c = centres[p]
-            f.write("void light sp%d\n0\n0\n3 1 1 1\n\nsp%d source sunp%d\n0\n0\n4 %.6f %.6f %.6f %g\n\n"
-                    % (p + 1, p + 1, p + 1, c[0], c[1], c[2], SUN_ANGLE_DEG))
-            m.write("sp%d\n" % (p + 1))
-    print("prepare: %d suns (%d with light in front of the south wall), %d MF %d sun patches"
-          % (len(suns), len(lit), len(nearest), SUN_MF))
+    with open(os.path.join(work, "sunsf.rad"), "w") as f, open(os.path.join(work, "sunsf.mod"), "w") as m:
+        for sid, _, d in lit:
+            f.write("void light solar%d\n0\n0\n3 1 1 1\n\nsolar%d source sun%d\n0\n0\n4 %.6f %.6f %.6f %g\n\n"
+                    % (sid, sid, sid, d[0], d[1], d[2], SUN_ANGLE_DEG))
+            m.write("solar%d\n" % sid)
+    print("prepare: %d suns, %d with light in front of the south wall" % (len(suns), len(lit)))
 
 
 def replicate_mean_and_se(stack):
@@ -198,25 +195,26 @@ def assemble(work, out, sky_reps, sun_reps, n_sensors, settings_json):
     e_direct = np.zeros((n_sensors, n_hours))
     e_direct[:, sun_hour] = c0 / omega_sun * ev[sun_hour]
 
-    # The sun's interreflected light: unit suns at the MF 6 patch centres, -ab N minus -ab 0
-    # (the direct part of both runs is the same deterministic shadow-ray sum, so it cancels).
-    centres, _ = reinhart_patches(SUN_MF)
-    mods = [int(l.strip()[2:]) - 1 for l in open(os.path.join(work, "sunp.mod")) if l.strip()]
-    col = {p: k for k, p in enumerate(mods)}
-    _, cn = read_matrix(os.path.join(work, "sunp_ab.dat"))
+    # The sun's interreflected light: the actual suns in front of the south wall, -ab N minus the
+    # -ab 0 run of the same suns (the direct part of both is the same deterministic shadow-ray
+    # sum, so it cancels and leaves the interreflections).
+    mods = [int(l.strip()[5:]) for l in open(os.path.join(work, "sunsf.mod")) if l.strip()]
+    _, cn = read_matrix(os.path.join(work, "sunsf_ab.dat"))
     cn = luminance(cn.reshape(sun_reps, n_sensors, len(mods), 3)).astype(np.float64)
-    _, cz = read_matrix(os.path.join(work, "sunp_ab0.dat"))
+    _, cz = read_matrix(os.path.join(work, "sunsf_ab0.dat"))
     cz = luminance(cz.reshape(n_sensors, len(mods), 3)).astype(np.float64)
-    ind = cn - cz[None]                                    # (R, sensors, patches)
+    ind = cn - cz[None]                                    # (R, sensors, suns)
     ind_mean, ind_se = replicate_mean_and_se(ind)
-    front = has_sun & (sun_dir[:, 1] < 0)
-    hours_front = np.nonzero(front)[0]
-    patch_of_hour = np.array([col[int(np.argmax(centres @ sun_dir[t]))] for t in hours_front])
+    hours_front = np.array([hour_index_of_sun(sid) for sid in mods])
+    assert np.all(has_sun[hours_front]) and np.all(sun_dir[hours_front, 1] < 0)
+    assert int((has_sun & (sun_dir[:, 1] < 0)).sum()) == len(mods)
+    scale = ev[hours_front] / omega_sun
     e_sunind = np.zeros((n_sensors, n_hours))
     e_sunind_se = np.zeros((n_sensors, n_hours))
-    scale = ev[hours_front] / omega_sun
-    e_sunind[:, hours_front] = ind_mean[:, patch_of_hour] * scale
-    e_sunind_se[:, hours_front] = ind_se[:, patch_of_hour] * scale
+    e_sunind[:, hours_front] = ind_mean * scale
+    e_sunind_se[:, hours_front] = ind_se * scale
+    # The -ab 0 run of these suns must equal the direct-sun run's columns for the same suns.
+    assert np.allclose(cz / omega_sun * ev[hours_front], e_direct[:, hours_front], rtol=1e-5, atol=1e-3)
 
     total = e_sky + e_direct + e_sunind
     total_se = np.sqrt(e_sky_se ** 2 + e_sunind_se ** 2)

@@ -25,15 +25,16 @@ export PATH="$RAD/bin:$PATH"
 export RAYPATH=".:$RAD/lib"
 NPROC=${NPROC:-$(nproc)}
 SKY_REPS=${SKY_REPS:-32}     # independent estimates per sensor, sky daylight coefficients
-SUN_REPS=${SUN_REPS:-4}      # independent estimates per sensor, the sun's interreflections
+SUN_REPS=${SUN_REPS:-2}      # independent estimates per sensor, the sun's interreflections
 SKY_AD=${SKY_AD:-16384}      # hemisphere samples per estimate (first bounce)
-SUN_AD=${SUN_AD:-8192}
+SUN_AD=${SUN_AD:-4096}
 AB=${AB:-20}                 # ambient bounces (Russian roulette below -lw, no depth cap: -lr 0)
 STAGE=${STAGE:-all}
 
 # Sampling: no irradiance cache, stratified hemisphere sampling at every bounce, Russian roulette
 # for rays below the weight -lw (unbiased). The sun's runs test 577 sources at every hit, so their
-# paths are cut shorter (-lw 1e-4: five times less variance for the same time than 1e-6).
+# paths are cut shorter (-lw 1e-4: several times less variance for the same time than 1e-6;
+# rcontrib's coefficients carry the roulette's weights, so its results do not depend on -lw).
 AMB="-ab $AB -aa 0 -lw 1e-6 -lr 0"
 AMB_SUN="-ab $AB -aa 0 -lw 1e-4 -lr 0"
 # Light sources: every source tested with one shadow ray to its centre (no culling, no jitter).
@@ -65,7 +66,6 @@ if [ "$STAGE" = all ]; then
   $PY "$HERE/scripts/radiance_annual_reference.py" prepare "$WORK"
   oconv room.rad sky.rad > sky.oct
   oconv room.rad suns1.rad > suns1.oct
-  oconv room.rad sunp.rad > sunp.oct
 
   # 3. Sky daylight coefficients, SKY_REPS independent estimates per sensor.
   repeat sensors.pts "$SKY_REPS" > sensors_sky.pts
@@ -85,13 +85,15 @@ if [ "$STAGE" = all ] || [ "$STAGE" = sun ]; then
   # (STAGE=sun redoes step 5 and the assembly in an existing WORK_DIR.)
   read start t0 t1 t2 < times.txt
   NS=$(wc -l < sensors.pts)
+  $PY "$HERE/scripts/radiance_annual_reference.py" prepare "$WORK"
+  oconv room.rad sunsf.rad > sunsf.oct
   t2b=$(date +%s)
-  # 5. The sun's interreflected light: unit suns at the MF 6 patch centres nearest the actual
-  #    suns, all bounces (SUN_REPS estimates) and the direct part alone (subtracted).
+  # 5. The sun's interreflected light: the actual suns that can shine through the window (unit
+  #    radiance), all bounces (SUN_REPS estimates) and the direct part alone (subtracted).
   repeat sensors.pts "$SUN_REPS" > sensors_sun.pts
-  rcontrib -n "$NPROC" -h -I+ $AMB_SUN -ad "$SUN_AD" $DIR -faf -M sunp.mod sunp.oct \
-    < sensors_sun.pts > sunp_ab.dat
-  rcontrib -n "$NPROC" -h -I+ -ab 0 $DIR -faf -M sunp.mod sunp.oct < sensors.pts > sunp_ab0.dat
+  rcontrib -n "$NPROC" -h -I+ $AMB_SUN -ad "$SUN_AD" $DIR -faf -M sunsf.mod sunsf.oct \
+    < sensors_sun.pts > sunsf_ab.dat
+  rcontrib -n "$NPROC" -h -I+ -ab 0 $DIR -faf -M sunsf.mod sunsf.oct < sensors.pts > sunsf_ab0.dat
   t3=$(date +%s); echo "sun interreflections: $((t3 - t2b)) s"
 
   cat > settings.json <<EOF
@@ -99,7 +101,7 @@ if [ "$STAGE" = all ] || [ "$STAGE" = sun ]; then
  "sky": "gendaymtx -m 4 -c 1 1 1 -s (MF 4, 2305 sky patches + ground, reflectance 0.2)",
  "sky_coefficients": "rcontrib -I+ $AMB -ad $SKY_AD, $SKY_REPS estimates per sensor",
  "sun_direct": "rcontrib -I+ -ab 0 $DIR, every gendaymtx -D sun",
- "sun_interreflected": "rcontrib -I+ $AMB_SUN -ad $SUN_AD $DIR minus -ab 0, MF 6 sun-patch centres, $SUN_REPS estimates per sensor",
+ "sun_interreflected": "rcontrib -I+ $AMB_SUN -ad $SUN_AD $DIR minus -ab 0, the actual suns in front of the south wall, $SUN_REPS estimates per sensor",
  "seconds": {"sky_coefficients": $((t1 - t0)), "sun_direct": $((t2 - t1)), "sun_interreflected": $((t3 - t2b)), "total_rcontrib": $((t1 - t0 + t2 - t1 + t3 - t2b))},
  "threads": $NPROC}
 EOF
