@@ -20,6 +20,10 @@ atrium: a 6 x 6 x 9 m hall with a gallery, its flat roof the opening domain (0.5
 solid_wall_room: window_room's room with its south wall modelled as a 0.3 m solid (inner face the
     opening domain, outer face and edge strips modelled, the thickness measured), 0.25 m
     elements, Preetham sky and sun on a spring morning (the sun oblique to the wall); two windows.
+annual_room: a side-lit 4 x 6 x 3 m room in Chicago (O'Hare's latitude, longitude and time zone), its
+    south wall the opening domain with one 2.4 x 1.5 m window (sill 0.9 m) in window.json, 96 sensors
+    on a 0.5 m grid at 0.76 m; the same room written for Radiance (room.rad, sensors.pts), whose
+    annual daylight-coefficient reference is python_tests/data/radiance_annual_room/.
 """
 
 import json
@@ -418,6 +422,90 @@ def vault_room():
     write_parameter_truth(out, scene, [((3, 5), (2, 4)), ((8, 10), (9, 12))])
 
 
+# The annual reference room: Chicago O'Hare (examples/weather), as the EPW's LOCATION gives it.
+CHICAGO = {"latitude": 41.98, "longitude": -87.92, "elevation": 201.0, "utc_offset": -6.0}
+ANNUAL_ROOM = {"width": 4.0, "depth": 6.0, "height": 3.0,
+               "window": (0.8, 3.2, 0.9, 2.4),   # x0, x1, z0, z1 in the south wall y = 0
+               "reflectance": {"floor": 0.2, "wall": 0.5, "wall_south": 0.5, "ceiling": 0.7},
+               "sensor_height": 0.76, "sensor_spacing": 0.5}
+
+
+def annual_room_sensors():
+    """Cell centres of a 0.5 m grid over the floor at 0.76 m, x fastest (8 x 12 = 96)."""
+    r = ANNUAL_ROOM
+    a = r["sensor_spacing"]
+    xs = np.arange(a / 2, r["width"], a)
+    ys = np.arange(a / 2, r["depth"], a)
+    return [[float(x), float(y), r["sensor_height"]] for y in ys for x in xs]
+
+
+def annual_room_rad():
+    """The same room for Radiance: Lambertian plastic, zero-thickness walls, the window a hole."""
+    r = ANNUAL_ROOM
+    w, d, h = r["width"], r["depth"], r["height"]
+    x0, x1, z0, z1 = r["window"]
+    rho = r["reflectance"]
+    lines = ["# written by examples/make_examples.py: the annual_room of scene.json for Radiance.",
+             "# Meters; +X east, +Y north, +Z up. Lambertian (plastic, no specularity), grey.",
+             "# The window x in [%g, %g], z in [%g, %g] of the south wall y = 0 is a hole." % (x0, x1, z0, z1),
+             ""]
+    for name in ("floor", "wall", "ceiling"):
+        v = rho[name]
+        lines += ["void plastic %s_mat\n0\n0\n5 %g %g %g 0 0\n" % (name, v, v, v)]
+
+    def polygon(material, name, points):
+        lines.append("%s polygon %s\n0\n0\n%d" % (material, name, 3 * len(points)))
+        for p in points[::-1]:  # counter-clockwise seen from inside: the normal faces the room
+            lines.append("    %g %g %g" % tuple(p))
+        lines.append("")
+
+    # Each list runs clockwise seen from inside the room (written reversed).
+    polygon("floor_mat", "floor", [(0, 0, 0), (0, d, 0), (w, d, 0), (w, 0, 0)])
+    polygon("ceiling_mat", "ceiling", [(0, 0, h), (w, 0, h), (w, d, h), (0, d, h)])
+    polygon("wall_mat", "wall_north", [(0, d, 0), (0, d, h), (w, d, h), (w, d, 0)])
+    polygon("wall_mat", "wall_west", [(0, 0, 0), (0, 0, h), (0, d, h), (0, d, 0)])
+    polygon("wall_mat", "wall_east", [(w, 0, 0), (w, d, 0), (w, d, h), (w, 0, h)])
+    # South wall (normal +Y) around the window hole.
+    polygon("wall_mat", "wall_south_below", [(0, 0, 0), (w, 0, 0), (w, 0, z0), (0, 0, z0)])
+    polygon("wall_mat", "wall_south_above", [(0, 0, z1), (w, 0, z1), (w, 0, h), (0, 0, h)])
+    polygon("wall_mat", "wall_south_west", [(0, 0, z0), (x0, 0, z0), (x0, 0, z1), (0, 0, z1)])
+    polygon("wall_mat", "wall_south_east", [(x1, 0, z0), (w, 0, z0), (w, 0, z1), (x1, 0, z1)])
+    return "\n".join(lines)
+
+
+def annual_room():
+    out = os.path.join(HERE, "annual_room")
+    os.makedirs(out, exist_ok=True)
+    r = ANNUAL_ROOM
+    obj = Obj()
+    room(obj, r["width"], r["depth"], r["height"], "wall_south")
+    obj.write(os.path.join(out, "scene.obj"))
+    sensors = annual_room_sensors()
+    rho = r["reflectance"]
+    scene = {
+        "fenestra": 1,
+        "geometry": "scene.obj",
+        "materials": {name: {"type": "diffuse", "reflectance": v} for name, v in rho.items()},
+        "opening_domain": {"materials": ["wall_south"], "element_size": 0.25, "thickness": 0.0},
+        "sensors": {"points": sensors, "normals": [0, 0, 1]},
+        # The place and clock of the Chicago weather file; the annual study takes its skies from
+        # examples/weather (see annual_room/README.md), this day's sky only pins the place.
+        "sky": dict({"type": "preetham", "date": "2026-03-21", "start": "08:00", "end": "18:00",
+                     "step_minutes": 30, "ground_reflectance": 0.2}, **CHICAGO),
+        "render": {"paths_per_sensor": 4096, "max_bounces": 16, "seed": 1, "threads": 0},
+    }
+    with open(os.path.join(out, "scene.json"), "w") as f:
+        json.dump(scene, f, indent=2)
+    x0, x1, z0, z1 = r["window"]
+    window = {"openings": [{"corners": [[x0, 0, z0], [x1, 0, z0], [x1, 0, z1], [x0, 0, z1]]}]}
+    with open(os.path.join(out, "window.json"), "w") as f:
+        json.dump(window, f, indent=2)
+    with open(os.path.join(out, "room.rad"), "w") as f:
+        f.write(annual_room_rad())
+    with open(os.path.join(out, "sensors.pts"), "w") as f:
+        f.write("".join("%g %g %g 0 0 1\n" % tuple(p) for p in sensors))
+
+
 if __name__ == "__main__":
     reference_room()
     paper_scale()
@@ -427,4 +515,5 @@ if __name__ == "__main__":
     solid_wall_room()
     curved_wall_room()
     vault_room()
+    annual_room()
     print("examples written under", HERE)
