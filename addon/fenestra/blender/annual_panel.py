@@ -7,65 +7,89 @@ import bpy
 from . import false_colour, sky, solve_progress
 from .panels import FenestraPanel, draw_warning
 
-VALUE_COLUMN = 0.64  # share of the width for the names; the values to the right
+VALUE_COLUMN = 0.72  # share of the width for a UDI band's name; its share of the hours to the right
 
 
 def _percent(fraction):
     return "%.0f %%" % (100.0 * fraction)
 
 
-def _row(layout, name, value, icon='NONE'):
-    split = layout.split(factor=VALUE_COLUMN, align=True)
-    split.label(text=name, icon=icon)
-    split.label(text=value)
-
-
 def _passes(passed):
     return 'CHECKMARK' if passed else 'X'
 
 
+def _note(layout, text):
+    """A line that explains the figure above it, greyed."""
+    row = layout.row()
+    row.active = False
+    row.label(text=text)
+
+
+def _band_name(band):
+    """A UDI band as "UDI-a 300-3000 lx" (Mardaljevic's four bands by their initials; others by the
+    core's name), short enough for the sidebar."""
+    name = band.label.split(" (")[0]
+    if name in {"fell-short", "supplementary", "autonomous", "exceeded"}:
+        name = "UDI-" + name[0]
+    if band.lower_lux <= 0:
+        return "%s < %g lx" % (name, band.upper_lux)
+    if band.upper_lux < 0:
+        return "%s > %g lx" % (name, band.lower_lux)
+    return "%s %g-%g lx" % (name, band.lower_lux, band.upper_lux)
+
+
+def _leed_level(levels):
+    """(text, passed) for the highest sDA level reached."""
+    reached = [level.level for level in levels if level.passed]
+    if reached:
+        return "LEED v4: %.0f %% level reached" % (100 * max(reached)), True
+    return "LEED v4: below the %.0f %% level" % (100 * min(level.level for level in levels)), False
+
+
 def draw_space_metrics(layout, annual):
-    """The space metrics: sDA with its pass levels, ASE, DA, cDA, UDI, the mean, EN 17037."""
+    """The space metrics, each with what it means: sDA and its LEED levels, ASE and its limit, DA,
+    cDA, the annual mean, the UDI bands, the EN 17037 level. Short lines: the sidebar is narrow."""
     box = layout.box()
-    _row(box, "Spatial daylight autonomy", _percent(annual.spatial_daylight_autonomy), 'LIGHT_AREA')
-    box.label(text="sDA300/50%: floor with ≥ 300 lx half the occupied hours")
+    box.label(text="sDA300/50%%: %s" % _percent(annual.spatial_daylight_autonomy), icon='LIGHT_AREA')
+    _note(box, "floor ≥ 300 lx half the hours")
     if len(annual.sda_levels):
-        row = box.row(align=True)
-        row.label(text="LEED v4 levels:")
-        for level in annual.sda_levels:
-            row.label(text="%.0f %%" % (100 * level.level), icon=_passes(level.passed))
+        text, passed = _leed_level(annual.sda_levels)
+        box.label(text=text, icon=_passes(passed))
     box = layout.box()
     if annual.has_ase:
-        _row(box, "Annual sunlight exposure", _percent(annual.annual_sunlight_exposure), 'LIGHT_SUN')
-        box.label(text="ASE1000,250: floor with > 1000 lx of direct sun > 250 h")
-        box.label(text="LEED v4: at most 10 %%: %s" % ("passes" if annual.ase_passes else "fails"),
+        box.label(text="ASE1000,250: %s" % _percent(annual.annual_sunlight_exposure), icon='LIGHT_SUN')
+        _note(box, "floor > 1000 lx sun, > 250 h")
+        box.label(text="LEED v4 (≤ 10 %%): %s" % ("passes" if annual.ase_passes else "fails"),
                   icon=_passes(annual.ase_passes))
     else:
-        box.label(text="Annual sunlight exposure: not computed (no direct sun)", icon='INFO')
-    col = layout.column(align=True)
-    _row(col, "Daylight autonomy DA300", _percent(annual.daylight_autonomy))
-    _row(col, "Continuous DA300", _percent(annual.continuous_daylight_autonomy))
-    _row(col, "Annual mean illuminance", "%.0f lx" % annual.mean_illuminance)
-    col.label(text="(shares of the occupied hours, floor mean)")
+        box.label(text="ASE: no direct sun", icon='INFO')
+    box = layout.box()
+    col = box.column(align=True)
+    col.label(text="DA300: %s" % _percent(annual.daylight_autonomy))
+    col.label(text="cDA300: %s" % _percent(annual.continuous_daylight_autonomy))
+    col.label(text="Annual mean: %.0f lx" % annual.mean_illuminance)
+    _note(col, "of the occupied hours, floor mean")
     if len(annual.udi):
         box = layout.box()
-        box.label(text="Useful daylight illuminance (UDI):")
+        box.label(text="Useful daylight, hours:")
         col = box.column(align=True)
         for band in annual.udi:
-            _row(col, band.label, _percent(band.space_fraction))
+            split = col.split(factor=VALUE_COLUMN, align=True)
+            split.label(text=_band_name(band))
+            split.label(text=_percent(band.space_fraction))
     level = annual.en17037_level
-    _row(layout, "EN 17037 daylight provision", level if level else "not met", _passes(bool(level)))
+    layout.label(text="EN 17037: %s" % (level if level else "below minimum"), icon=_passes(bool(level)))
 
 
 def draw_run(layout, annual):
     """What the figures are of: the weather, the occupied hours, the openings, the run."""
     col = layout.column(align=True)
-    col.label(text="Weather: %s" % (annual.weather or "-"), icon='WORLD')
-    col.label(text="Occupied %s local standard time, %d h a year" % (annual.occupied_period or "-",
-                                                                     annual.occupied_hours))
-    col.label(text="%d opening%s open, %d paths per sensor" % (annual.openings, "" if annual.openings == 1 else "s",
-                                                               annual.paths))
-    col.label(text="%.1f s%s" % (annual.seconds, " (light paths reused)" if annual.reused else ""))
+    col.active = False
+    col.label(text=annual.weather or "-", icon='WORLD')
+    col.label(text="%s, %d h a year" % (annual.occupied_period or "-", annual.occupied_hours))
+    col.label(text="%d opening%s, %d paths per sensor" % (annual.openings, "" if annual.openings == 1 else "s",
+                                                          annual.paths))
+    col.label(text="%.1f s%s" % (annual.seconds, ", light paths reused" if annual.reused else ""))
 
 
 class FENESTRA_PT_annual(FenestraPanel, bpy.types.Panel):
@@ -84,13 +108,14 @@ class FENESTRA_PT_annual(FenestraPanel, bpy.types.Panel):
         if problem:
             draw_warning(layout, problem)
         if settings.sky.type != 'CLIMATE':
-            layout.label(text="The last run's figures (the sky is no longer Climate)", icon='INFO')
+            layout.label(text="Sky is no longer Climate:", icon='INFO')
+            _note(layout, "figures of the last run")
         elif not solve_progress.draw(layout):  # while a job runs: its progress and Cancel
             row = layout.row()
             row.enabled = problem is None
             row.operator("fenestra.annual_daylight", icon='TIME')
         if not annual.valid:
-            layout.label(text="No annual run yet: it uses the openings as their cutters stand")
+            _note(layout, "Of the openings as their cutters stand")
             return
         row = layout.row(align=True)
         row.label(text="Show:")

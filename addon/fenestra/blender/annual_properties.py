@@ -21,6 +21,8 @@ class FenestraAnnualSensor(PropertyGroup):
 
 class FenestraAnnualBand(PropertyGroup):
     label: StringProperty(name="Band", description="The band's name and range, as the native core gives it")
+    lower_lux: FloatProperty(name="From", description="Lux (negative: none, the band starts at 0)", default=-1.0)
+    upper_lux: FloatProperty(name="To", description="Lux (negative: none, the band has no top)", default=-1.0)
     space_fraction: FloatProperty(name="Share", description="Share of the occupied hours in this band, "
                                                             "averaged over the sensors")
 

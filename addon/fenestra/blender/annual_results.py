@@ -74,6 +74,7 @@ def apply(scene, study, summary, openings, seconds, reused, study_path):
     for band in space.get("udi", []):
         item = annual.udi.add()
         item.label, item.space_fraction = band["name"], _number(band.get("space_fraction"))
+        item.lower_lux, item.upper_lux = _number(band.get("lower_lux"), -1.0), _number(band.get("upper_lux"), -1.0)
     annual.en17037_level = (space.get("en17037") or {}).get("level_reached") or ""
 
     count = sum(n for _, n in study.sensor_objects)

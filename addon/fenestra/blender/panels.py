@@ -95,12 +95,13 @@ class FENESTRA_PT_sensors(FenestraPanel, bpy.types.Panel):
 
 def draw_climate(layout, context, s):
     """The climate sky: the weather file (the place is the file's), north, occupied hours, patches."""
-    layout.prop(s, "weather_file")
+    layout.label(text="Weather File (.epw, .wea):")
+    layout.prop(s, "weather_file", text="")
     problem = weather_file.problem(s)
     if problem:
         draw_warning(layout, problem)
     else:
-        layout.label(text="Place and time zone: the weather file's", icon='WORLD')
+        layout.label(text="Place: the weather file's", icon='WORLD')
     sp = sky.sun_position(context.scene)
     if sp is not None:
         layout.prop(s, "use_sun_position")
@@ -108,16 +109,16 @@ def draw_climate(layout, context, s):
         layout.label(text="North %.1f° (Sun Position)" % sky.place_and_date(context.scene)[3], icon='LIGHT_SUN')
     else:
         layout.prop(s, "north_offset")
+    layout.label(text="Occupied hours:")
     row = layout.row(align=True)
-    row.prop(s, "occupied_start")
-    row.prop(s, "occupied_end")
-    layout.label(text="Occupied %s-%s, every day, local standard time" % (sky.clock(s.occupied_start),
-                                                                           sky.clock(s.occupied_end)))
+    row.prop(s, "occupied_start", text="From")
+    row.prop(s, "occupied_end", text="To")
+    layout.label(text="%s-%s local standard time" % (sky.clock(s.occupied_start), sky.clock(s.occupied_end)))
     problem = sky.occupied_problem(s)
     if problem:
         draw_warning(layout, problem)
     layout.prop(s, "patches")
-    layout.label(text="Annual Daylight: Results > Annual Daylight", icon='TIME')
+    layout.label(text="Run: Results > Annual Daylight", icon='TIME')
 
 
 class FENESTRA_PT_sky(FenestraPanel, bpy.types.Panel):

@@ -71,7 +71,7 @@ class FenestraSkySettings(PropertyGroup):
         description="An EnergyPlus weather file (.epw) or a Daysim/Radiance .wea file: a year of hourly "
                     "sun and sky; the place (latitude, longitude, time zone) is the file's")
     occupied_start: FloatProperty(
-        name="Occupied From", min=0.0, max=24.0, default=8.0, precision=2,
+        name="Occupied", min=0.0, max=24.0, default=8.0, precision=2,
         description="Start of the occupied hours, every day, local standard time (no daylight saving), hours")
     occupied_end: FloatProperty(
         name="To", min=0.0, max=24.0, default=18.0, precision=2,
