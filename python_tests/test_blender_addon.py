@@ -29,7 +29,7 @@ def run_in_blender(tmp_path, script, *args):
 def test_addon_study(tmp_path):
     r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_study.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
-    assert "Ran 17 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+    assert "Ran 21 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 
 
 @pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")

@@ -152,3 +152,26 @@ def test_what_the_contributions_depend_on(change):
 def test_the_geometry_counts():
     assert (study_fingerprint.contributions_fingerprint(Study(scene(), "v 0 0 0\n"))
             != study_fingerprint.contributions_fingerprint(Study(scene(), "v 0 0 1\n")))
+
+
+def test_an_annual_folder_replaces_its_own_files(tmp_path):
+    """Annual Daylight stages `annual/` with its own list of files: the previous run's outputs are
+    replaced, not carried over onto the new ones; the user's files are."""
+    files = ("scene.json", "scene.obj", "openings.json", "annual.json", "annual.npz")
+    annual = str(tmp_path / "study" / "annual")
+    write(annual, dict({name: "old " + name for name in files}, **{"notes.txt": "the user's"}))
+    staging = study_folder.StagingFolder(annual, files)
+    write(staging.path, {name: "new " + name for name in files})
+    assert staging.commit() is None
+    assert read(annual) == dict({name: "new " + name for name in files}, **{"notes.txt": "the user's"})
+
+
+def test_a_weather_file_replaced_under_its_name_counts(tmp_path):
+    """A climate study names its weather file by path: the file's size and time of change count too."""
+    weather = tmp_path / "site.epw"
+    weather.write_text("LOCATION,one\n")
+    climate = scene(sky={"type": "climate", "weather": str(weather)})
+    before = study_fingerprint.contributions_fingerprint(Study(climate))
+    assert study_fingerprint.contributions_fingerprint(Study(climate)) == before
+    weather.write_text("LOCATION,another place\n")
+    assert study_fingerprint.contributions_fingerprint(Study(climate)) != before

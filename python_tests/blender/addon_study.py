@@ -6,6 +6,7 @@ The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestr
 
 import json
 import os
+import shutil
 import sys
 import unittest
 
@@ -15,6 +16,8 @@ import numpy as np
 
 OUT = sys.argv[sys.argv.index("--") + 1] if "--" in sys.argv else "/tmp/fenestra_addon_test"
 ROOM = (4.0, 4.0, 2.7)
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CHICAGO = os.path.join(ROOT, "examples", "weather", "USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw")
 
 
 def enable():
@@ -278,6 +281,173 @@ class Solve(unittest.TestCase):
         flags = np.zeros(6, bool)
         bpy.data.objects["Room"].data.attributes["fenestra_domain"].data.foreach_get("value", flags)
         self.assertEqual(flags.tolist(), [False, False, True, False, False, False])
+
+
+def climate(weather=CHICAGO):
+    """The study's sky: a year of Chicago weather, 08:00-18:00."""
+    sky = bpy.context.scene.fenestra.sky
+    sky.type, sky.weather_file = 'CLIMATE', weather
+    return sky
+
+
+def annual_folder():
+    return os.path.join(OUT, "study", "annual")
+
+
+class ClimateDaylight(unittest.TestCase):
+    """The climate sky exported, Annual Daylight on a room with one window, bad weather files refused."""
+
+    def setUp(self):
+        reset()
+
+    def test_climate_sky_is_exported(self):
+        from fenestra.blender import export
+        study()
+        sky = climate()
+        sky.occupied_start, sky.occupied_end, sky.patches, sky.ground_reflectance = 7.5, 17.0, '2', 0.3
+        sky.use_sun_position, sky.north_offset = False, np.radians(30.0)
+        # A path relative to the .blend file's folder ('//') is written absolute: the study folder may move.
+        bpy.ops.wm.save_as_mainfile(filepath=os.path.join(OUT, "climate.blend"))
+        sky = climate(bpy.path.relpath(CHICAGO))
+        self.assertTrue(sky.weather_file.startswith("//"), sky.weather_file)
+        written = export.build(bpy.context).scene["sky"]
+        self.assertAlmostEqual(written.pop("north_offset_deg"), 30.0, places=4)
+        self.assertAlmostEqual(written.pop("ground_reflectance"), 0.3, places=6)
+        self.assertEqual(written, {"type": "climate", "weather": os.path.abspath(CHICAGO), "patches": 2,
+                                   "occupied": ["07:30", "17:00"]})
+        # The native loader takes it (the sky matrix of the year and the cumulative sky are built).
+        import fenestra
+        study_ = export.build(bpy.context)
+        path = study_.write(os.path.join(OUT, "climate_study"))
+        self.assertTrue(fenestra.load_scene(path).has_climate)
+
+    def test_annual_daylight_of_a_room_with_one_window(self):
+        import fenestra
+        from fenestra.blender import result_display
+        study()
+        climate()
+        f = bpy.context.scene.fenestra
+        f.solve.constraints.max_openings, f.solve.constraints.max_width = 1, 1.5
+        f.solve.wall_thickness = 0.0  # the box's single-face wall: any edge counts (a thick wall: below)
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})  # under the occupied hours' mean sky
+        self.assertEqual(len(cutters()), 1)
+        self.assertEqual(bpy.ops.fenestra.annual_daylight(), {'FINISHED'})
+        a = f.annual
+        self.assertTrue(a.valid)
+        self.assertTrue(a.reused)  # the solve's contributions: only the openings are new
+        self.assertEqual((a.hours, a.occupied_hours, a.occupied_period, a.openings), (8760, 3650, "08:00-18:00", 1))
+        self.assertEqual(a.weather, os.path.basename(CHICAGO))
+        # The figures are the native core's summary, written to annual/annual.json.
+        summary = json.load(open(os.path.join(annual_folder(), "annual.json")))
+        space = summary["space"]
+        self.assertAlmostEqual(a.spatial_daylight_autonomy, space["spatial_daylight_autonomy"], places=6)
+        self.assertAlmostEqual(a.daylight_autonomy, space["daylight_autonomy"], places=6)
+        self.assertAlmostEqual(a.mean_illuminance, space["mean_illuminance_lux"], places=2)
+        self.assertAlmostEqual(a.annual_sunlight_exposure, space["annual_sunlight_exposure"], places=6)
+        self.assertEqual(a.ase_passes, space["ase_passes"])
+        self.assertEqual([(x.level, x.passed) for x in a.sda_levels],
+                         [(as_stored(x["level"]), x["passed"]) for x in space["sda_levels"]])
+        self.assertEqual(len(a.udi), 4)
+        self.assertAlmostEqual(sum(b.space_fraction for b in a.udi), 1.0, places=5)
+        self.assertEqual(a.en17037_level, space["en17037"]["level_reached"] or "")
+        self.assertGreater(a.mean_illuminance, 50.0)  # a room with a window in Chicago
+        # The run re-runs without Blender: its study, openings and outputs side by side.
+        folder = annual_folder()
+        self.assertEqual(sorted(os.listdir(folder)),
+                         ["annual.json", "annual.npz", "openings.json", "scene.json", "scene.obj"])
+        self.assertEqual(json.load(open(os.path.join(folder, "scene.json")))["sky"]["type"], "climate")
+        self.assertEqual(len(json.load(open(os.path.join(folder, "openings.json")))["openings"]), 1)
+        with np.load(os.path.join(folder, "annual.npz")) as arrays:
+            self.assertEqual(arrays["illuminance"].shape, (len(a.sensors), 8760))
+        # Per sensor, by object and vertex, and in false colour (DA in percent by default).
+        sensors = bpy.data.objects["Fenestra Sensors"]
+        self.assertEqual(len(a.sensors), len(sensors.data.vertices))
+        self.assertEqual(f.display.false_colour, 'ANNUAL')
+        scale, shown = result_display.current(bpy.context)
+        da = np.array(summary["per_sensor"]["daylight_autonomy"]) * 100.0
+        self.assertTrue(np.allclose(shown["Fenestra Sensors"], da, atol=1e-4))
+        self.assertEqual(scale.top, 100.0)
+        self.assertIn("Daylight autonomy", scale.title)
+        colours = scale.colours(shown["Fenestra Sensors"])
+        self.assertEqual(colours.shape, (len(da), 4))
+        self.assertGreater(len(np.unique(np.round(colours, 3), axis=0)), 1)  # near and far from the window
+        f.display.annual_metric = 'MEAN'
+        scale, shown = result_display.current(bpy.context)
+        self.assertTrue(np.allclose(shown["Fenestra Sensors"], summary["per_sensor"]["mean_illuminance_lux"], rtol=1e-5))
+        self.assertEqual(scale.units, "lx")
+        f.display.annual_metric = 'ASE_HOURS'
+        self.assertTrue(np.allclose(result_display.current(bpy.context)[1]["Fenestra Sensors"],
+                                    summary["per_sensor"]["ase_hours"]))
+        # Moving the window and running again reuses the light paths; the figures follow the window.
+        before = [s.mean_illuminance for s in a.sensors]
+        window = cutters()[0]
+        window.location.x += 0.8 if window.location.x < ROOM[0] / 2 else -0.8
+        self.assertEqual(bpy.ops.fenestra.annual_daylight(), {'FINISHED'})
+        self.assertTrue(a.reused)
+        self.assertFalse(np.allclose(before, [s.mean_illuminance for s in a.sensors]))
+        # Clear Results forgets the run with the openings it was of.
+        self.assertEqual(bpy.ops.fenestra.clear_results(), {'FINISHED'})
+        self.assertFalse(a.valid)
+        self.assertEqual(len(a.sensors), 0)
+
+    def test_a_thick_wall_needs_edges_on_the_element_grid(self):
+        study()  # a 0.2 m wall
+        climate()
+        f = bpy.context.scene.fenestra
+        f.solve.constraints.max_openings = 1
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})  # its edges moved off the grid
+        with self.assertRaises(RuntimeError) as failure:
+            bpy.ops.fenestra.annual_daylight()
+        for words in ("'Fenestra Opening 001' has an edge between the lines of the element grid", "0.2 m thick",
+                      "Edges on Element Grid"):
+            self.assertIn(words, str(failure.exception))
+        self.assertFalse(f.annual.valid)
+        self.assertFalse(os.path.exists(annual_folder()))
+        f.solve.edges_on_grid = True
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        self.assertIs(json.load(open(os.path.join(OUT, "study", "scene.json")))["solver"]["refine_edges"], False)
+        self.assertEqual(bpy.ops.fenestra.annual_daylight(), {'FINISHED'})
+        self.assertTrue(f.annual.valid and f.annual.reused)
+
+    def test_bad_weather_files_are_refused_and_nothing_is_written(self):
+        study()
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})  # a study folder to keep
+        shutil.rmtree(annual_folder(), ignore_errors=True)  # an earlier test's run
+        scene_json = os.path.join(OUT, "study", "scene.json")
+        before_study = open(scene_json).read()
+        other = os.path.join(OUT, "notes.txt")
+        open(other, "w").write("not weather")
+        for weather, words in ((os.path.join(OUT, "missing.epw"), ["Weather file 'missing.epw' not found", "Sky > Weather File"]),
+                               (other, ["'notes.txt' is not a weather file", ".epw"]),
+                               ("", ["Choose a weather file"])):
+            climate(weather)
+            shown = snapshot()
+            for operator in (bpy.ops.fenestra.annual_daylight, bpy.ops.fenestra.solve_openings):
+                with self.assertRaises(RuntimeError) as failure:
+                    operator()
+                for word in words:
+                    self.assertIn(word, str(failure.exception))
+                self.assertEqual(snapshot(), shown)
+            self.assertFalse(os.path.exists(annual_folder()))
+            self.assertEqual(os.listdir(os.path.join(OUT, "study")).count("annual"), 0)
+            self.assertEqual(open(scene_json).read(), before_study)
+            self.assertFalse(bpy.context.scene.fenestra.annual.valid)
+        # The occupied period must lie within a day.
+        sky = climate()
+        sky.occupied_start, sky.occupied_end = 19.0, 7.0
+        with self.assertRaises(RuntimeError) as failure:
+            bpy.ops.fenestra.annual_daylight()
+        self.assertIn("Occupied hours: the start (19:00) must be before the end (07:00)", str(failure.exception))
+        self.assertFalse(os.path.exists(annual_folder()))
+        # Another sky: the operator is not available, and says why.
+        bpy.context.scene.fenestra.sky.type = 'UNIFORM'
+        from fenestra.blender.annual_operator import FENESTRA_OT_annual_daylight
+        self.assertFalse(FENESTRA_OT_annual_daylight.poll(bpy.context))
+
+
+def as_stored(value):
+    """A float as Blender's single-precision property holds it."""
+    return float(np.float32(value))
 
 
 class BadSetups(unittest.TestCase):

@@ -13,17 +13,20 @@ user moved them, path-traced), tradeoff_operators (a simpler design from the sol
 A solve: solve_job (the worker), solve_progress (its bar and Cancel button), solve_guard (what
 cancels it), study_folder (replaced only on success), study_fingerprint and contributions_cache
 (the contributions reused when only goals or solver settings changed).
+Climate-based daylight: weather_file (the climate sky's file), annual_operator and annual_job (Annual
+Daylight on the cutters as they stand, a job like a solve's), annual_properties and annual_results
+(its figures in scene.fenestra.annual), annual_panel (the metrics under Results).
 """
 
 import bpy
 
-from . import (check_setup, contributions_cache, evaluate_openings, false_colour_overlay, legend, operators, overlay,
-               panels, properties, result_operators, result_panels, sensor_hover, sensor_labels, solve_guard, solve_job,
-               solve_progress, tradeoff_operators)
+from . import (annual_operator, annual_panel, check_setup, contributions_cache, evaluate_openings, false_colour_overlay,
+               legend, operators, overlay, panels, properties, result_operators, result_panels, sensor_hover,
+               sensor_labels, solve_guard, solve_job, solve_progress, tradeoff_operators)
 
 classes = (properties.classes + operators.classes + result_operators.classes + sensor_hover.classes
            + evaluate_openings.classes + solve_progress.classes + panels.classes + result_panels.classes
-           + check_setup.classes + tradeoff_operators.classes)
+           + check_setup.classes + tradeoff_operators.classes + annual_operator.classes + annual_panel.classes)
 DRAWN = (overlay, false_colour_overlay, legend, sensor_labels)
 
 

@@ -12,6 +12,18 @@ QUANTITIES = (
                                  "(grey: no goal)"),
     ('DAYLIGHT_FACTOR', "Daylight Factor", "Achieved illuminance as a percentage of the solved sky's "
                                            "unobstructed horizontal illuminance"),
+    ('ANNUAL', "Annual Metric", "The chosen metric of the last Annual Daylight run (climate sky)"),
+)
+# Per-sensor metrics of an Annual Daylight run (docs/climate-metrics.md), for the false colour.
+ANNUAL_METRICS = (
+    ('DA', "Daylight Autonomy", "Share of the occupied hours with at least 300 lx (DA300), percent"),
+    ('CDA', "Continuous Daylight Autonomy", "As DA, an hour below 300 lx counting for its share of 300 lx "
+                                            "(cDA300), percent"),
+    ('UDI_A', "UDI Autonomous", "Share of the occupied hours from 300 to 3000 lx: enough daylight, not too "
+                                "much (UDI-a), percent"),
+    ('MEAN', "Annual Mean Illuminance", "Mean illuminance over the occupied hours, lux"),
+    ('ASE_HOURS', "Direct Sun Hours", "Occupied hours with more than 1000 lx of direct sun (ASE counts the "
+                                      "sensors above 250 h), hours"),
 )
 
 
@@ -21,6 +33,14 @@ def redraw_3d_views(_settings=None, _context=None):
         for area in window.screen.areas:
             if area.type == 'VIEW_3D':
                 area.tag_redraw()
+
+
+def _annual_metric_changed(display, context):
+    """Choosing a metric shows it."""
+    if display.false_colour != 'ANNUAL':
+        display.false_colour = 'ANNUAL'  # its own update redraws
+    else:
+        redraw_3d_views()
 
 
 def _quantity_changed(display, context):
@@ -34,10 +54,14 @@ class FenestraDisplaySettings(PropertyGroup):
     false_colour: EnumProperty(
         name="False Colour", items=QUANTITIES, default='ACHIEVED', update=_quantity_changed,
         description="What the colours drawn on the sensors show")
+    annual_metric: EnumProperty(
+        name="Annual Metric", items=ANNUAL_METRICS, default='DA', update=_annual_metric_changed,
+        description="Which per-sensor metric of the last Annual Daylight run the false colour shows")
     colour_max: FloatProperty(
         name="Top of Scale", min=0.0, default=0.0, update=redraw_3d_views,
-        description="The value at the top of the colour scale (lux or percent); 0: the largest value, "
-                    "rounded up. Achieved / goal always spans 0.25 to 4")
+        description="The value at the top of the colour scale (lux, percent or hours); 0: the largest "
+                    "value, rounded up. Achieved / goal always spans 0.25 to 4, the annual shares of "
+                    "hours 0 to 100 %")
     show_legend: BoolProperty(name="Legend", default=True, update=redraw_3d_views,
                               description="Draw the colour scale with its values and units in the viewport")
     show_sensor_labels: BoolProperty(

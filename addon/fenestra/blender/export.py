@@ -194,6 +194,9 @@ def _build(context, depsgraph):
     settings = scene.fenestra
     solve = settings.solve
     study = Study()
+    problem = sky.climate_problem(settings.sky)
+    if problem:  # before anything is read or written
+        raise StudyError(problem)
     objects = [o for o in scene.objects if o.type in GEOMETRY_TYPES and o.visible_get()
                and not o.fenestra.is_opening]
     sensor_objects = [o for o in objects if o.fenestra.is_sensor]
@@ -313,6 +316,8 @@ def _build(context, depsgraph):
         "solver": {"paths": paths, "generations": generations, "population": population,
                    "seed": solve.seed},
     }
+    if solve.edges_on_grid:
+        scene_dict["solver"]["refine_edges"] = False
     if solve.verify_paths() > 0:
         scene_dict["solver"]["verify_paths"] = solve.verify_paths()
     if solve.wall_thickness > 0:  # else the native core measures each panel's wall

@@ -19,7 +19,14 @@ NO_VALUE = (0.5, 0.5, 0.5)
 RATIO_STOPS = 2.0  # the diverging scale spans 2**-2 ... 2**2
 
 TITLES = {'ACHIEVED': ("Achieved illuminance", "lx"), 'RATIO': ("Achieved / goal", ""),
-          'DAYLIGHT_FACTOR': ("Daylight factor", "%")}
+          'DAYLIGHT_FACTOR': ("Daylight factor", "%"),
+          # An Annual Daylight run's per-sensor metrics (display_settings.ANNUAL_METRICS).
+          'DA': ("Daylight autonomy DA300, occupied hours", "%"),
+          'CDA': ("Continuous daylight autonomy cDA300", "%"),
+          'UDI_A': ("UDI autonomous, 300-3000 lx", "%"),
+          'MEAN': ("Annual mean illuminance", "lx"),
+          'ASE_HOURS': ("Hours of direct sun > 1000 lx", "h")}
+SHARES_OF_TIME = frozenset({'DA', 'CDA', 'UDI_A'})  # percent of the occupied hours: always 0 to 100
 
 
 class Scale:
@@ -91,8 +98,11 @@ def values(quantity, goal, achieved, horizontal_illuminance):
 
 
 def scale_for(quantity, shown, top=0.0):
-    """The scale of these values: `top` when set, else the largest value rounded up."""
-    if quantity != 'RATIO' and not top > 0:
+    """The scale of these values: `top` when set, else the largest value rounded up (shares of the
+    occupied hours always span 0 to 100 %, so that two runs compare by colour)."""
+    if quantity in SHARES_OF_TIME:
+        top = 100.0
+    elif quantity != 'RATIO' and not top > 0:
         finite = np.asarray(shown, np.float64)
         finite = finite[np.isfinite(finite)]
         top = nice_top(float(finite.max()) if len(finite) else 0.0)

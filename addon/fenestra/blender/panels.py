@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import constraint_defaults, export, native, sensor_results, sky, solve_progress, visibility
+from . import constraint_defaults, export, native, sensor_results, sky, solve_progress, visibility, weather_file
 
 SHOWN = 12  # sensors listed in the Results panel
 
@@ -93,6 +93,34 @@ class FENESTRA_PT_sensors(FenestraPanel, bpy.types.Panel):
             layout.label(text="Paint '%s' in Vertex Paint" % export.GOAL_ATTRIBUTE, icon='BRUSH_DATA')
 
 
+def draw_climate(layout, context, s):
+    """The climate sky: the weather file (the place is the file's), north, occupied hours, patches."""
+    layout.label(text="Weather File (.epw, .wea):")
+    layout.prop(s, "weather_file", text="")
+    problem = weather_file.problem(s)
+    if problem:
+        draw_warning(layout, problem)
+    else:
+        layout.label(text="Place: the weather file's", icon='WORLD')
+    sp = sky.sun_position(context.scene)
+    if sp is not None:
+        layout.prop(s, "use_sun_position")
+    if sp is not None and s.use_sun_position:
+        layout.label(text="North %.1f° (Sun Position)" % sky.place_and_date(context.scene)[3], icon='LIGHT_SUN')
+    else:
+        layout.prop(s, "north_offset")
+    layout.label(text="Occupied hours:")
+    row = layout.row(align=True)
+    row.prop(s, "occupied_start", text="From")
+    row.prop(s, "occupied_end", text="To")
+    layout.label(text="%s-%s local standard time" % (sky.clock(s.occupied_start), sky.clock(s.occupied_end)))
+    problem = sky.occupied_problem(s)
+    if problem:
+        draw_warning(layout, problem)
+    layout.prop(s, "patches")
+    layout.label(text="Run: Results > Annual Daylight", icon='TIME')
+
+
 class FENESTRA_PT_sky(FenestraPanel, bpy.types.Panel):
     bl_label = "Sky"
     bl_parent_id = "FENESTRA_PT_main"
@@ -100,7 +128,9 @@ class FENESTRA_PT_sky(FenestraPanel, bpy.types.Panel):
     def draw(self, context):
         layout, s = self.layout, context.scene.fenestra.sky
         layout.prop(s, "type")
-        if s.type in {'UNIFORM', 'CIE_OVERCAST'}:
+        if s.type == 'CLIMATE':
+            draw_climate(layout, context, s)
+        elif s.type in {'UNIFORM', 'CIE_OVERCAST'}:
             layout.prop(s, "horizontal_illuminance")
         else:
             sp = sky.sun_position(context.scene)
@@ -133,6 +163,7 @@ class FENESTRA_PT_sky(FenestraPanel, bpy.types.Panel):
             layout.prop(s, "turbidity")
         if s.type != 'UNIFORM':
             layout.prop(s, "ground_reflectance")
+        if s.type not in {'UNIFORM', 'CLIMATE'}:  # the climate sky's map keeps the core's size
             layout.prop(s, "map_width")
         layout.prop(s, "preview_strength")
         layout.prop(context.scene.view_settings, "exposure")  # set by Preview Sky, yours to change
@@ -155,6 +186,7 @@ class FENESTRA_PT_solve(FenestraPanel, bpy.types.Panel):
             col.prop(s, "generations")
             col.prop(s, "population")
         layout.prop(s, "seed")
+        layout.prop(s, "edges_on_grid")
         layout.prop(s, "use_booleans")
         layout.prop(s, "study_directory")
         layout.separator()

@@ -7,7 +7,8 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
                        PointerProperty, StringProperty)
 from bpy.types import PropertyGroup
 
-from . import goal_bounds, sky_preview
+from . import annual_properties, goal_bounds, sky_preview
+from .annual_properties import FenestraAnnualResults
 from .display_settings import FenestraDisplaySettings
 
 TODAY = datetime.date.today()
@@ -29,7 +30,9 @@ class FenestraSkySettings(PropertyGroup):
         items=(('PREETHAM', "Preetham + Sun", "Clear sky and sun for a place, dates and hours"),
                ('CIE_CLEAR', "CIE Clear + Sun", "CIE standard clear sky with the same sun"),
                ('CIE_OVERCAST', "CIE Overcast", "CIE standard overcast sky (daylight factors)"),
-               ('UNIFORM', "Uniform", "The same radiance from every direction")))
+               ('UNIFORM', "Uniform", "The same radiance from every direction"),
+               ('CLIMATE', "Climate (weather file)", "A year of a weather file: annual daylight metrics "
+                "(Annual Daylight), and the mean sky of the occupied hours for solving")))
     use_sun_position: BoolProperty(
         name="Use Sun Position", default=True,
         description="Take place, time zone, date and north from the Sun Position add-on when it is enabled")
@@ -62,6 +65,24 @@ class FenestraSkySettings(PropertyGroup):
         "horizontal surface", min=1.0, default=10000.0)
     map_width: IntProperty(name="Map Width", description="Width of the sky map in pixels (height: half)",
                            min=16, max=8192, default=1024)
+    # Climate sky (docs/blender.md, "Climate-based daylight"): the place is the weather file's.
+    weather_file: StringProperty(
+        name="Weather File", subtype='FILE_PATH', default="",
+        description="An EnergyPlus weather file (.epw) or a Daysim/Radiance .wea file: a year of hourly "
+                    "sun and sky; the place (latitude, longitude, time zone) is the file's")
+    occupied_start: FloatProperty(
+        name="Occupied", min=0.0, max=24.0, default=8.0, precision=2,
+        description="Start of the occupied hours, every day, local standard time (no daylight saving), hours")
+    occupied_end: FloatProperty(
+        name="To", min=0.0, max=24.0, default=18.0, precision=2,
+        description="End of the occupied hours, every day, local standard time (no daylight saving), hours; "
+                    "after the start (the period cannot cross midnight)")
+    patches: EnumProperty(
+        name="Sky Patches", default='1',
+        items=(('1', "Tregenza (145)", "145 sky patches of about 12°: quickest"),
+               ('2', "Reinhart (577)", "577 sky patches of about 6°"),
+               ('4', "Reinhart (2305)", "2305 sky patches of about 3°: the finest sky, the most memory")),
+        description="How finely the sky is divided for the annual study")
     preview_strength: FloatProperty(
         name="Preview Strength", min=0.0, default=0.001, precision=5,
         description="World strength of the previewed sky map (1 = cd/m², as Fenestra lights the scene); "
@@ -216,6 +237,10 @@ class FenestraSolveSettings(PropertyGroup):
     population: IntProperty(name="Population", min=4, default=64)
     seed: IntProperty(name="Seed", min=0, default=1)
     constraints: PointerProperty(type=FenestraConstraints)
+    edges_on_grid: BoolProperty(
+        name="Edges on Element Grid", default=False,
+        description="Keep the openings' edges on the element grid (the solver otherwise moves them between "
+                    "its lines where the error falls). Annual Daylight needs it for openings in a thick wall")
     use_booleans: BoolProperty(name="Cut Domain Objects", default=True,
                                description="Cut the openings through the walls: a Boolean Difference with "
                                            "the openings on the domain objects and on every object the "
@@ -288,6 +313,7 @@ class FenestraSceneSettings(PropertyGroup):
     goals: PointerProperty(type=FenestraGoalSettings)
     solve: PointerProperty(type=FenestraSolveSettings)
     results: PointerProperty(type=FenestraResults)
+    annual: PointerProperty(type=FenestraAnnualResults)
     display: PointerProperty(type=FenestraDisplaySettings)
     sensor_height: FloatProperty(name="Height", min=0.0, default=0.8, unit='LENGTH',
                                  description="Sensor grid: height above the floor")
@@ -312,6 +338,7 @@ classes = (
     FenestraSensorResult,
     FenestraResults,
     FenestraDisplaySettings,
+) + annual_properties.classes + (
     FenestraSceneSettings,
 )
 

@@ -5,7 +5,7 @@ import math
 
 import bpy
 
-from . import sensor_results
+from . import false_colour, sensor_results
 from .panels import FenestraPanel
 
 
@@ -20,11 +20,19 @@ class ResultSubPanel(FenestraPanel):
 class FENESTRA_PT_result_display(ResultSubPanel, bpy.types.Panel):
     bl_label = "Display"
 
+    @classmethod
+    def poll(cls, context):  # a solve's result or an Annual Daylight run
+        settings = context.scene.fenestra
+        return settings.results.valid or settings.annual.valid
+
     def draw(self, context):
         layout, display = self.layout, context.scene.fenestra.display
         layout.label(text="False Colour:")
         layout.prop(display, "false_colour", text="")
-        if display.false_colour in {'ACHIEVED', 'DAYLIGHT_FACTOR'}:
+        if display.false_colour == 'ANNUAL':
+            layout.prop(display, "annual_metric", text="")
+        if display.false_colour in {'ACHIEVED', 'DAYLIGHT_FACTOR'} or (
+                display.false_colour == 'ANNUAL' and display.annual_metric not in false_colour.SHARES_OF_TIME):
             layout.prop(display, "colour_max")
         row = layout.row()
         row.prop(display, "show_legend")

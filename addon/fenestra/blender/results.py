@@ -5,7 +5,7 @@ import bmesh
 import bpy
 import numpy as np
 
-from . import sky_reference
+from . import annual_results, sky_reference
 from .cutter import Cutter
 from .export import BOOLEAN_NAME, OPEN_THROUGH_NAME, is_result_modifier
 
@@ -18,8 +18,8 @@ TOUCH_TOLERANCE = 0.001  # m: geometry this close to a cutter's edge only touche
 
 def clear(scene):
     """Removes everything a result put into the file: the cutters, the modifiers and their node
-    group, the cutters' collection, the `fenestra_achieved` attribute, and the result's figures.
-    Returns the number of cutters removed."""
+    group, the cutters' collection, the `fenestra_achieved` attribute, and the result's figures
+    (an Annual Daylight run's too: it was of these openings). Returns the number of cutters removed."""
     for obj in list(scene.objects):
         for m in [m for m in obj.modifiers if is_result_modifier(m)]:
             obj.modifiers.remove(m)
@@ -45,6 +45,7 @@ def clear(scene):
         if key not in {"rna_type", "name", "sensors"}:
             results.property_unset(key)  # back to its default: no old count is left on show
     results.sensors.clear()
+    annual_results.clear(scene)
     return len(cutters)
 
 

@@ -4,12 +4,30 @@ import math
 
 import bpy
 
+from . import weather_file
+
 WORLD_NODE = "Fenestra Sky"
 
 
-def _clock(hours):
+def clock(hours):
+    """Hours as the scene file's "HH:MM"."""
     minutes = int(round(hours * 60.0))
     return "%02d:%02d" % (minutes // 60, minutes % 60)
+
+
+def occupied_problem(sky_settings):
+    """None when the occupied hours are a period within one day, else what to change."""
+    if not sky_settings.occupied_start < sky_settings.occupied_end:
+        return ("Occupied hours: the start (%s) must be before the end (%s); the period cannot cross midnight"
+                % (clock(sky_settings.occupied_start), clock(sky_settings.occupied_end)))
+    return None
+
+
+def climate_problem(sky_settings):
+    """The first reason the climate sky cannot be used, or None (also None for another sky)."""
+    if sky_settings.type != 'CLIMATE':
+        return None
+    return weather_file.problem(sky_settings) or occupied_problem(sky_settings)
 
 
 def sun_position(scene):
@@ -33,6 +51,8 @@ def sky_dict(scene):
     resolution = [s.map_width, max(2, s.map_width // 2 // 2 * 2)]
     if s.type == 'UNIFORM':
         return {"type": "uniform", "radiance": s.horizontal_illuminance / math.pi}
+    if s.type == 'CLIMATE':
+        return climate_dict(scene)
     if s.type == 'CIE_OVERCAST':
         return {"type": "cie_overcast", "horizontal_illuminance": s.horizontal_illuminance,
                 "ground_reflectance": s.ground_reflectance, "resolution": resolution}
@@ -40,12 +60,26 @@ def sky_dict(scene):
     sky = {"type": "preetham" if s.type == 'PREETHAM' else "cie_clear",
            "latitude": round(latitude, 6), "longitude": round(longitude, 6), "utc_offset": utc,
            "date": "%04d-%02d-%02d" % (y, m, d),
-           "start": _clock(s.start_time), "end": _clock(s.end_time), "step_minutes": s.step_minutes,
+           "start": clock(s.start_time), "end": clock(s.end_time), "step_minutes": s.step_minutes,
            "turbidity": s.turbidity, "ground_reflectance": s.ground_reflectance,
            "north_offset_deg": round(north, 6), "resolution": resolution}
     if s.use_date_end:
         sky["date_end"] = "%04d-%02d-%02d" % (s.end_year, s.end_month, s.end_day)
     return sky
+
+
+def climate_dict(scene):
+    """The climate sky: the weather file (absolute, so that the study folder may move), its place,
+    and this model's north. Raises ValueError with the panel's words for a bad weather file or
+    occupied period (weather_file.py), before anything is written."""
+    s = scene.fenestra.sky
+    problem = climate_problem(s)
+    if problem:
+        raise ValueError(problem)
+    north = place_and_date(scene)[3]
+    return {"type": "climate", "weather": weather_file.path(s), "patches": int(s.patches),
+            "occupied": [clock(s.occupied_start), clock(s.occupied_end)],
+            "north_offset_deg": round(north, 6), "ground_reflectance": s.ground_reflectance}
 
 
 def show_in_world(scene, image_path, strength):

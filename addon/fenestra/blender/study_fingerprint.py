@@ -4,6 +4,7 @@ them when only the goals or the solver's settings changed. No bpy here."""
 
 import hashlib
 import json
+import os
 
 # The solver's settings that do not change the contributions (docs/scene-format.md): its paths and
 # element size do, so they are not listed; an unknown key counts as one that does.
@@ -15,10 +16,26 @@ SOLVER_ONLY_KEYS = frozenset({
 GOAL_KEYS = frozenset({"goals", "goal_units"})  # of the sensors section
 
 
+def _weather_stamp(scene_dict):
+    """A climate sky's weather file by size and time of change: the study names it by path only,
+    and a file replaced under the same name brings other suns (and other contributions)."""
+    weather = (scene_dict.get("sky") or {}).get("weather")
+    if not weather:
+        return b""
+    try:
+        info = os.stat(weather)
+    except OSError:
+        return b"missing"
+    return ("%d:%d" % (info.st_size, info.st_mtime_ns)).encode()
+
+
 def _digest(scene_dict, obj_text):
     h = hashlib.sha256(json.dumps(scene_dict, sort_keys=True, separators=(",", ":")).encode())
     h.update(b"\0")
     h.update(obj_text.encode())
+    stamp = _weather_stamp(scene_dict)
+    if stamp:
+        h.update(b"\0" + stamp)
     return h.hexdigest()
 
 

@@ -45,9 +45,12 @@ def _exchange(a, b):
 
 
 class StagingFolder:
-    """Where a solve writes its study until it succeeds; `path` is that folder."""
+    """Where a solve writes its study until it succeeds; `path` is that folder. `written` names the
+    files the new folder replaces (an Annual Daylight run stages its own folder with its own files);
+    the previous folder's other files are carried over."""
 
-    def __init__(self, study_directory):
+    def __init__(self, study_directory, written=STUDY_FILES):
+        self.written = tuple(written)
         # Through a symbolic link: the folder it points to is the one replaced.
         self.final = os.path.realpath(study_directory)
         if os.path.exists(self.final) and not os.path.isdir(self.final):
@@ -67,9 +70,9 @@ class StagingFolder:
         previous = self.path  # now the previous study folder
         try:
             for name in os.listdir(previous):
-                if name not in STUDY_FILES:
+                if name not in self.written:
                     os.rename(os.path.join(previous, name), os.path.join(self.final, name))
-            for name in STUDY_FILES:
+            for name in self.written:
                 if os.path.lexists(os.path.join(previous, name)):
                     os.remove(os.path.join(previous, name))
             os.rmdir(previous)

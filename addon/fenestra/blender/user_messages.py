@@ -37,6 +37,9 @@ FIELDS = {
     "sky.date": "the date",
     "sky.date_end": "the end date",
     "sky.resolution": "Map Width",
+    "sky.weather": "Weather File",
+    "sky.patches": "Sky Patches",
+    "sky.occupied": "Occupied From / To",
 }
 CONSTRAINTS = {
     "min_area": "Min Area", "max_area": "Max Area", "min_aspect": "Min Aspect", "max_aspect": "Max Aspect",
@@ -152,6 +155,19 @@ RULES = [
     (re.compile(r"^opening (\d+) (does not lie on any flat opening-domain panel).*$"),
      lambda m, c: ("%s does not lie flat on the opening domain: move it back onto the marked faces"
                    % c.opening(int(m.group(1))))),
+    # Annual Daylight reads light through a thick wall element by element (its records follow each
+    # element's tube): an edge between grid lines cannot be counted there.
+    (re.compile(r"^opening (\d+) has an edge between the element grid's lines \(.*?; lines every ([\d.e+-]+) m\) "
+                r"on panel \d+ \((.*)\), whose wall is ([\d.e+-]+) m thick: .*$"),
+     lambda m, c: ("%s has an edge between the lines of the element grid (every %s m) on %s, whose wall is %s m "
+                   "thick: Annual Daylight counts the light through a thick wall element by element. Solve again "
+                   "with Edges on Element Grid (Solve panel), or move and scale the cutter onto the grid"
+                   % (c.opening(int(m.group(1))), _number(m.group(2)), m.group(3), _number(m.group(4))))),
+    (re.compile(r"^opening (\d+) reaches beyond the elements of panel \d+ \((.*); its grid spans (u [\d.e+-]+\.\.[\d.e+-]+ m, "
+                r"v [\d.e+-]+\.\.[\d.e+-]+ m)\): paths are recorded by element.*$"),
+     lambda m, c: ("%s reaches beyond the element grid of %s (%s): Annual Daylight counts the light element by "
+                   "element, so an opening must lie within the grid. Move or scale the cutter back"
+                   % (c.opening(int(m.group(1))), m.group(2), m.group(3)))),
     (re.compile(r"^opening (\d+) (.*)$"), lambda m, c: "%s %s" % (c.opening(int(m.group(1))), m.group(2))),
 ]
 # The cost model's advice, in the tab's terms.
