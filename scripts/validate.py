@@ -385,11 +385,50 @@ def update_readme(text):
         f.write(readme)
 
 
+def validate_annual(out_dir, scale):
+    """The annual study of examples/annual_room against Radiance (python_tests/data/
+    radiance_annual_room): the annual mean per sensor within 5 %, sDA and ASE within 5 points."""
+    import gzip
+    data = os.path.join(ROOT, "python_tests", "data", "radiance_annual_room")
+    with open(os.path.join(data, "metrics.json")) as f:
+        radiance = json.load(f)
+    room = os.path.join(EXAMPLES, "annual_room")
+    scene = fenestra.load_scene(os.path.join(room, "climate.json"))
+    scene.render.paths_per_sensor = max(256, int(8192 * scale))
+    with open(os.path.join(room, "window.json")) as f:
+        window = json.load(f)
+    start = time.time()
+    year = fenestra.annual(scene, window, output=os.path.join(out_dir, "annual_room"))
+    seconds = time.time() - start
+    ours = np.array(year["summary"]["per_sensor"]["mean_illuminance_lux"])
+    relative = ours / np.array(radiance["mean_illuminance_lux"]) - 1
+    space = year["summary"]["space"]
+    with gzip.open(os.path.join(data, "illuminance_direct_sun.npy.gz")) as f:
+        direct_ratio = year["direct_sun"].sum() / np.load(f).sum()
+    row = {"annual_mean_rms": float(np.sqrt(np.mean(relative ** 2))), "annual_mean_min": float(relative.min()),
+           "annual_mean_max": float(relative.max()),
+           "sda": space["spatial_daylight_autonomy"], "sda_radiance": radiance["sda300_50"],
+           "ase": space["annual_sunlight_exposure"], "ase_radiance": radiance["ase1000_250"],
+           "direct_sun_year_ratio": float(direct_ratio), "seconds": seconds,
+           "paths_per_sensor": scene.render.paths_per_sensor}
+    row["passed"] = bool(np.all(np.abs(relative) <= 0.05) and abs(row["sda"] - row["sda_radiance"]) <= 0.05
+                         and abs(row["ase"] - row["ase_radiance"]) <= 0.05)
+    print("== annual_room against Radiance: annual mean per sensor %+.1f .. %+.1f %% (rms %.1f %%), sDA %.0f %% "
+          "(Radiance %.0f %%), ASE %.1f %% (Radiance %.1f %%), direct sun over the year x%.4f; %.1f s (%d paths)"
+          % (100 * row["annual_mean_min"], 100 * row["annual_mean_max"], 100 * row["annual_mean_rms"],
+             100 * row["sda"], 100 * row["sda_radiance"], 100 * row["ase"], 100 * row["ase_radiance"],
+             row["direct_sun_year_ratio"], seconds, row["paths_per_sensor"]), flush=True)
+    with open(os.path.join(out_dir, "annual_room.json"), "w") as f:
+        json.dump(row, f, indent=2)
+    return row
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenes", default=",".join(SCENES), help="comma-separated scene names")
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "validate"))
     parser.add_argument("--quick", action="store_true", help="1/16 of the paths (a smoke run; README untouched)")
+    parser.add_argument("--no-annual", action="store_true", help="skip the annual study against Radiance")
     args = parser.parse_args()
     names = [n for n in args.scenes.split(",") if n]
     unknown = [n for n in names if n not in SCENES]
@@ -412,7 +451,7 @@ def main():
                   row["openings_truth"], row["openings_solution"], row["elements_truth"],
                   row["elements_solution"], row["elements_shared"], row["seconds_solve"]), flush=True)
         rows.append(row)
-    text = table(rows)
+    text = table(rows) if rows else ""
     with open(os.path.join(args.out, "table.md"), "w") as f:
         f.write(text)
     with open(os.path.join(args.out, "results.json"), "w") as f:
@@ -422,6 +461,8 @@ def main():
     print()
     print(text)
     failed = [r["scene"] for r in rows if r["passed"] is False]
+    if not args.no_annual and not validate_annual(args.out, scale)["passed"]:
+        failed.append("annual_room (against Radiance)")
     if failed:
         print("relative RMS above %s: %s" % (percent(TARGET), ", ".join(failed)), file=sys.stderr)
         return 1
