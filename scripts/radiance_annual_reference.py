@@ -3,7 +3,6 @@ are bookkeeping, not light transport (which suns go where, the matrix products, 
 
     radiance_annual_reference.py prepare WORK            # after gendaymtx: writes WORK/{sky,suns1,sunsf}.rad
     radiance_annual_reference.py assemble WORK OUT ...   # after rcontrib: writes the reference to OUT
-    radiance_annual_reference.py perez WORK OUT EPW      # after gendaylit/rtrace: hours.json
 
 Plain /usr/bin/python3 with NumPy; no Fenestra import (the reference must not depend on the code it
 checks). Units: Radiance radiance W/(sr m^2) x 179 lm/W = cd/m^2, irradiance x 179 = lux.
@@ -181,10 +180,12 @@ def assemble(work, out, sky_reps, sun_reps, n_sensors, settings_json):
     s64 = s_sky.astype(np.float64)
     e_sky_sum = np.zeros((n_sensors, n_hours))
     e_sky_sq = np.zeros((n_sensors, n_hours))
+    sky_rep_means = np.zeros((sky_reps, n_sensors))   # each estimate's occupied-hour mean
     for r in range(sky_reps):
         e = EFFICACY * dc[r] @ s64
         e_sky_sum += e
         e_sky_sq += e * e
+        sky_rep_means[r] = e[:, occupied].mean(1)
     e_sky = e_sky_sum / sky_reps
     e_sky_se = np.sqrt(np.maximum(e_sky_sq / sky_reps - e_sky ** 2, 0) * sky_reps / (sky_reps - 1)
                        / sky_reps)
@@ -213,6 +214,8 @@ def assemble(work, out, sky_reps, sun_reps, n_sensors, settings_json):
     e_sunind_se = np.zeros((n_sensors, n_hours))
     e_sunind[:, hours_front] = ind_mean * scale
     e_sunind_se[:, hours_front] = ind_se * scale
+    occ_front = occupied[hours_front]
+    sun_rep_means = (ind[:, :, occ_front] * scale[occ_front]).sum(2) / occupied.sum()
     # The -ab 0 run of these suns must equal the direct-sun run's columns for the same suns.
     assert np.allclose(cz / omega_sun * ev[hours_front], e_direct[:, hours_front], rtol=1e-5, atol=1e-3)
 
@@ -233,6 +236,8 @@ def assemble(work, out, sky_reps, sun_reps, n_sensors, settings_json):
     near_300 = (np.abs(occ - 300.0) < 2 * occ_se).sum(1)
     lit = occ > 50.0
     rel_se = occ_se[lit] / occ[lit]
+    mean_rel_se = np.sqrt(sky_rep_means.var(0, ddof=1) / sky_reps
+                          + sun_rep_means.var(0, ddof=1) / sun_reps) / mean_lux
 
     np.save(os.path.join(out, "sensors.npy"), sensors.astype(np.float32))
     save_npy_gz(os.path.join(out, "illuminance_total.npy.gz"), total.astype(np.float32))
@@ -275,8 +280,11 @@ def assemble(work, out, sky_reps, sun_reps, n_sensors, settings_json):
             "relative_stderr_occupied_hours_above_50_lux": {
                 "median": float(np.median(rel_se)), "p95": float(np.percentile(rel_se, 95)),
                 "p99": float(np.percentile(rel_se, 99)), "max": float(rel_se.max())},
-            "relative_stderr_of_mean_illuminance_per_sensor_max": float(
-                (np.sqrt((occ_se ** 2).sum(1)) / n_occ / mean_lux).max()),
+            "pooled_rms_relative_stderr_occupied_hours_above_50_lux": float(np.sqrt(np.mean(rel_se ** 2))),
+            # The same coefficients serve every hour, so their noise does not average out over
+            # the year: the mean's error comes from the independent estimates' own means.
+            "relative_stderr_of_mean_illuminance_per_sensor_max": float(mean_rel_se.max()),
+            "relative_stderr_of_mean_illuminance_per_sensor_median": float(np.median(mean_rel_se)),
             "occupied_hours_within_2_stderr_of_300_lux_per_sensor": near_300.tolist(),
         },
         "settings": settings,
@@ -284,8 +292,9 @@ def assemble(work, out, sky_reps, sun_reps, n_sensors, settings_json):
     with open(os.path.join(out, "metrics.json"), "w") as f:
         json.dump(metrics, f, indent=1)
     print("assemble: sDA300/50%% = %.4f, ASE1000,250h = %.4f, space mean %.1f lux, "
-          "relative stderr median %.2e p99 %.2e max %.2e"
-          % (sda, ase, mean_lux.mean(), np.median(rel_se), np.percentile(rel_se, 99), rel_se.max()))
+          "relative stderr median %.2e rms %.2e p99 %.2e max %.2e, of the sensors' means <= %.2e"
+          % (sda, ase, mean_lux.mean(), np.median(rel_se), np.sqrt(np.mean(rel_se ** 2)),
+             np.percentile(rel_se, 99), rel_se.max(), mean_rel_se.max()))
     print("assemble: %d hours lost their sun (mid-hour sun below the horizon)" % lost.sum())
     share = lambda a: float(a[:, occupied].sum() / total[:, occupied].sum())
     print("assemble: occupied-hour shares: sky %.3f, sun direct %.3f, sun interreflected %.3f"

@@ -8,7 +8,8 @@
 # RADIANCE_PREFIX holds bin/ (epw2wea gendaymtx gendaylit oconv rcontrib rtrace getinfo) and lib/
 # (reinhartb.cal, perezlum.cal, rayinit.cal). WORK_DIR (default /tmp/radiance_annual_work) keeps
 # the large intermediate files. Environment: NPROC (default: all cores), SKY_REPS, SUN_REPS,
-# SKY_AD, SUN_AD, AB (the defaults are what the stored reference used), STAGE=perez to run only
+# SKY_AD, SUN_AD, AB (the defaults are what the stored reference used), OUT and OUT_PEREZ (the
+# output folders), STAGE=perez to run only
 # the gendaylit part, STAGE=sun to redo the sun's interreflections and the assembly.
 set -eu
 
@@ -16,8 +17,8 @@ RAD=${1:?usage: $0 RADIANCE_PREFIX [WORK_DIR]}
 WORK=${2:-/tmp/radiance_annual_work}
 HERE=$(cd "$(dirname "$0")/.." && pwd)
 PY=/usr/bin/python3
-OUT=$HERE/python_tests/data/radiance_annual_room
-OUT_PEREZ=$HERE/python_tests/data/gendaylit_perez
+OUT=${OUT:-$HERE/python_tests/data/radiance_annual_room}
+OUT_PEREZ=${OUT_PEREZ:-$HERE/python_tests/data/gendaylit_perez}
 EPW=$HERE/examples/weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw
 ROOM=$HERE/examples/annual_room
 
