@@ -14,12 +14,11 @@ import os
 import bpy
 import numpy as np
 
-from . import (annual_job, annual_results, contributions_cache, export, native, native_messages, opening_cutters,
-               solve_guard, solve_job, solve_progress, study_fingerprint, study_folder, user_messages)
+from . import (annual_job, annual_results, contributions_cache, export, job_operator, native, native_messages, opening_cutters,
+               solve_guard, solve_job, study_fingerprint, study_folder, user_messages)
 
 FOLDER = "annual"  # in the study folder
 FILES = ("scene.json", "scene.obj", "openings.json", "annual.json", "annual.npz")
-PROGRESS_INTERVAL_S = 0.1
 NPZ_ARRAYS = ("illuminance", "direct_sun", "hour_month", "hour_day", "hour_clock", "occupied")
 
 
@@ -43,8 +42,9 @@ def _write_outputs(directory, outcome):
     np.savez(os.path.join(directory, "annual.npz"), **{k: np.asarray(outcome[k]) for k in NPZ_ARRAYS if k in outcome})
 
 
-class FENESTRA_OT_annual_daylight(bpy.types.Operator):
+class FENESTRA_OT_annual_daylight(job_operator.JobOperator, bpy.types.Operator):
     """Compute a year of daylight from the weather file with the openings where their cutters stand: spatial daylight autonomy, sunlight exposure, daylight autonomy, useful daylight and EN 17037, and per-sensor metrics in false colour"""
+    CANCELLED_MESSAGE = "Annual Daylight cancelled"
     bl_idname = "fenestra.annual_daylight"
     bl_label = "Annual Daylight"
     bl_options = {'REGISTER', 'UNDO'}
@@ -149,45 +149,6 @@ class FENESTRA_OT_annual_daylight(bpy.types.Operator):
         import time
         self._job.ended = time.monotonic()
         return self._finish(context, check_scene=False)
-
-    def invoke(self, context, event):
-        """Runs on a worker thread; the Solve and Annual panels show progress, Esc or Cancel stops it,
-        and a change to the study meanwhile stops it too (solve_guard.py)."""
-        if bpy.app.background:
-            return self.execute(context)
-        if not self._prepare(context):
-            return {'CANCELLED'}
-        self._job.start()
-        wm = context.window_manager
-        self._timer = wm.event_timer_add(PROGRESS_INTERVAL_S, window=context.window)
-        wm.modal_handler_add(self)
-        self._display = solve_progress.Display()
-        self._display.update(context, self._job)
-        return {'RUNNING_MODAL'}
-
-    def _end(self, context):
-        context.window_manager.event_timer_remove(self._timer)
-        self._display.clear(context)
-
-    def modal(self, context, event):
-        job = self._job
-        if job.done.is_set():
-            self._end(context)
-            return self._finish(context, check_scene=True)
-        if event.type == 'ESC' and event.value == 'PRESS':
-            job.cancel("Annual Daylight cancelled")
-            return {'RUNNING_MODAL'}
-        if event.type == 'TIMER':
-            self._display.update(context, job)
-        return {'PASS_THROUGH'}
-
-    def cancel(self, context):
-        """Blender ends the operator (a file is loaded, the window closes): the job stops too."""
-        self._job.cancel("Annual Daylight cancelled")
-        self._job.wait(solve_job.CANCEL_WAIT_AT_EXIT_S)
-        self._job.release()
-        self._staging.discard()
-        self._end(context)
 
 
 classes = (FENESTRA_OT_annual_daylight,)

@@ -7,8 +7,8 @@ import bpy
 import numpy as np
 from mathutils import Vector
 
-from . import (check_setup, contributions_cache, export, native, native_messages, results, setup_checks, sky_preview,
-               solve_guard, solve_job, solve_progress, study_fingerprint, study_folder, user_messages)
+from . import (check_setup, contributions_cache, export, job_operator, native, native_messages, results, setup_checks,
+               sky_preview, solve_guard, solve_job, study_fingerprint, study_folder, user_messages)
 
 
 def _native_or_report(op):
@@ -175,11 +175,10 @@ class FENESTRA_OT_preview_sky(bpy.types.Operator):
 
 # Solve ------------------------------------------------------------------------------------------
 
-PROGRESS_INTERVAL_S = 0.1  # the end of a solve is seen within this
 
-
-class FENESTRA_OT_solve_openings(bpy.types.Operator):
+class FENESTRA_OT_solve_openings(job_operator.JobOperator, bpy.types.Operator):
     """Compute the openings that meet the sensors' daylight goals and cut them into the domain"""
+    CANCELLED_MESSAGE = "Solve cancelled"
     bl_idname = "fenestra.solve_openings"
     bl_label = "Solve Openings"
     bl_options = {'REGISTER', 'UNDO'}
@@ -270,45 +269,6 @@ class FENESTRA_OT_solve_openings(bpy.types.Operator):
         except Exception as exc:  # the native message, for the user
             self._job.error = exc
         return self._finish(context, check_scene=False)
-
-    def invoke(self, context, event):
-        """Solves on a worker thread; the panel shows progress, Esc or Cancel stops it, and any
-        change to the scene meanwhile stops it too (solve_guard.py)."""
-        if bpy.app.background:
-            return self.execute(context)
-        if not self._prepare(context):
-            return {'CANCELLED'}
-        self._job.start()
-        wm = context.window_manager
-        self._timer = wm.event_timer_add(PROGRESS_INTERVAL_S, window=context.window)
-        wm.modal_handler_add(self)
-        self._display = solve_progress.Display()
-        self._display.update(context, self._job)
-        return {'RUNNING_MODAL'}
-
-    def _end(self, context):
-        context.window_manager.event_timer_remove(self._timer)
-        self._display.clear(context)
-
-    def modal(self, context, event):
-        job = self._job
-        if job.done.is_set():
-            self._end(context)
-            return self._finish(context, check_scene=True)
-        if event.type == 'ESC' and event.value == 'PRESS':
-            job.cancel("Solve cancelled")
-            return {'RUNNING_MODAL'}
-        if event.type == 'TIMER':
-            self._display.update(context, job)
-        return {'PASS_THROUGH'}
-
-    def cancel(self, context):
-        """Blender ends the operator (a file is loaded, the window closes): the job stops too."""
-        self._job.cancel("Solve cancelled")
-        self._job.wait(solve_job.CANCEL_WAIT_AT_EXIT_S)
-        self._job.release()
-        self._staging.discard()
-        self._end(context)
 
 
 class FENESTRA_OT_clear_results(bpy.types.Operator):
