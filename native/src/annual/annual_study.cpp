@@ -96,10 +96,7 @@ OpenRegion region_of_openings(const Scene& scene, const std::vector<OpeningInput
   return OpenRegion(scene.domain, rects);
 }
 
-json annual_json(const Contributions& c, const AnnualStudy& s) {
-  const AnnualMetrics& m = s.metrics;
-  const AnnualRecords& a = *c.annual;
-  const ClimateSettings& cs = a.climate->settings;
+json annual_space_json(const AnnualMetrics& m) {
   json udi = json::array();
   for (const UdiBand& b : m.udi)
     udi.push_back({{"name", b.name}, {"lower_lux", finite_or_null(b.lower_lux)}, {"upper_lux", finite_or_null(b.upper_lux)},
@@ -117,6 +114,21 @@ json annual_json(const Contributions& c, const AnnualStudy& s) {
                             {"target_hours_fraction", finite_or_null(l.target_hours_fraction)},
                             {"minimum_hours_fraction", finite_or_null(l.minimum_hours_fraction)},
                             {"target_met", l.target_met}, {"minimum_met", l.minimum_met}, {"met", l.met}});
+  return {{"mean_illuminance_lux", m.space_mean_illuminance_lux},
+          {"daylight_autonomy", m.space_daylight_autonomy},
+          {"continuous_daylight_autonomy", m.space_continuous_daylight_autonomy},
+          {"spatial_daylight_autonomy", m.spatial_daylight_autonomy},
+          {"sda_levels", sda_levels},
+          {"annual_sunlight_exposure", m.annual_sunlight_exposure},
+          {"ase_passes", m.ase_passes},
+          {"udi", udi},
+          {"en17037", en}};
+}
+
+json annual_json(const Contributions& c, const AnnualStudy& s) {
+  const AnnualMetrics& m = s.metrics;
+  const AnnualRecords& a = *c.annual;
+  const ClimateSettings& cs = a.climate->settings;
   std::vector<int> ase_hours(m.ase_sensor_hours.data(), m.ase_sensor_hours.data() + m.ase_sensor_hours.size());
   return {
       {"format", "fenestra-annual"},
@@ -131,16 +143,7 @@ json annual_json(const Contributions& c, const AnnualStudy& s) {
       {"occupied", {{"start_hour", s.settings.occupied_start_hour}, {"end_hour", s.settings.occupied_end_hour},
                     {"clock", "local standard time"}}},
       {"settings", s.settings.describe()},
-      {"space",
-       {{"mean_illuminance_lux", m.space_mean_illuminance_lux},
-        {"daylight_autonomy", m.space_daylight_autonomy},
-        {"continuous_daylight_autonomy", m.space_continuous_daylight_autonomy},
-        {"spatial_daylight_autonomy", m.spatial_daylight_autonomy},
-        {"sda_levels", sda_levels},
-        {"annual_sunlight_exposure", m.annual_sunlight_exposure},
-        {"ase_passes", m.ase_passes},
-        {"udi", udi},
-        {"en17037", en}}},
+      {"space", annual_space_json(m)},
       {"per_sensor",
        {{"mean_illuminance_lux", to_vector(m.mean_illuminance_lux)},
         {"mean_illuminance_from_records_lux", to_vector(s.occupied_mean.value)},

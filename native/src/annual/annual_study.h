@@ -43,6 +43,8 @@ OpenRegion region_of_openings(const Scene& scene, const std::vector<OpeningInput
 // The study's summary (settings, space and per-sensor metrics) and its arrays as an .npz:
 // OUT.npz and OUT.json, written together or not at all. Returns both paths.
 nlohmann::json annual_json(const Contributions& c, const AnnualStudy& study);
+// Its "space" object: the area-weighted metrics, sDA levels, UDI bands and EN 17037 levels.
+nlohmann::json annual_space_json(const AnnualMetrics& metrics);
 std::pair<std::string, std::string> write_annual(const Scene& scene, const Contributions& c, const AnnualStudy& study,
                                                  const std::string& out);
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "io/climate_result.h"
+
 namespace fenestra {
 namespace {
 
@@ -130,7 +132,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
   json timings = json::object();
   for (const auto& t : r.timings) timings[t.stage] = t.seconds;
   const SolverSettings& s = scene.solver;
-  return {
+  json out = {
       {"units", "sensor values: luminance-weighted irradiance, lux for a sky in cd/m^2; corners in meters"},
       {"goal_units", scene.sensors.goal_units},
       {"openings", openings_json(r.openings)},
@@ -194,6 +196,8 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                     {"verify", s.verify},
                     {"verify_paths", s.verify_paths},
                     {"tradeoffs", s.tradeoffs}}}};
+  if (r.climate.active) out["climate"] = climate_result_json(scene, r.climate);
+  return out;
 }
 
 }  // namespace fenestra

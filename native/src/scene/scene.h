@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/climate_goals.h"
 #include "scene/material.h"
 #include "scene/mesh.h"
 #include "scene/opening_domain.h"
@@ -24,6 +25,8 @@ struct Sensors {
   std::vector<double> weights;  // empty: all 1
   std::vector<UniformGoal> uniform_goals;  // levels over sets of sensors, in goal_units
   std::string goal_units = "normalized";  // "normalized", "lux" or "daylight_factor" (percent)
+  // Climate-based goals (sDA, ASE, EN 17037, UDI, annual mean) over sets of sensors; a climate sky only.
+  ClimateGoals climate_goals;
   size_t size() const { return points.size(); }
 };
 

@@ -499,7 +499,7 @@ std::vector<double> numbers(const ScenePath& sp, const json& j, const std::strin
 void parse_goals(const ScenePath& sp, const json& j, Sensors* s) {
   if (j.is_null()) return;
   if (!j.is_object()) sp.fail("goals", "expected an object");
-  check_known_keys(sp, j, "goals", {"per_sensor", "units", "weights", "uniform"});
+  check_known_keys(sp, j, "goals", {"per_sensor", "units", "weights", "uniform", "climate", "least_glazing"});
   const size_t n = s->points.size();
   if (j.contains("per_sensor")) {
     if (!s->goals.empty()) sp.fail("goals.per_sensor", "the goals are already given in sensors.goals");
@@ -915,6 +915,10 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     check_goals(sp, scene.sensors);
     // No "sky" at all: the default uniform sky; a "sky" must name its type.
     parse_sky(sp, j.contains("sky") ? j.at("sky") : json{{"type", "uniform"}}, base, &scene, progress);
+    scene.sensors.climate_goals = parse_climate_goals(j.value("goals", json()), j.at("sensors").value("groups", json()),
+                                                      scene.sensors.size(), sp.source());
+    if (!scene.sensors.climate_goals.empty() && !scene.climate)
+      sp.fail("goals.climate", "climate goals need a sky of type \"climate\" (a weather file)");
     scene.render = parse_render(sp, j.value("render", json()));
     scene.solver = parse_solver(sp, j.value("solver", json()));
     const json solver = j.value("solver", json());

@@ -44,7 +44,7 @@ SolverGoals resolve_goals(const Scene& scene, const Contributions& c) {
     const double w = s.weights.empty() ? 1.0 : s.weights[i];
     g.weight[i] = std::isnan(g.given[i]) ? 0.0 : w;
   }
-  if (g.count() == 0)
+  if (g.count() == 0 && scene.sensors.climate_goals.empty())
     throw std::invalid_argument("scene '" + scene.source +
                                 "': no sensor has a goal (give sensors.goals or goals.uniform, and weights above 0)");
   return g;

@@ -9,6 +9,8 @@
 #include <stdexcept>
 
 #include "solve/catalogue_snap.h"
+#include "solve/climate_design.h"
+#include "annual/annual_study.h"
 #include "solve/coarse_grid.h"
 #include "solve/compensation.h"
 #include "solve/linear_start.h"
@@ -195,59 +197,21 @@ ElementChoice search_within_bounds(const LinearObjective& objective, const Contr
   return best;
 }
 
-}  // namespace
+// What the element stage hands the constraints stage: the answer in elements, its exact values and
+// fitness, and the start the second search within the constraints begins from.
+struct ElementStage {
+  std::vector<uint8_t> open, start_open;
+  SensorValues values;
+  double fitness = std::numeric_limits<double>::infinity();
+};
 
-// The constraints as the solver applies them: sills and heads measured from each panel's faces.
-OpeningConstraints measured_constraints(const Scene& scene) {
-  OpeningConstraints constraints = scene.solver.constraints;
-  constraints.panel_base_z = panel_base_heights(scene.domain, scene.mesh);
-  constraints.panel_top_z = panel_top_heights(scene.domain, scene.mesh);
-  return constraints;
-}
-
-// Every constraint: each opening's, the counts, and the facades' composition.
-std::vector<std::string> all_violations(const OpeningDomain& domain, const std::vector<PanelRectangle>& openings,
-                                        const OpeningConstraints& constraints) {
-  std::vector<std::string> out = constraint_violations(domain, openings, constraints);
-  for (const std::string& v : composition_violations(domain, constraints, openings)) out.push_back(v);
-  return out;
-}
-
-std::vector<std::string> solved_constraint_violations(const Scene& scene, const std::vector<PanelRectangle>& openings) {
-  return all_violations(scene.domain, openings, measured_constraints(scene));
-}
-
-bool composes(const OpeningDomain& domain, const OpeningConstraints& constraints) {
-  for (size_t p = 0; p < domain.panels().size(); ++p)
-    if (constraints.for_panel(static_cast<int>(p)).composes()) return true;
-  return false;
-}
-
-std::string percent(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f %%", 100.0 * x);
-  return text;
-}
-
-SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress* progress) {
-  check_contributions_match(scene, c, "solve");
-  refuse_dark_sky(scene);
-  const auto start = Clock::now();
-  SolveResult out;
-  out.goals = resolve_goals(scene, c);
+// Stages 1 and 2 on per-sensor goals: the linear start (and coarse-to-fine starts), the genetic
+// algorithm, successive linearisation, and the exact choice among the best states.
+ElementStage linear_element_stage(const Scene& scene, const Contributions& c, const LinearObjective& objective,
+                                  const ElementGrid& grid, const ShapeWeights& shape, const GeneticSettings& ga,
+                                  ExactValues& exact_values, SolveResult& out, Progress* progress) {
   const SolverSettings& settings = scene.solver;
-  const LinearObjective objective = linear_objective(c, out.goals, settings.bound_weight);
-  ExactValues exact_values(c, progress);
-  const ElementGrid grid = ElementGrid::from_domain(scene.domain);
-  const ShapeWeights shape = shape_of(settings);
-  GeneticSettings ga;
-  ga.population = settings.population;
-  ga.generations = settings.generations;
-  ga.seed = settings.seed;
-  ga.time_budget_s = settings.time_budget_s;
-  ga.elite = settings.elite;
-  ga.shape = shape;
-
+  ElementStage stage;
   // Stage 1 on the fine grid, and coarse-to-fine starts (4a, then 2a) when the grid is large enough.
   if (progress) progress->start("solving: linear start", 1);
   auto t = Clock::now();
@@ -329,8 +293,8 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   if (progress) progress->start("solving: exact evaluation", 1);
   t = Clock::now();
   candidates.push_back(fine_start.open);
-  double best = std::numeric_limits<double>::infinity();
-  SensorValues chosen;
+  double& best = stage.fitness;
+  SensorValues& chosen = stage.values;
   for (const auto& open : candidates) {
     const SensorValues& exact = exact_values(open);
     const double f = exact_fitness(objective, grid, shape, open, exact.value - c.closed.value);
@@ -345,6 +309,174 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.unconstrained_openings = merge_into_rectangles(scene.domain, out.open);
   out.unconstrained_error = goal_error(out.goals, chosen.value);
   out.timings.push_back({"exact evaluation", since(t)});
+  stage.start_open = fine_start.open;
+  stage.open = out.open;
+  return stage;
+}
+
+
+bool has_thick_panel(const OpeningDomain& domain) {
+  for (const Panel& p : domain.panels())
+    if (p.thickness > 0.0f) return true;
+  return false;
+}
+
+// "41.0 %" for fractions, "512 lx" for the annual mean.
+std::string figure_text(const ClimateGoal& goal, double x) {
+  char text[48];
+  if (goal.unit() == "lux") std::snprintf(text, sizeof text, "%.0f lx", x);
+  else std::snprintf(text, sizeof text, "%.1f %%", 100.0 * x);
+  return text;
+}
+
+// Each goal the final openings miss, with what they reach and, when even every element open
+// falls short, what the domain can give at most: the best compromise, said as such.
+std::vector<std::string> unmet_climate_goals(const ClimateGoals& goals, const std::vector<ClimateFigure>& achieved,
+                                             const std::vector<ClimateFigure>& all_open) {
+  std::vector<std::string> out;
+  for (size_t g = 0; g < goals.goals.size() && g < achieved.size(); ++g) {
+    const ClimateGoal& goal = goals.goals[g];
+    if (figure_meets(goal, achieved[g].achieved)) continue;
+    std::string line = goal.describe() + " is not met: the openings reach " + figure_text(goal, achieved[g].achieved);
+    if (g < all_open.size() && goal.sense() == GoalSense::AtLeast && !figure_meets(goal, all_open[g].achieved))
+      line += "; even every element of the opening domain open reaches only " + figure_text(goal, all_open[g].achieved) +
+              ": the goal cannot be met here";
+    else
+      line += " (the best compromise found with the other goals)";
+    out.push_back(line);
+  }
+  return out;
+}
+
+// The final openings' year and each climate goal's figure: from the path records, and with real
+// cutters when verification is on.
+void report_climate(const Scene& scene, const Contributions& c, const ClimateProblem& problem,
+                    const std::vector<PanelRectangle>& openings, SolveResult* out, Progress* progress) {
+  ClimateOutcome& climate = out->climate;
+  for (const PanelRectangle& r : openings) climate.glazing_area_m2 += (r.u1 - r.u0) * (r.v1 - r.v0);
+  for (const Element& e : scene.domain.elements()) climate.domain_area_m2 += static_cast<double>(e.width()) * e.height();
+  try {
+    auto study = std::make_shared<AnnualStudy>(annual_study(scene, c, OpenRegion(scene.domain, openings), progress));
+    climate.achieved = climate_figures(problem, study->illuminance.total, study->illuminance.direct);
+    climate.study = std::move(study);
+  } catch (const std::invalid_argument& e) {
+    out->warnings.push_back(std::string("climate goals: the path records cannot give the final openings' year (") +
+                            e.what() + ")");
+  }
+  const std::vector<ClimateFigure>& judged = climate.achieved.empty() ? climate.verified : climate.achieved;
+  climate.unmet = unmet_climate_goals(scene.sensors.climate_goals, judged, climate.all_open_figures);
+  for (const std::string& u : climate.unmet) out->warnings.push_back("climate goals: " + u);
+}
+
+// The per-sensor goals the constraints stage follows after a climate search: each sensor the
+// climate goals look at takes the answer's mean illuminance of the occupied hours as its goal
+// (sensors with a goal of their own keep it), so that openings within the constraints give the
+// light that met the climate goals.
+SolverGoals goals_following(SolverGoals goals, const std::vector<int>& rows, const SensorValues& answer) {
+  for (int i : rows) {
+    if (goals.weight[i] > 0.0) continue;
+    goals.target[i] = answer.value[i];
+    goals.weight[i] = 1.0;
+  }
+  return goals;
+}
+
+// Stages 1 and 2 on climate goals (solve/climate_design.h), then the goals the constraints stage
+// follows (goals_following) and its objective.
+ElementStage climate_element_stage(const Scene& scene, const Contributions& c, const ElementGrid& grid,
+                                   const ShapeWeights& shape, const GeneticSettings& ga, ExactValues& exact_values,
+                                   LinearObjective* objective, SolveResult& out,
+                                   std::optional<ClimateProblem>* problem, Progress* progress) {
+  problem->emplace(climate_problem(scene, c, out.goals));
+  std::vector<std::vector<uint8_t>> seeds;
+  if (out.goals.count() > 0) seeds.push_back(linear_start(*objective, grid, progress).open);
+  const ClimateDesign design = design_for_climate(c, **problem, grid, ga, seeds, progress);
+  out.history = design.history;
+  out.generations = design.generations;
+  out.climate.active = true;
+  out.climate.element_figures = design.figures;
+  out.climate.all_open_figures = design.all_open_figures;
+  out.climate.linearisations = design.linearisations;
+  out.climate.model_bytes = design.model_bytes;
+  out.timings.push_back({"climate model", design.seconds_model});
+  out.timings.push_back({"climate search", design.seconds_search});
+
+  ElementStage stage;
+  stage.open = stage.start_open = design.open;
+  stage.values = exact_values(design.open);
+  out.goals = goals_following(out.goals, (*problem)->rows, stage.values);
+  *objective = linear_objective(c, out.goals, scene.solver.bound_weight);
+  stage.fitness = exact_fitness(*objective, grid, shape, stage.open, stage.values.value - c.closed.value);
+  out.open = design.open;
+  out.start_error = goal_error(out.goals, stage.values.value);
+  out.unconstrained_open = out.open;
+  out.unconstrained_openings = merge_into_rectangles(scene.domain, out.open);
+  out.unconstrained_error = out.start_error;
+  return stage;
+}
+
+}  // namespace
+
+// The constraints as the solver applies them: sills and heads measured from each panel's faces.
+OpeningConstraints measured_constraints(const Scene& scene) {
+  OpeningConstraints constraints = scene.solver.constraints;
+  constraints.panel_base_z = panel_base_heights(scene.domain, scene.mesh);
+  constraints.panel_top_z = panel_top_heights(scene.domain, scene.mesh);
+  return constraints;
+}
+
+// Every constraint: each opening's, the counts, and the facades' composition.
+std::vector<std::string> all_violations(const OpeningDomain& domain, const std::vector<PanelRectangle>& openings,
+                                        const OpeningConstraints& constraints) {
+  std::vector<std::string> out = constraint_violations(domain, openings, constraints);
+  for (const std::string& v : composition_violations(domain, constraints, openings)) out.push_back(v);
+  return out;
+}
+
+std::vector<std::string> solved_constraint_violations(const Scene& scene, const std::vector<PanelRectangle>& openings) {
+  return all_violations(scene.domain, openings, measured_constraints(scene));
+}
+
+bool composes(const OpeningDomain& domain, const OpeningConstraints& constraints) {
+  for (size_t p = 0; p < domain.panels().size(); ++p)
+    if (constraints.for_panel(static_cast<int>(p)).composes()) return true;
+  return false;
+}
+
+std::string percent(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f %%", 100.0 * x);
+  return text;
+}
+
+SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress* progress) {
+  check_contributions_match(scene, c, "solve");
+  refuse_dark_sky(scene);
+  const auto start = Clock::now();
+  SolveResult out;
+  out.goals = resolve_goals(scene, c);
+  const bool climate = !scene.sensors.climate_goals.empty();
+  SolverSettings settings = scene.solver;
+  // In thick walls the records give a year only for edges on the grid lines: climate answers keep them there.
+  if (climate && has_thick_panel(scene.domain)) settings.refine_edges = false;
+  LinearObjective objective = linear_objective(c, out.goals, settings.bound_weight);
+  std::optional<ClimateProblem> climate_problem_of;
+  ExactValues exact_values(c, progress);
+  const ElementGrid grid = ElementGrid::from_domain(scene.domain);
+  const ShapeWeights shape = shape_of(settings);
+  GeneticSettings ga;
+  ga.population = settings.population;
+  ga.generations = settings.generations;
+  ga.seed = settings.seed;
+  ga.time_budget_s = settings.time_budget_s;
+  ga.elite = settings.elite;
+  ga.shape = shape;
+
+  auto t = Clock::now();
+  const ElementStage stage = climate ? climate_element_stage(scene, c, grid, shape, ga, exact_values, &objective, out, &climate_problem_of, progress)
+                                     : linear_element_stage(scene, c, objective, grid, shape, ga, exact_values, out, progress);
+  double best = stage.fitness;
+  SensorValues chosen = stage.values;
 
   // Architectural refinement: regions become admissible rectangles (the paper's final step),
   // then a local search over whole openings; the exact evaluation has the last word.
@@ -405,7 +537,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   const std::vector<uint8_t> out_of_bounds = elements_out_of_bounds(scene.domain, grid_constraints);
   if (opens_any(out.open, out_of_bounds)) {
     if (progress) progress->start("solving: elements within the constraints", 1);
-    const ElementChoice within = search_within_bounds(objective, c, grid, shape, ga, exact_values, fine_start.open,
+    const ElementChoice within = search_within_bounds(objective, c, grid, shape, ga, exact_values, stage.start_open,
                                                       out.open, out_of_bounds, progress);
     Constrained second = constrain(within.open, within.values, grid_constraints);
     out.second_start = true;
@@ -597,6 +729,11 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     out.verified_stderr = v.standard_error;
     out.verified_error = goal_error(out.goals, v.value);
     out.timings.push_back({"verification", since(t)});
+  }
+  if (climate) {
+    t = Clock::now();
+    report_climate(scene, c, *climate_problem_of, final_rects, &out, progress);
+    out.timings.push_back({"climate figures", since(t)});
   }
   for (const std::string& w : {sparse_sampling_warning(c.paths_per_sensor, c.element_count()),
                                prediction_mismatch_warning(out)})

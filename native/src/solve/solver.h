@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include "solve/climate_design.h"
 #include "solve/constraint_costs.h"
 #include "solve/genetic.h"
 #include "solve/composition.h"
@@ -73,6 +74,8 @@ struct SolveResult {
   std::vector<CompositionStep> composition;
   // The answer, then the best found with fewer openings, down to one (solver.tradeoffs).
   std::vector<TradeoffResult> tradeoffs;
+  // Climate goals (scene goals.climate): each goal's figures and the year of the final openings.
+  ClimateOutcome climate;
 };
 
 // Contributions already computed for this scene.

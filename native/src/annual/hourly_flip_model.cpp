@@ -1,0 +1,262 @@
+#include "annual/hourly_flip_model.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <mutex>
+#include <stdexcept>
+
+#include "annual/annual_records.h"
+#include "cost/cost_model.h"
+#include "cost/memory_limit.h"
+#include "daylight/annual_metrics.h"
+#include "util/progress.h"
+
+namespace fenestra {
+namespace {
+
+constexpr size_t kPollPaths = 4096;
+
+bool is_occupied(const HourStamp& h, const AnnualMetricSettings& s) {
+  return h.clock_hour >= s.occupied_start_hour && h.clock_hour < s.occupied_end_hour;
+}
+
+// One path's light per source (unit coefficients; the sun straight to the sensor left out: the
+// exact hourly sun replaces it) when the domain is open where `open` says.
+template <typename Open>
+void add_path_sources(const SensorRecord& r, size_t p, Open open, double sign, double* row) {
+  for_each_counting_event_in_region(r, p, [&](int32_t k, const PanelPoint&) { return open(k); }, [&](uint32_t e) {
+    const uint16_t source = r.event_sources[e];
+    if (!(source & AnnualSources::kDirect)) row[source] += sign * r.event_coefficients[e];
+  });
+}
+
+// A sensor's daylight coefficients: for S, and for each element S's flip of it changes.
+struct SensorCoefficients {
+  Eigen::VectorXd base;             // sources
+  std::vector<int32_t> elements;    // touched, sorted
+  Eigen::MatrixXd flips;            // touched x sources: change when that element flips
+};
+
+SensorCoefficients sensor_coefficients(const SensorRecord& r, const std::vector<uint8_t>& about, int sources,
+                                       bool with_flips, const Progress* progress) {
+  SensorCoefficients out;
+  out.base = Eigen::VectorXd::Zero(sources);
+  std::vector<int32_t> touched;
+  for (size_t p = 0; p < r.path_count() && with_flips; ++p) {
+    std::vector<int32_t> elements;
+    path_elements(r, p, &elements);
+    touched.insert(touched.end(), elements.begin(), elements.end());
+  }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  out.elements = touched;
+  out.flips = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched.size()), sources);
+  Eigen::VectorXd path_base(sources), flipped(sources);
+  std::vector<int32_t> elements;
+  for (size_t p = 0; p < r.path_count(); ++p) {
+    if (progress && p % kPollPaths == 0 && progress->cancelled()) return out;
+    if (with_flips) path_elements(r, p, &elements);
+    path_base.setZero();
+    add_path_sources(r, p, [&](int32_t k) { return about[k] != 0; }, 1.0, path_base.data());
+    out.base += path_base;
+    for (int32_t flip : elements) {
+      flipped = -path_base;
+      add_path_sources(r, p, [&](int32_t k) { return (about[k] != 0) != (k == flip); }, 1.0, flipped.data());
+      const auto slot = std::lower_bound(touched.begin(), touched.end(), flip) - touched.begin();
+      out.flips.row(slot) += flipped.transpose();
+    }
+  }
+  const double n = static_cast<double>(std::max<size_t>(1, r.path_count()));
+  out.base /= n;
+  out.flips /= n;
+  return out;
+}
+
+// Lux per column from coefficients per source: the patches through the sky matrix's columns, the
+// sun clusters' reflected light at each sunny column's cluster.
+class ColumnSky {
+ public:
+  ColumnSky(const AnnualRecords& a, const HourlyColumns& columns) : annual_(a) {
+    const SkyMatrix& sky = *a.climate->sky;
+    std::vector<int> day_column(sky.hours.size(), -1);
+    for (size_t j = 0; j < a.day_hours.size(); ++j) day_column[a.day_hours[j]] = static_cast<int>(j);
+    const Eigen::Index n = static_cast<Eigen::Index>(columns.hour.size());
+    patches_.setZero(a.sources.patch_count, n);
+    for (Eigen::Index c = 0; c < n; ++c) {
+      const int h = columns.hour[c];
+      if (day_column[h] >= 0) patches_.col(c) = a.day_sky.col(day_column[h]);
+      const int cluster = a.sources.suns.cluster_of_hour[h];
+      if (sky.sun_normal_illuminance[h] > 0.0f && cluster >= 0)
+        sun_.push_back({static_cast<int>(c), a.sources.sun_source(cluster), sky.sun_normal_illuminance[h]});
+    }
+  }
+
+  // rows of `coefficients` (x sources) -> rows x columns, lux.
+  Eigen::MatrixXf lux(const Eigen::MatrixXd& coefficients) const {
+    Eigen::MatrixXf out = coefficients.leftCols(annual_.sources.patch_count).cast<float>() * patches_;
+    for (const Sun& s : sun_) out.col(s.column) += coefficients.col(s.source).cast<float>() * s.lux;
+    return out;
+  }
+
+ private:
+  struct Sun {
+    int column, source;
+    float lux;
+  };
+  const AnnualRecords& annual_;
+  Eigen::MatrixXf patches_;  // patches x columns, cd/m^2
+  std::vector<Sun> sun_;
+};
+
+}  // namespace
+
+HourlyColumns hourly_columns(const AnnualRecords& annual, bool en17037) {
+  const SkyMatrix& sky = *annual.climate->sky;
+  HourlyColumns out;
+  std::vector<char> daylight;
+  if (en17037) daylight = en17037_daylight_hours(sky.diffuse_horizontal_lux);
+  std::vector<char> lit(sky.hours.size(), 0);
+  for (int h : annual.day_hours) lit[h] = 1;
+  for (int pass = 0; pass < 2; ++pass)  // the occupied hours first
+    for (size_t h = 0; h < sky.hours.size(); ++h) {
+      const bool occupied = is_occupied(sky.hours[h], annual.metric_settings);
+      const bool day = en17037 && daylight[h];
+      if (pass == 0) out.occupied_hours += occupied, out.daylight_hours += day;
+      if (!lit[h] || occupied != (pass == 0) || !(occupied || day)) continue;
+      out.hour.push_back(static_cast<int>(h));
+      out.occupied.push_back(occupied);
+      out.daylight.push_back(day);
+    }
+  return out;
+}
+
+int HourlyColumns::occupied_columns() const {
+  return static_cast<int>(std::count(occupied.begin(), occupied.end(), 1));
+}
+
+size_t HourlyFlipModel::memory_bytes() const {
+  size_t bytes = sizeof(float) * (total.size() + direct.size());
+  for (const auto& m : flip_total) bytes += sizeof(float) * m.size();
+  for (const auto& d : flip_direct) bytes += sizeof(DirectChange) * d.capacity();
+  return bytes;
+}
+
+double hourly_flip_model_bytes(size_t rows, size_t columns, size_t elements) {
+  return 4.0 * static_cast<double>(rows) * static_cast<double>(columns) * static_cast<double>(elements + 2);
+}
+
+namespace {
+
+HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& about, const std::vector<int>& rows,
+                            const HourlyColumns& columns, bool with_flips, const Progress* progress) {
+  if (!c.annual) throw std::invalid_argument("climate goals need the contributions of a climate sky");
+  if (about.size() != c.element_count())
+    throw std::invalid_argument("open-element mask has " + std::to_string(about.size()) + " entries, expected " +
+                                std::to_string(c.element_count()));
+  const AnnualRecords& annual = *c.annual;
+  const int sources = annual.sources.count();
+  const Eigen::Index n_rows = static_cast<Eigen::Index>(rows.size());
+  const Eigen::Index n_columns = static_cast<Eigen::Index>(columns.hour.size());
+  HourlyFlipModel m;
+  m.about = about;
+  m.rows = rows;
+  m.columns = columns;
+
+  std::vector<SensorCoefficients> coefficients(rows.size());
+  tbb::parallel_for(size_t(0), rows.size(), [&](size_t r) {
+    if (progress && progress->cancelled()) return;
+    coefficients[r] = sensor_coefficients(c.records[rows[r]], about, sources, with_flips, progress);
+  });
+  if (progress) progress->throw_if_cancelled();
+
+  std::vector<uint8_t> touched(c.element_count(), 0);
+  for (const SensorCoefficients& s : coefficients)
+    for (int32_t k : s.elements) touched[k] = 1;
+  std::vector<int32_t> crossed;
+  for (int sensor : rows) {
+    if (!with_flips) break;  // the elements the sun's rays cross
+    for (size_t j = 0; j < annual.direct[sensor].path_count(); ++j) {
+      path_elements(annual.direct[sensor], j, &crossed);
+      for (int32_t k : crossed) touched[k] = 1;
+    }
+  }
+  const size_t stored = static_cast<size_t>(std::count(touched.begin(), touched.end(), 1));
+  const double bytes = hourly_flip_model_bytes(rows.size(), columns.hour.size(), stored);
+  const MemoryLimit limit = memory_limit();
+  if (bytes > 0.8 * static_cast<double>(limit.bytes))
+    throw CostError(memory_refusal("the climate goals' hourly model (" + std::to_string(rows.size()) + " sensors x " +
+                                       std::to_string(columns.hour.size()) + " hours x " + std::to_string(stored) +
+                                       " elements, 4 bytes each)",
+                                   bytes, bytes, limit,
+                                   "use a larger element_size, fewer sensors in the climate goals, or a shorter "
+                                   "occupied period"));
+
+  m.total.setZero(n_rows, n_columns);
+  m.direct.setZero(n_rows, n_columns);
+  m.flip_total.resize(c.element_count());
+  m.flip_direct.resize(c.element_count());
+  for (size_t k = 0; k < touched.size(); ++k)
+    if (touched[k]) m.flip_total[k].setZero(n_rows, n_columns);
+
+  std::vector<int> column_of_hour(annual.climate->sky->hours.size(), -1);
+  for (Eigen::Index j = 0; j < n_columns; ++j) column_of_hour[columns.hour[j]] = static_cast<int>(j);
+  const ColumnSky sky(annual, columns);
+  std::mutex direct_lock;
+  tbb::parallel_for(size_t(0), rows.size(), [&](size_t r) {
+    if (progress && progress->cancelled()) return;
+    const SensorCoefficients& s = coefficients[r];
+    const Eigen::Index row = static_cast<Eigen::Index>(r);
+    m.total.row(row) = sky.lux(s.base.transpose());
+    const Eigen::MatrixXf flips = sky.lux(s.flips);
+    for (size_t t = 0; t < s.elements.size(); ++t) m.flip_total[s.elements[t]].row(row) = flips.row(t);
+    // The sun straight to the sensor, at each sunny hour's exact position.
+    const SensorRecord& d = annual.direct[rows[r]];
+    std::vector<std::pair<int32_t, DirectChange>> changes;
+    std::vector<int32_t> elements;
+    for (size_t j = 0; j < d.path_count(); ++j) {
+      const int hour = annual.sun_hours[j];
+      const int column = column_of_hour[hour];
+      if (column < 0) continue;
+      const float sun = annual.climate->sky->sun_normal_illuminance[hour];
+      auto value = [&](int32_t flip) {
+        return static_cast<float>(
+            path_value_in_region(d, j, [&](int32_t k, const PanelPoint&) { return (about[k] != 0) != (k == flip); }));
+      };
+      const float base = value(-1) * sun;
+      m.direct(row, column) = base;
+      m.total(row, column) += base;
+      if (with_flips) path_elements(d, j, &elements);
+      for (int32_t k : elements) {
+        const float change = value(k) * sun - base;
+        if (change == 0.0f) continue;
+        m.flip_total[k](row, column) += change;
+        changes.push_back({k, {static_cast<int32_t>(row), column, change}});
+      }
+    }
+    std::lock_guard<std::mutex> hold(direct_lock);
+    for (const auto& [k, change] : changes) m.flip_direct[k].push_back(change);
+  });
+  if (progress) progress->throw_if_cancelled();
+  // Sorted, so the model does not depend on which thread finished first.
+  for (auto& list : m.flip_direct)
+    std::sort(list.begin(), list.end(), [](const DirectChange& a, const DirectChange& b) {
+      return a.row != b.row ? a.row < b.row : a.column < b.column;
+    });
+  return m;
+}
+
+}  // namespace
+
+HourlyFlipModel hourly_flip_model(const Contributions& c, const std::vector<uint8_t>& about,
+                                  const std::vector<int>& rows, const HourlyColumns& columns,
+                                  const Progress* progress) {
+  return build_model(c, about, rows, columns, true, progress);
+}
+
+HourlyFlipModel hourly_state(const Contributions& c, const std::vector<uint8_t>& open, const std::vector<int>& rows,
+                             const HourlyColumns& columns, const Progress* progress) {
+  return build_model(c, open, rows, columns, false, progress);
+}
+
+}  // namespace fenestra

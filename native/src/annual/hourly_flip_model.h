@@ -1,0 +1,66 @@
+#pragma once
+// The year as the climate goals see it, for a set of open elements S and for every single flip
+// of S: each goal sensor's illuminance at each hour that can matter (lit hours of the occupied
+// period and EN 17037's daylight hours), exact for S from the path records, and the exact change
+// each element's flip alone brings (its daylight coefficients per source, times the sky matrix).
+// A state S' then reads V(S) + sum over the elements S' flips of their changes: exact for one
+// flip, the linear model about S for more. See docs/solver.md, "Climate goals".
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "trace/contributions.h"
+
+namespace fenestra {
+
+class Progress;
+
+// Rows x hours of lux, each sensor's year contiguous (the metrics scan a sensor's hours).
+using HourlyMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// The hours a model keeps (columns), as indices of the sky matrix's hours, with what each counts for.
+// The occupied ones come first, so the occupied period is the first `occupied_columns()` columns.
+struct HourlyColumns {
+  std::vector<int> hour;
+  std::vector<uint8_t> occupied;  // in the occupied period (DA, sDA, UDI, ASE, mean)
+  std::vector<uint8_t> daylight;  // one of EN 17037's daylight hours
+  int occupied_hours = 0;         // of the year, lit or not: the denominator of DA and UDI
+  int daylight_hours = 0;         // EN 17037's daylight hours of the year
+  int occupied_columns() const;
+};
+
+// The occupied hours with light and, when `en17037`, EN 17037's daylight hours (the half of the
+// year with the most external diffuse light, as annual studies count them).
+HourlyColumns hourly_columns(const AnnualRecords& annual, bool en17037);
+
+// One entry of the direct sun's change when an element flips (sparse: a sun ray crosses few elements).
+struct DirectChange {
+  int32_t row = 0, column = 0;
+  float lux = 0.0f;
+};
+
+struct HourlyFlipModel {
+  std::vector<uint8_t> about;  // S, per element
+  std::vector<int> rows;       // the sensors, as scene indices
+  HourlyColumns columns;
+  HourlyMatrix total, direct;  // rows x columns, lux: every light, and the sun straight to the sensor
+  // Per element: the change of `total` when it alone flips from S (empty: it changes nothing here),
+  // and the part of that change that is direct sun.
+  std::vector<HourlyMatrix> flip_total;
+  std::vector<std::vector<DirectChange>> flip_direct;
+  size_t memory_bytes() const;
+};
+
+// Bytes a model of these sizes holds at most (every element's change stored).
+double hourly_flip_model_bytes(size_t rows, size_t columns, size_t elements);
+
+// Throws CostError when the model would not fit in memory (cost/memory_limit.h), naming the figure
+// and what to reduce; std::invalid_argument without annual records. Polls `progress`.
+HourlyFlipModel hourly_flip_model(const Contributions& c, const std::vector<uint8_t>& about,
+                                  const std::vector<int>& rows, const HourlyColumns& columns,
+                                  const Progress* progress = nullptr);
+// The same without the flips: the exact hourly illuminance of `open` alone (total and direct).
+HourlyFlipModel hourly_state(const Contributions& c, const std::vector<uint8_t>& open, const std::vector<int>& rows,
+                             const HourlyColumns& columns, const Progress* progress = nullptr);
+
+}  // namespace fenestra

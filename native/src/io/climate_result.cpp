@@ -1,0 +1,83 @@
+#include "io/climate_result.h"
+
+#include "annual/annual_study.h"
+
+namespace fenestra {
+namespace {
+
+using nlohmann::json;
+
+const char* sense_name(GoalSense s) {
+  switch (s) {
+    case GoalSense::AtLeast: return "at_least";
+    case GoalSense::AtMost: return "at_most";
+    case GoalSense::Target: return "target";
+  }
+  return "?";
+}
+
+json figure_or_null(const std::vector<ClimateFigure>& figures, size_t g) {
+  return g < figures.size() ? json(figures[g].achieved) : json(nullptr);
+}
+
+json met_or_null(const ClimateGoal& goal, const std::vector<ClimateFigure>& figures, size_t g) {
+  return g < figures.size() ? json(figure_meets(goal, figures[g].achieved)) : json(nullptr);
+}
+
+bool all_met(const ClimateGoals& goals, const std::vector<ClimateFigure>& figures) {
+  for (size_t g = 0; g < goals.goals.size(); ++g)
+    if (g >= figures.size() || !figure_meets(goals.goals[g], figures[g].achieved)) return false;
+  return true;
+}
+
+std::vector<double> values(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+}  // namespace
+
+json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
+  const ClimateGoals& goals = scene.sensors.climate_goals;
+  json list = json::array();
+  for (size_t g = 0; g < goals.goals.size(); ++g) {
+    const ClimateGoal& goal = goals.goals[g];
+    list.push_back({{"metric", goal.metric_name()},
+                    {"description", goal.describe()},
+                    {"sensors", goal.sensors},
+                    {"sense", sense_name(goal.sense())},
+                    {"required", goal.required()},
+                    {"unit", goal.unit()},
+                    {"weight", goal.weight},
+                    {"achieved", figure_or_null(c.achieved, g)},
+                    {"met", met_or_null(goal, c.achieved, g)},
+                    {"verified", figure_or_null(c.verified, g)},
+                    {"verified_met", met_or_null(goal, c.verified, g)},
+                    {"elements", figure_or_null(c.element_figures, g)},
+                    {"all_open", figure_or_null(c.all_open_figures, g)}});
+  }
+  json per_sensor = nullptr, space = nullptr, verified_space = nullptr;
+  if (c.study) {
+    const AnnualMetrics& m = c.study->metrics;
+    std::vector<int> ase(m.ase_sensor_hours.data(), m.ase_sensor_hours.data() + m.ase_sensor_hours.size());
+    per_sensor = {{"daylight_autonomy", values(m.daylight_autonomy)},
+                  {"continuous_daylight_autonomy", values(m.continuous_daylight_autonomy)},
+                  {"mean_illuminance_lux", values(m.mean_illuminance_lux)},
+                  {"ase_hours", ase}};
+    space = annual_space_json(m);
+  }
+  if (c.verified_study) verified_space = annual_space_json(c.verified_study->metrics);
+  return {{"goals", list},
+          {"all_met", c.achieved.empty() ? json(nullptr) : json(all_met(goals, c.achieved))},
+          {"verified_all_met", c.verified.empty() ? json(nullptr) : json(all_met(goals, c.verified))},
+          {"unmet", c.unmet},
+          {"least_glazing", goals.least_glazing},
+          {"glazing_area_m2", c.glazing_area_m2},
+          {"domain_area_m2", c.domain_area_m2},
+          {"per_sensor", per_sensor},
+          {"space", space},
+          {"verified_space", verified_space},
+          {"linearisations", c.linearisations},
+          {"model_bytes", c.model_bytes},
+          {"units", "fractions in [0, 1] (of the sensors, or of EN 17037's daylight hours), illuminance in lux, "
+                    "areas in m^2, hours of the occupied period"}};
+}
+
+}  // namespace fenestra

@@ -1,0 +1,74 @@
+#pragma once
+// Stage 1 and 2 of the solver for climate goals (docs/solver.md, "Climate goals"): starts from
+// NNLS on the annual mean, the genetic algorithm on the hourly model about all elements closed,
+// then about its best state (successive linearisation), the exact year from the path records
+// choosing among the best states of each run.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "annual/hourly_flip_model.h"
+#include "solve/climate_objective.h"
+#include "solve/element_grid.h"
+#include "solve/genetic.h"
+#include "solve/goals.h"
+#include "trace/contributions.h"
+
+namespace fenestra {
+
+class Progress;
+struct Scene;
+
+// What the climate goals look at: the sensors (goal groups and per-sensor goals), the hours, the
+// objective.
+struct ClimateProblem {
+  std::vector<int> rows;
+  HourlyColumns columns;
+  std::unique_ptr<ClimateObjective> objective;
+};
+// `linear`: the scene's per-sensor goals (may have none).
+ClimateProblem climate_problem(const Scene& scene, const Contributions& c, const SolverGoals& linear);
+
+struct ClimateDesign {
+  std::vector<uint8_t> open;                     // the answer in elements
+  std::vector<std::vector<uint8_t>> candidates;  // the best states seen, exactly ranked, best first
+  double error = 0.0;                            // the answer's error (exact year), shape excluded
+  std::vector<ClimateFigure> figures;            // the answer's, exact from the path records
+  std::vector<ClimateFigure> all_open_figures;   // every element open: what the domain can give
+  std::vector<GenerationRecord> history;         // the first genetic run
+  int generations = 0;
+  int linearisations = 0;                        // rounds about a best state that improved it
+  double model_bytes = 0.0;                      // the largest hourly model held
+  double seconds_model = 0.0, seconds_search = 0.0;
+};
+
+// `seeds`: further starting states (e.g. the linear start of per-sensor goals).
+ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& problem, const ElementGrid& grid,
+                                 const GeneticSettings& ga, const std::vector<std::vector<uint8_t>>& seeds,
+                                 Progress* progress = nullptr);
+
+struct AnnualStudy;  // annual/annual_study.h
+
+// What a solve on climate goals reports (the solve result's "climate").
+struct ClimateOutcome {
+  bool active = false;
+  std::vector<ClimateFigure> element_figures;   // the element answer, before the constraints
+  std::vector<ClimateFigure> all_open_figures;  // every element open
+  // The final openings: from the path records (empty when they cannot tell, e.g. edges off the
+  // grid lines of a thick wall), and path-traced with real cutters and independent paths (empty
+  // unless verified).
+  std::vector<ClimateFigure> achieved, verified;
+  std::shared_ptr<const AnnualStudy> study, verified_study;
+  double glazing_area_m2 = 0.0, domain_area_m2 = 0.0;
+  int linearisations = 0;
+  double model_bytes = 0.0;
+  std::vector<std::string> unmet;  // per goal the final openings miss, in words
+};
+
+// The figures of a year of illuminance (sensors x the sky matrix's hours, lux, as AnnualIlluminance
+// holds it) for the problem's sensors and hours.
+std::vector<ClimateFigure> climate_figures(const ClimateProblem& problem, const Eigen::MatrixXf& total,
+                                           const Eigen::MatrixXf& direct);
+
+}  // namespace fenestra

@@ -1,0 +1,74 @@
+#pragma once
+// What the climate goals make of a year of hourly illuminance: each goal's figure (sDA, ASE,
+// EN 17037, UDI, annual mean) exactly as the annual metrics define it, a smooth surrogate of it
+// for the search, and the error the genetic algorithm minimises (docs/solver.md, "Climate goals").
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "annual/hourly_flip_model.h"
+#include "scene/climate_goals.h"
+#include "solve/goals.h"
+
+namespace fenestra {
+
+struct ClimateFigure {
+  double achieved = 0.0;  // the goal's figure, exact (area fraction, hours fraction or lux)
+  double smooth = 0.0;    // its surrogate: sensor and hour steps replaced by ramps
+};
+
+// Per goal: the figure met (within 1e-9)?
+bool figure_meets(const ClimateGoal& goal, double achieved);
+
+struct ClimateObjectiveSettings {
+  // Least glazing: the error gains this times the open fraction of the domain. A point of sDA
+  // (0.01 of the sensors) costs 0.02 in the error, so meeting the goals always outweighs glass.
+  double glazing_weight = 0.0;
+  double bound_weight = 10.0;  // as LinearObjective's
+  bool horizontal_openings = false;  // EN 17037: rooflights alone (the 95 % criterion)
+};
+
+class ClimateObjective {
+ public:
+  // `rows`: the model's sensors (scene indices); `linear`: the per-sensor goals (lux on the mean of
+  // the occupied hours; weight 0 where none) or null; `element_area`: m^2 per element.
+  ClimateObjective(const ClimateGoals& goals, const HourlyColumns& columns, const std::vector<int>& rows,
+                   const SolverGoals* linear, std::vector<double> element_area, ClimateObjectiveSettings settings);
+
+  bool needs_direct() const { return needs_direct_; }
+  const ClimateGoals& goals() const { return goals_; }
+
+  // rows x columns of lux: total, and direct sun (may be empty without an ASE goal).
+  std::vector<ClimateFigure> figures(const HourlyMatrix& total, const HourlyMatrix& direct) const;
+  // Per model row: the mean of the occupied hours, lux (dark occupied hours count as 0).
+  Eigen::VectorXd occupied_mean(const HourlyMatrix& total) const;
+  // The error: goals' shortfalls (hard and smooth), the per-sensor goals' relative squared error,
+  // and the glazing term for `open_area` m^2.
+  double error(const HourlyMatrix& total, const HourlyMatrix& direct, double open_area) const;
+  double element_area(int k) const { return element_area_[static_cast<size_t>(k)]; }
+
+ private:
+  struct GoalRows {
+    std::vector<int> rows;  // model rows of the goal's sensors
+  };
+  double shortfall(const ClimateGoal& goal, const ClimateFigure& f) const;
+  ClimateFigure mean_figure(const ClimateGoal& goal, const std::vector<int>& rows, const HourlyMatrix& total) const;
+
+  ClimateGoals goals_;
+  HourlyColumns columns_;
+  std::vector<GoalRows> goal_rows_;
+  int occupied_columns_ = 0;  // the first columns
+  std::vector<int> daylight_columns_;
+  // Per-sensor goals, per model row: target lux, weight / sum(w g^2), bounds; empty without any.
+  Eigen::VectorXd target_, weight_, lower_, upper_;
+  std::vector<double> element_area_;
+  double domain_area_ = 0.0;
+  ClimateObjectiveSettings settings_;
+  bool needs_direct_ = false;
+};
+
+// EN 17037's area fractions for the target illuminance: 50 % for vertical or inclined openings,
+// 95 % for horizontal ones (rooflights alone); the minimum target always over 95 %.
+inline constexpr double kEnTargetAreaVertical = 0.5, kEnTargetAreaHorizontal = 0.95, kEnMinimumArea = 0.95;
+
+}  // namespace fenestra
