@@ -154,3 +154,113 @@ def test_seeded_mutations_of_the_climate_sky_load_or_are_refused_by_name(small_r
             assert "sky" in str(e), (key, value, str(e))
             continue
         assert loaded.has_climate
+
+
+def da_tolerance(records_year, occupied, relative_se):
+    """How far a sensor's DA300 from an independent estimate of the same year may lie: the share of
+    occupied hours whose value lies within four relative standard errors of 300 lux (an hour moves
+    by about the mean's relative error), the only hours that can change sides."""
+    e = records_year[:, occupied]
+    return (np.abs(e - 300.0) <= 4.0 * relative_se[:, None] * e).mean(axis=1)
+
+
+def test_cli_cutters_traces_the_year_with_the_openings_cut(small_room, tmp_path):
+    path = climate_room(small_room)
+    r = cli("annual", path, "--openings", tmp_path / "window.json", "-o", tmp_path / "cut", "--cutters",
+            "--paths", 32768, "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert "openings cut" in r.stdout and "sDA" in r.stdout
+    r = cli("annual", path, "--openings", tmp_path / "window.json", "-o", tmp_path / "records", "--quiet")
+    assert r.returncode == 0, r.stderr
+    cut, records = np.load(tmp_path / "cut.npz"), np.load(tmp_path / "records.npz")
+    cs = json.loads((tmp_path / "cut.json").read_text())
+    rs = json.loads((tmp_path / "records.json").read_text())
+    assert cs["paths"] == "traced with the openings cut" and rs["paths"] == "contribution records"
+    assert cs["paths_per_sensor"] == 32768 and "mean_illuminance_from_records_lux" not in cs["per_sensor"]
+    assert cut["illuminance"].shape == records["illuminance"].shape == (3, 8760)
+    occupied = cut["occupied"].astype(bool)
+
+    # The means: two independent estimates of the same year, within four combined standard errors.
+    mean_cut = np.array(cs["per_sensor"]["mean_illuminance_lux"])
+    mean_records = np.array(rs["per_sensor"]["mean_illuminance_lux"])
+    se = np.hypot(cs["per_sensor"]["mean_illuminance_stderr_lux"], rs["per_sensor"]["mean_illuminance_stderr_lux"])
+    assert np.all(np.abs(mean_cut - mean_records) <= 4 * se), (mean_cut, mean_records, se)
+    assert np.allclose(mean_cut, cut["illuminance"][:, occupied].mean(axis=1), rtol=1e-5)
+
+    # The sun straight to the sensor is the same ray both ways: equal wherever both see it; only
+    # rays grazing the window's edges may differ.
+    d_cut, d_records = cut["direct_sun"], records["direct_sun"]
+    both = (d_cut > 0) & (d_records > 0)
+    assert np.array_equal(d_cut[both], d_records[both])
+    differ = (d_cut > 0) != (d_records > 0)
+    assert differ.sum() <= 0.01 * both.sum(), (differ.sum(), both.sum())
+    # ASE: a sensor's hours above 1000 lux move by at most its differing hours.
+    allowed = (differ & occupied).sum(axis=1)
+    assert np.all(np.abs(cut["ase_hours"] - records["ase_hours"]) <= allowed)
+    undecided = np.abs(records["ase_hours"] - 250) <= allowed
+    assert abs(cs["space"]["annual_sunlight_exposure"] - rs["space"]["annual_sunlight_exposure"]) <= undecided.mean()
+
+    # DA300 per sensor within its derived tolerance; sDA300/50 % changes only by sensors whose DA
+    # is that close to 50 %.
+    tolerance = da_tolerance(records["illuminance"], occupied, se / mean_records)
+    da_cut, da_records = cut["daylight_autonomy"], records["daylight_autonomy"]
+    assert np.all(np.abs(da_cut - da_records) <= tolerance + 1e-9), (da_cut, da_records, tolerance)
+    undecided = np.abs(da_records - 0.5) <= tolerance
+    assert abs(cs["space"]["spatial_daylight_autonomy"] - rs["space"]["spatial_daylight_autonomy"]) <= undecided.mean()
+
+
+def test_python_cutters_match_the_cli_and_refuse_bad_input(small_room, tmp_path):
+    path = climate_room(small_room)
+    scene = fenestra.load_scene(path)
+    a = fenestra.annual(scene, WINDOW, cutters=True, paths=2048, output=tmp_path / "py")
+    assert a["summary"]["paths"] == "traced with the openings cut" and a["summary"]["paths_per_sensor"] == 2048
+    r = cli("annual", path, "--openings", tmp_path / "window.json", "-o", tmp_path / "cli", "--cutters",
+            "--paths", 2048, "--threads", 1, "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert np.array_equal(a["illuminance"], np.load(tmp_path / "cli.npz")["illuminance"])  # any thread count
+    assert np.array_equal(np.load(tmp_path / "py.npz")["illuminance"], a["illuminance"])
+
+    off = {"openings": [WINDOW["openings"][0], {"corners": [[0.5, 5, 1.0], [2.5, 5, 1.0], [2.5, 5, 2.0],
+                                                            [0.5, 5, 2.0]]}]}
+    with pytest.raises(ValueError, match="opening 1"):
+        fenestra.annual(scene, off, cutters=True, output=tmp_path / "off")
+    assert not list(tmp_path.glob("off.*"))
+    (tmp_path / "off.json").write_text(json.dumps(off))
+    r = cli("annual", path, "--openings", tmp_path / "off.json", "-o", tmp_path / "out", "--cutters", "--quiet")
+    assert r.returncode == 1 and "opening 1" in r.stderr, r.stderr
+    assert not list(tmp_path.glob("out.*"))
+    with pytest.raises(ValueError, match="contributions"):
+        fenestra.annual(scene, WINDOW, contributions=fenestra.contributions(scene), cutters=True)
+    with pytest.raises(ValueError, match="paths"):
+        fenestra.annual(scene, WINDOW, cutters=True, paths=-1)
+    r = cli("evaluate", path, "--openings", tmp_path / "window.json", "-o", tmp_path / "e.json", "--cutters")
+    assert r.returncode == 2 and "--cutters" in r.stderr
+    json_scene = json.loads(small_room.read_text())
+    json_scene["sky"] = {"type": "uniform", "radiance": 100}
+    plain = fenestra.Scene.from_json(json.dumps(json_scene), str(small_room.parent), "plain.json")
+    with pytest.raises(ValueError, match="climate"):
+        fenestra.annual(plain, WINDOW, cutters=True)
+
+
+def test_cutters_study_openings_off_the_grid_in_a_thick_wall(small_room):
+    path = climate_room(small_room)
+    scene_json = json.loads(path.read_text())
+    scene_json["opening_domain"]["thickness"] = 0.25
+    path.write_text(json.dumps(scene_json))
+    scene = fenestra.load_scene(path)
+    # 0.1 m inside the window on every side: off the 0.5 m grid, which the records refuse in a thick wall.
+    inset = {"openings": [{"corners": [[0.6, 0, 1.1], [2.4, 0, 1.1], [2.4, 0, 1.9], [0.6, 0, 1.9]]}]}
+    with pytest.raises(ValueError, match="opening 0"):
+        fenestra.annual(scene, inset)
+    small = fenestra.annual(scene, inset, cutters=True, paths=8192)
+    full = fenestra.annual(scene, WINDOW, cutters=True, paths=8192)
+    # The smaller hole lets the sun through a subset of the rays, none of them more.
+    assert np.all(small["direct_sun"] <= full["direct_sun"])
+    assert 0 < (small["direct_sun"] > 0).sum() < (full["direct_sun"] > 0).sum()
+    # The year's light follows the hole: less through the smaller one at every sensor (28 % less
+    # area; each mean's standard error is about 1 %).
+    small_mean = np.array(small["summary"]["per_sensor"]["mean_illuminance_lux"])
+    full_mean = np.array(full["summary"]["per_sensor"]["mean_illuminance_lux"])
+    se = np.hypot(small["summary"]["per_sensor"]["mean_illuminance_stderr_lux"],
+                  full["summary"]["per_sensor"]["mean_illuminance_stderr_lux"])
+    assert np.all(small_mean + 4 * se < full_mean), (small_mean, full_mean, se)

@@ -169,7 +169,8 @@ def evaluate(scene, openings, progress=None, callback=None, max_memory=None):
     return _run(lambda p: _core.evaluate(scene, rects, p), progress, callback)
 
 
-def annual(scene, openings, contributions=None, output=None, progress=None, callback=None, max_memory=None):
+def annual(scene, openings, contributions=None, output=None, progress=None, callback=None, max_memory=None,
+           cutters=False, paths=0):
     """The annual study of a "climate" scene with the openings open (as for evaluate): every sensor's
     illuminance at every hour of the weather file's year and the climate-based metrics (docs/annual.md).
 
@@ -178,11 +179,29 @@ def annual(scene, openings, contributions=None, output=None, progress=None, call
     time, the instant each hour stands for), "occupied" (bool per hour) and "summary" (the metrics,
     as `fenestra annual` writes them to OUT.json). `contributions` (from contributions(scene)) are
     reused: a new set of openings then takes a fraction of a second. With `output`, also writes
-    OUTPUT.npz and OUTPUT.json."""
+    OUTPUT.npz and OUTPUT.json.
+
+    With cutters=True the paths are traced with the openings really cut and no records are kept
+    (`fenestra annual --cutters`): the ground truth of the records' study, and openings with edges
+    anywhere in a thick wall. `paths` per sensor (0: the scene's render.paths_per_sensor); the
+    contributions are not used."""
     rects = openings_argument(openings)
     if not scene.has_climate:
         raise ValueError("annual needs a scene whose sky is \"climate\" (a weather file, docs/scene-format.md); "
                          "scene '%s' has another sky" % scene.source)
+    if isinstance(paths, bool) or not isinstance(paths, (int, np.integer)) or paths < 0:
+        raise ValueError("paths must be a whole number of paths per sensor, at least 0 (0: the scene's "
+                         "render.paths_per_sensor), got %r" % (paths,))
+    if cutters:
+        if contributions is not None:
+            raise ValueError("annual(cutters=True) traces its own paths with the openings cut: "
+                             "leave contributions out")
+        _cost.check_cost(scene, "evaluate", max_memory)  # no records are kept
+        out = "" if output is None else os.fspath(output)
+        return _run(lambda p: _core.annual_with_cutters(scene, rects, int(paths), p, out), progress, callback)
+    if paths:
+        raise ValueError("paths belongs to annual(cutters=True); the records' study has the contributions' paths "
+                         "(render.paths_per_sensor)")
     if contributions is None:
         _cost.check_cost(scene, "contributions", max_memory)
         contributions = _run(lambda p: _core.compute_contributions(scene, p), progress, callback)

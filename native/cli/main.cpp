@@ -25,6 +25,7 @@
 #include "scene/scene.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
+#include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
 
 namespace {
@@ -40,11 +41,13 @@ const char* kUsage = R"(usage:
       Contributions, then the opening solver (NNLS start, genetic algorithm, exact re-ranking):
       writes the openings (rectangles, readable by evaluate --openings), predicted values, errors,
       timings and the genetic history. Settings from the scene's "goals" and "solver" sections.
-  fenestra annual SCENE.json --openings OPENINGS.json -o OUT[.npz] [options]
+  fenestra annual SCENE.json --openings OPENINGS.json -o OUT[.npz] [--cutters] [options]
       A scene whose sky is "climate" (a weather file): one pass of paths per sensor, then every
       sensor's illuminance at every hour of the year with the openings open, its direct-sun part,
       and the climate-based metrics (DA, cDA, UDI, sDA, ASE, EN 17037). Writes OUT.npz (arrays,
-      lux) and OUT.json (space and per-sensor metrics). See docs/annual.md.
+      lux) and OUT.json (space and per-sensor metrics). With --cutters the paths are traced with
+      the openings really cut (no records: the ground truth, and edges anywhere in thick walls).
+      See docs/annual.md.
   fenestra sky SCENE.json -o SKY.exr [--json SUMMARY.json]
       Writes the scene's sky as an equirectangular map (.exr or .hdr, cd/m^2, Blender's convention)
       and prints the horizontal illuminances and the sun list (also as JSON with --json).
@@ -56,6 +59,7 @@ options:
   --max-memory SIZE  memory the run may use, e.g. 8G, 512M or bytes (default: what the system
                 has available, within ulimit -v); runs that would need more are refused
   --json PATH   (sky) also write the summary as JSON
+  --cutters     (annual) trace the paths with the openings really cut
   --quiet       no progress on stderr
   -h, --help    this text
 
@@ -69,6 +73,7 @@ struct Args {
   std::string command, scene, output, openings, summary;
   std::map<std::string, long long> overrides;
   bool quiet = false;
+  bool cutters = false;
   uint64_t max_memory = 0;  // bytes; 0: detected (cost/memory_limit.h)
 };
 
@@ -125,6 +130,8 @@ Args parse_args(int argc, char** argv) {
       }
     } else if (arg == "--quiet") {
       a.quiet = true;
+    } else if (arg == "--cutters") {
+      a.cutters = true;
     } else if (!arg.empty() && arg[0] == '-') {
       usage_error("unknown option '" + arg + "'");
     } else {
@@ -142,6 +149,7 @@ Args parse_args(int argc, char** argv) {
   if ((a.command == "evaluate" || a.command == "annual") && a.openings.empty())
     usage_error(a.command + " needs --openings OPENINGS.json");
   if (a.command != "sky" && !a.summary.empty()) usage_error("--json belongs to the sky command");
+  if (a.command != "annual" && a.cutters) usage_error("--cutters belongs to the annual command");
   return a;
 }
 
@@ -210,11 +218,22 @@ int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& 
   if (!scene.climate)
     throw std::invalid_argument("scene '" + a.scene + "': annual needs a sky of type \"climate\" (a weather file; " +
                                 "docs/scene-format.md)");
+  if (a.cutters) {
+    const AnnualStudy study = with_progress(
+        progress, a.quiet, [&] { return annual_study_with_cutters(scene, read_openings(a.openings), &progress); });
+    const auto paths = write_annual(scene, study, a.output);
+    const AnnualMetrics& m = study.metrics;
+    std::printf("annual (openings cut): %zu sensors x %d hours (%d occupied), %d paths per sensor; %.2f s\n"
+                "%s\nwrote %s\nwrote %s\n",
+                scene.sensors.size(), m.hours, m.occupied_hours, study.paths_per_sensor, study.seconds,
+                m.to_string().c_str(), paths.first.c_str(), paths.second.c_str());
+    return 0;
+  }
   const OpenRegion region = region_of_openings(scene, read_openings(a.openings));  // before the long pass
   const Contributions c =
       with_progress(progress, a.quiet, [&] { return compute_contributions(scene, &progress, /*transport=*/false); });
   const AnnualStudy study = with_progress(progress, a.quiet, [&] { return annual_study(scene, c, region, &progress); });
-  const auto paths = write_annual(scene, c, study, a.output);
+  const auto paths = write_annual(scene, study, a.output);
   const AnnualMetrics& m = study.metrics;
   std::printf("annual: %zu sensors x %d hours (%d occupied), %d paths per sensor; contributions %.2f s, year %.3f s\n"
               "%s\nwrote %s\nwrote %s\n",
@@ -226,7 +245,9 @@ int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& 
 int run(const Args& a) {
   using namespace fenestra;
   g_stage = "loading scene '" + a.scene + "'";
-  const CostCommand cost = cost_command(a.command == "annual" ? "contributions" : a.command);
+  // An annual study with the openings cut keeps no records: its paths cost what evaluate's do.
+  const CostCommand cost =
+      cost_command(a.command == "annual" ? (a.cutters ? "evaluate" : "contributions") : a.command);
   set_cost_context({a.max_memory, cost});  // the loader's cost checks see both
   // Outputs are checked before any work (docs/outputs.md): writable, regular files, not inputs.
   const std::vector<std::string> outputs = output_paths(a);

@@ -25,6 +25,7 @@
 #include "trace/contributions.h"
 #include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
+#include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
 
 namespace py = pybind11;
@@ -143,7 +144,7 @@ py::array_t<float> float_array(const Eigen::MatrixXf& m) {
 }
 
 // An annual study as a dict of arrays (lux) and its summary (the JSON of `fenestra annual`).
-py::dict annual_dict(const Contributions& c, const AnnualStudy& s) {
+py::dict annual_dict(const AnnualStudy& s) {
   py::dict d;
   d["illuminance"] = float_array(s.illuminance.total);
   d["direct_sun"] = float_array(s.illuminance.direct);
@@ -162,7 +163,7 @@ py::dict annual_dict(const Contributions& c, const AnnualStudy& s) {
   d["hour_clock"] = clock;
   d["occupied"] = occupied;
   d["summary"] = py::module_::import("json").attr("loads")(
-      text_of(annual_json(c, s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)));
+      text_of(annual_json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)));
   return d;
 }
 
@@ -384,7 +385,7 @@ PYBIND11_MODULE(_core, m) {
               py::gil_scoped_release release;
               study = while_doing("computing the annual illuminance", [&] { return annual_study(c, mask, progress.get()); });
             }
-            return annual_dict(c, study);
+            return annual_dict(study);
           },
           py::arg("open"), py::arg("progress") = nullptr,
           "Every sensor's illuminance at every hour of the weather file's year with the elements where open is "
@@ -399,7 +400,7 @@ PYBIND11_MODULE(_core, m) {
               study = while_doing("computing the annual illuminance",
                                   [&] { return annual_study(scene, c, region, progress.get()); });
             }
-            return annual_dict(c, study);
+            return annual_dict(study);
           },
           py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
           "The annual study of openings (as for evaluate_openings).")
@@ -407,7 +408,7 @@ PYBIND11_MODULE(_core, m) {
            [](const Contributions& c, const Scene& scene, const py::object& openings, const std::string& out) {
              const OpenRegion region = region_of_openings(scene, openings_from(openings));
              py::gil_scoped_release release;
-             return write_annual(scene, c, annual_study(scene, c, region), out);
+             return write_annual(scene, annual_study(scene, c, region), out);
            },
            py::arg("scene"), py::arg("openings"), py::arg("path"),
            "Writes the annual study of openings as PATH.npz and PATH.json (as `fenestra annual`); returns both paths.")
@@ -444,6 +445,25 @@ PYBIND11_MODULE(_core, m) {
       py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
       "Path-traces the scene with the openings cut (an (n, 4, 3) array of corners, or the JSON text of an "
       "openings file); returns (value, stderr) per sensor.");
+  m.def(
+      "annual_with_cutters",
+      [](const Scene& scene, const py::object& openings, int paths, std::shared_ptr<Progress> progress,
+         const std::string& output) {
+        const auto given = openings_from(openings);
+        AnnualStudy study;
+        {
+          py::gil_scoped_release release;
+          study = while_doing("computing the annual study of scene '" + scene.source + "' with the openings cut",
+                              [&] { return annual_study_with_cutters(scene, given, progress.get(), paths); });
+          if (!output.empty()) write_annual(scene, study, output);
+        }
+        return annual_dict(study);
+      },
+      py::arg("scene"), py::arg("openings"), py::arg("paths") = 0, py::arg("progress") = nullptr,
+      py::arg("output") = "",
+      "The annual study of openings (as for evaluate) from paths traced with them really cut, no records "
+      "kept: the same dict as Contributions.annual_openings. `paths` per sensor, 0 for the scene's "
+      "render.paths_per_sensor. With `output`, also writes OUTPUT.npz and OUTPUT.json.");
   m.def(
       "constraint_violations",
       [](const Scene& scene, const py::object& openings) {

@@ -37,18 +37,8 @@ void check_annual(const Contributions& c) {
 template <typename Open>
 AnnualStudy study(const Contributions& c, Open is_open, const SensorValues& mean, const Progress* progress) {
   const auto start = std::chrono::steady_clock::now();
-  AnnualStudy s;
-  s.illuminance = annual_illuminance(annual_coefficients(c.records, *c.annual, is_open, progress), *c.annual);
-  const SkyMatrix& sky = *c.annual->climate->sky;
-  s.hours = sky.hours;
-  s.settings = c.annual->metric_settings;
-  for (const HourStamp& h : s.hours)
-    s.occupied.push_back(h.clock_hour >= s.settings.occupied_start_hour && h.clock_hour < s.settings.occupied_end_hour);
-  s.occupied_mean = mean;
-  AnnualMetricInputs inputs;
-  inputs.hours = s.hours;
-  inputs.external_horizontal_illuminance = sky.diffuse_horizontal_lux;  // EN 17037's daylight hours
-  s.metrics = annual_metrics(s.illuminance.total, inputs, s.settings, &s.illuminance.direct);
+  AnnualStudy s = annual_study_of(annual_coefficients(c.records, *c.annual, is_open, progress), c.annual, mean);
+  s.paths_per_sensor = c.paths_per_sensor;
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
 }
@@ -65,6 +55,24 @@ AnnualMetricSettings annual_metric_settings(const Scene& scene) {
   bool any_vertical = false;
   for (const Panel& p : scene.domain.panels()) any_vertical = any_vertical || std::abs(p.normal.z()) < 0.7f;
   if (!scene.domain.panels().empty() && !any_vertical) s.en17037_openings = DaylightOpenings::Horizontal;
+  return s;
+}
+
+AnnualStudy annual_study_of(const AnnualCoefficients& coefficients, std::shared_ptr<const AnnualRecords> annual,
+                            const SensorValues& mean) {
+  AnnualStudy s;
+  s.illuminance = annual_illuminance(coefficients, *annual);
+  const SkyMatrix& sky = *annual->climate->sky;
+  s.hours = sky.hours;
+  s.settings = annual->metric_settings;
+  for (const HourStamp& h : s.hours)
+    s.occupied.push_back(h.clock_hour >= s.settings.occupied_start_hour && h.clock_hour < s.settings.occupied_end_hour);
+  s.occupied_mean = mean;
+  AnnualMetricInputs inputs;
+  inputs.hours = s.hours;
+  inputs.external_horizontal_illuminance = sky.diffuse_horizontal_lux;  // EN 17037's daylight hours
+  s.metrics = annual_metrics(s.illuminance.total, inputs, s.settings, &s.illuminance.direct);
+  s.annual = std::move(annual);
   return s;
 }
 
@@ -125,11 +133,18 @@ json annual_space_json(const AnnualMetrics& m) {
           {"en17037", en}};
 }
 
-json annual_json(const Contributions& c, const AnnualStudy& s) {
+json annual_json(const AnnualStudy& s) {
   const AnnualMetrics& m = s.metrics;
-  const AnnualRecords& a = *c.annual;
+  const AnnualRecords& a = *s.annual;
   const ClimateSettings& cs = a.climate->settings;
   std::vector<int> ase_hours(m.ase_sensor_hours.data(), m.ase_sensor_hours.data() + m.ase_sensor_hours.size());
+  json per_sensor = {{"mean_illuminance_lux", to_vector(m.mean_illuminance_lux)},
+                     {"mean_illuminance_stderr_lux", to_vector(s.occupied_mean.standard_error)},
+                     {"daylight_autonomy", to_vector(m.daylight_autonomy)},
+                     {"continuous_daylight_autonomy", to_vector(m.continuous_daylight_autonomy)},
+                     {"ase_hours", ase_hours}};
+  // With the openings cut, the occupied hours' mean is the year's own: there are no records.
+  if (!s.cutters) per_sensor["mean_illuminance_from_records_lux"] = to_vector(s.occupied_mean.value);
   return {
       {"format", "fenestra-annual"},
       {"version", 1},
@@ -144,13 +159,7 @@ json annual_json(const Contributions& c, const AnnualStudy& s) {
                     {"clock", "local standard time"}}},
       {"settings", s.settings.describe()},
       {"space", annual_space_json(m)},
-      {"per_sensor",
-       {{"mean_illuminance_lux", to_vector(m.mean_illuminance_lux)},
-        {"mean_illuminance_from_records_lux", to_vector(s.occupied_mean.value)},
-        {"mean_illuminance_stderr_lux", to_vector(s.occupied_mean.standard_error)},
-        {"daylight_autonomy", to_vector(m.daylight_autonomy)},
-        {"continuous_daylight_autonomy", to_vector(m.continuous_daylight_autonomy)},
-        {"ase_hours", ase_hours}}},
+      {"per_sensor", per_sensor},
       {"sources",
        {{"sky_patches", a.sources.patch_count - 1},
         {"sky_subdivision", a.climate->sky->patches.subdivision()},
@@ -158,13 +167,13 @@ json annual_json(const Contributions& c, const AnnualStudy& s) {
         {"sun_cluster_subdivision", a.sources.suns.subdivision},
         {"sun_cluster_max_error_deg", a.sources.suns.max_error_deg},
         {"sun_cluster_mean_error_deg", a.sources.suns.mean_error_deg}}},
-      {"paths_per_sensor", c.paths_per_sensor},
+      {"paths", s.cutters ? "traced with the openings cut" : "contribution records"},
+      {"paths_per_sensor", s.paths_per_sensor},
       {"seconds", s.seconds},
   };
 }
 
-std::pair<std::string, std::string> write_annual(const Scene& scene, const Contributions& c, const AnnualStudy& s,
-                                                 const std::string& out) {
+std::pair<std::string, std::string> write_annual(const Scene& scene, const AnnualStudy& s, const std::string& out) {
   const bool has_ext = out.size() > 4 && out.compare(out.size() - 4, 4, ".npz") == 0;
   const std::string stem = has_ext ? out.substr(0, out.size() - 4) : out;
   const std::string npz_path = stem + ".npz", json_path = stem + ".json";
@@ -188,7 +197,7 @@ std::pair<std::string, std::string> write_annual(const Scene& scene, const Contr
   npz.add("continuous_daylight_autonomy", to_vector(s.metrics.continuous_daylight_autonomy), {sensors});
   std::vector<int32_t> ase(s.metrics.ase_sensor_hours.data(), s.metrics.ase_sensor_hours.data() + sensors);
   npz.add("ase_hours", ase, {sensors});
-  const json summary = annual_json(c, s);
+  const json summary = annual_json(s);
   write_files_atomically(
       {{npz_path, [&](std::ostream& o) { npz.write(o); }},
        {json_path, [&](std::ostream& o) { o << summary.dump(2, ' ', false, json::error_handler_t::replace) << "\n"; }}},

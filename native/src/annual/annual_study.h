@@ -3,6 +3,7 @@
 // file's year, its direct-sun part, and the climate-based metrics (daylight/annual_metrics.h),
 // from a climate scene's contributions. See docs/annual.md.
 #include <Eigen/Core>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -25,6 +26,11 @@ struct AnnualStudy {
   AnnualMetricSettings settings;
   AnnualMetrics metrics;
   double seconds = 0.0;  // coefficients, product and metrics
+  // What it was computed from: the sources and the sky, the paths per sensor, and whether the
+  // paths were traced with the openings really cut (annual_study_with_cutters) or are the records'.
+  std::shared_ptr<const AnnualRecords> annual;
+  int paths_per_sensor = 0;
+  bool cutters = false;
 };
 
 // The metric settings of a climate scene: the standards' defaults, its occupied hours.
@@ -36,16 +42,20 @@ AnnualStudy annual_study(const Scene& scene, const Contributions& c, const OpenR
                          const Progress* progress = nullptr);
 AnnualStudy annual_study(const Contributions& c, const std::vector<uint8_t>& open, const Progress* progress = nullptr);
 
+// The study of given daylight coefficients: the hourly illuminance, the occupied hours and the
+// metrics; `mean` is the occupied hours' mean per sensor with its standard error (lux).
+AnnualStudy annual_study_of(const AnnualCoefficients& coefficients, std::shared_ptr<const AnnualRecords> annual,
+                            const SensorValues& mean);
+
 // The openings as a region of the contributions' domain: each on its panel, on elements, and in a
 // thick wall on the grid's lines (throws std::invalid_argument naming the opening).
 OpenRegion region_of_openings(const Scene& scene, const std::vector<OpeningInput>& openings);
 
 // The study's summary (settings, space and per-sensor metrics) and its arrays as an .npz:
 // OUT.npz and OUT.json, written together or not at all. Returns both paths.
-nlohmann::json annual_json(const Contributions& c, const AnnualStudy& study);
+nlohmann::json annual_json(const AnnualStudy& study);
 // Its "space" object: the area-weighted metrics, sDA levels, UDI bands and EN 17037 levels.
 nlohmann::json annual_space_json(const AnnualMetrics& metrics);
-std::pair<std::string, std::string> write_annual(const Scene& scene, const Contributions& c, const AnnualStudy& study,
-                                                 const std::string& out);
+std::pair<std::string, std::string> write_annual(const Scene& scene, const AnnualStudy& study, const std::string& out);
 
 }  // namespace fenestra

@@ -96,7 +96,8 @@ struct PathTracer::Vertex {
   const Material* material = nullptr;
 };
 
-// Where a path's light goes: summed (ground truth), recorded as events (a sensor's path), or,
+// Where a path's light goes: summed (ground truth), listed by source (ground truth of an annual
+// study), recorded as events (a sensor's path), or,
 // for a sub-path beyond an element, summed by condition: light found after the sub-path went
 // through other elements holds only if they are open, after reflecting off them only if closed.
 class PathTracer::Sink {
@@ -110,6 +111,12 @@ class PathTracer::Sink {
   static Sink sum() { return Sink(nullptr, false); }
   static Sink record(SensorRecord* record) { return Sink(record, false); }
   static Sink outside() { return Sink(nullptr, true); }
+  // Closed mode, light listed by source as it arrives (an annual study with the openings cut).
+  static Sink by_source(std::vector<SourceLight>* out) {
+    Sink sink(nullptr, false);
+    sink.by_source_ = out;
+    return sink;
+  }
 
   bool recording() const { return record_ != nullptr; }
   bool outside_element() const { return outside_; }
@@ -123,6 +130,8 @@ class PathTracer::Sink {
     Part& current = parts_[current_];
     if (record_) {
       push(v, -1, {}, 0, crossed, count, nullptr, 0, source);
+    } else if (by_source_ && count == 0) {
+      by_source_->push_back({source, v});
     } else if (count == 0 && (current.source == source || current.value == 0.0)) {
       current.value += v;
       current.source = source;
@@ -227,6 +236,7 @@ class PathTracer::Sink {
 
   SensorRecord* record_;
   bool outside_;
+  std::vector<SourceLight>* by_source_ = nullptr;
   std::vector<Part> parts_;  // parts_[current_] takes the light now
   size_t current_ = 0;
 };
@@ -712,6 +722,18 @@ uint16_t PathTracer::sun_source(int index) const {
   return patches_ ? static_cast<uint16_t>(patches_->count() + index) : 0;
 }
 
+PathTracer::DirectSun PathTracer::direct_sun_through_openings(size_t sensor, const Vec3& direction) const {
+  DirectSun out;
+  const Vec3& n = scene_.sensors.normals[sensor];
+  out.cosine = direction.dot(n);
+  if (!(out.cosine > 0.0f)) return out;
+  Shadow sh;
+  shadow(scene_.sensors.points[sensor] + kRayEpsilon * n, direction, &openings_, false, &sh);
+  out.visible = sh.visible;
+  if (sh.visible) out.attenuation = luminance(sh.attenuation);
+  return out;
+}
+
 PathTracer::DirectSun PathTracer::direct_sun(size_t sensor, const Vec3& direction) const {
   DirectSun out;
   const Vec3& n = scene_.sensors.normals[sensor];
@@ -730,6 +752,11 @@ float PathTracer::sensor_sample(size_t sensor, Rng& rng) const {
   Sink sink = Sink::sum();
   trace_sensor(sensor, 0, rng, &openings_, sink);
   return static_cast<float>(sink.total());
+}
+
+void PathTracer::sensor_sample_by_source(size_t sensor, Rng& rng, std::vector<SourceLight>* out) const {
+  Sink sink = Sink::by_source(out);
+  trace_sensor(sensor, 0, rng, &openings_, sink);
 }
 
 void PathTracer::record_sensor_path(size_t sensor, size_t path, Rng& rng, SensorRecord* record) const {

@@ -35,6 +35,14 @@ class PathTracer {
 
   // Closed mode: one-path estimate of sensor i's value (luminance-weighted irradiance).
   float sensor_sample(size_t sensor, Rng& rng) const;
+  // Closed mode, a tracer built with sky patches: the same path's light split by source, as
+  // (source, value) pairs appended to `out` (AnnualSources indices; a source may appear more than
+  // once, and the sensor's own sun sample keeps its kDirect flag).
+  struct SourceLight {
+    uint16_t source;
+    double value;
+  };
+  void sensor_sample_by_source(size_t sensor, Rng& rng, std::vector<SourceLight>* out) const;
   // Recording mode: appends the events of path `path` (0 <= path < paths_per_sensor) to `record`.
   void record_sensor_path(size_t sensor, size_t path, Rng& rng, SensorRecord* record) const;
 
@@ -55,6 +63,9 @@ class PathTracer {
     std::vector<Crossing> crossed;
   };
   DirectSun direct_sun(size_t sensor, const Vec3& direction) const;
+  // Closed mode: the sun seen straight from a sensor with the openings really cut, so it arrives
+  // only through their holes (no elements are crossed: `crossed` stays empty).
+  DirectSun direct_sun_through_openings(size_t sensor, const Vec3& direction) const;
 
  private:
   struct PathState;

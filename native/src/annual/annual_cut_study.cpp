@@ -1,0 +1,122 @@
+#include "annual/annual_cut_study.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "annual/annual_records.h"
+#include "trace/parallel.h"
+#include "trace/path_tracer.h"
+
+namespace fenestra {
+namespace {
+
+// Stream salt: independent of the contribution pass and of evaluate_openings.
+constexpr uint64_t kAnnualCutStream = 0x616e6e75616c6375ULL;
+// Per-task coefficient rows held at once (sensors are traced in batches within it).
+constexpr size_t kBatchBytes = size_t(64) << 20;
+
+}  // namespace
+
+AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<OpeningInput>& openings, Progress* progress,
+                                      int paths_per_sensor) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!scene.climate || !scene.climate->sky)
+    throw std::invalid_argument("an annual study needs a scene whose sky is \"climate\" (a weather file); scene '" +
+                                scene.source + "' has another sky");
+  if (paths_per_sensor < 0)
+    throw std::invalid_argument("paths per sensor must be at least 1 (0: the scene's), got " +
+                                std::to_string(paths_per_sensor));
+  const std::shared_ptr<AnnualRecords> annual = prepare_annual(scene);
+  OpeningsGeometry g = build_openings(scene, openings);  // names an opening off its panel
+  const Scene traced = annual_tracing_scene(scene, annual->sources);
+  const PathTracer tracer(traced, std::move(g.cutters), std::move(g.reveals), &scene.climate->sky->patches);
+  tracer.check_sensors();
+
+  const size_t sensors = scene.sensors.size();
+  const size_t sources = static_cast<size_t>(annual->sources.count());
+  const int paths = paths_per_sensor > 0 ? paths_per_sensor : scene.render.paths_per_sensor;
+  const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
+  const size_t batch = std::max<size_t>(1, kBatchBytes / (sizeof(double) * sources * tasks_per_sensor));
+  AnnualCoefficients k;
+  k.sources.setZero(sensors, sources);
+  k.direct.setZero(sensors, annual->sun_hours.size());
+  // Per task, the sum and the sum of squares of its paths' values under the design sky (the
+  // occupied hours' mean strengths) without the sun straight to the sensor, which is exact.
+  std::vector<double> sum(sensors * tasks_per_sensor, 0.0), sum_sq(sensors * tasks_per_sensor, 0.0);
+  if (progress) progress->start("tracing the year with the openings cut", sum.size() + sensors);
+  for (size_t first = 0; first < sensors; first += batch) {
+    const size_t count = std::min(batch, sensors - first);
+    Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(sources),
+                                                 static_cast<Eigen::Index>(count * tasks_per_sensor));
+    parallel_tasks(count * tasks_per_sensor, scene.render.threads, progress, [&](size_t t) {
+      const size_t sensor = first + t / tasks_per_sensor;
+      const size_t task = first * tasks_per_sensor + t;
+      const size_t from = (t % tasks_per_sensor) * kPathsPerTask;
+      const size_t to = std::min<size_t>(paths, from + kPathsPerTask);
+      auto row = rows.col(static_cast<Eigen::Index>(t));
+      std::vector<PathTracer::SourceLight> lights;
+      for (size_t p = from; p < to; ++p) {
+        Rng rng = path_rng(scene.render.seed ^ kAnnualCutStream, sensor, p);
+        lights.clear();
+        tracer.sensor_sample_by_source(sensor, rng, &lights);
+        double design = 0.0;
+        for (const PathTracer::SourceLight& l : lights) {
+          // The sun a sensor's own sample finds straight away: the exact hourly sun counts it below.
+          if (l.source & AnnualSources::kDirect) continue;
+          const double unit = l.value * annual->unit_scale[l.source];
+          row[l.source] += unit;
+          design += unit * annual->design_strength[l.source];
+        }
+        sum[task] += design;
+        sum_sq[task] += design * design;
+      }
+    });
+    for (size_t i = 0; i < count; ++i)
+      k.sources.row(static_cast<Eigen::Index>(first + i)) =
+          rows.middleCols(static_cast<Eigen::Index>(i * tasks_per_sensor), static_cast<Eigen::Index>(tasks_per_sensor))
+              .rowwise()
+              .sum()
+              .transpose() /
+          static_cast<double>(paths);
+  }
+
+  // The sun straight to the sensor at each sun hour's exact position, through the holes alone.
+  const SkyMatrix& sky = *scene.climate->sky;
+  parallel_tasks(sensors, scene.render.threads, progress, [&](size_t i) {
+    for (size_t j = 0; j < annual->sun_hours.size(); ++j) {
+      const PathTracer::DirectSun sun = tracer.direct_sun_through_openings(i, sky.sun_direction[annual->sun_hours[j]]);
+      if (sun.visible) k.direct(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = sun.cosine * sun.attenuation;
+    }
+  });
+
+  AnnualStudy study = annual_study_of(k, annual, SensorValues());
+  // The occupied hours' mean: the paths' mean under the design sky plus the exact direct sun's
+  // mean, which has no spread.
+  std::vector<double> occupied_sun;  // per sun hour: its normal illuminance when occupied
+  size_t occupied_hours = 0;
+  for (const char o : study.occupied) occupied_hours += o != 0;
+  for (const int h : annual->sun_hours) occupied_sun.push_back(study.occupied[h] ? sky.sun_normal_illuminance[h] : 0.0);
+  SensorValues& mean = study.occupied_mean;
+  mean.value.resize(static_cast<Eigen::Index>(sensors));
+  mean.standard_error.resize(static_cast<Eigen::Index>(sensors));
+  for (size_t i = 0; i < sensors; ++i) {
+    double s = 0.0, s2 = 0.0;
+    for (size_t t = 0; t < tasks_per_sensor; ++t) s += sum[i * tasks_per_sensor + t], s2 += sum_sq[i * tasks_per_sensor + t];
+    const double n = paths, m = s / n;
+    double direct = 0.0;
+    for (size_t j = 0; j < occupied_sun.size(); ++j)
+      direct += static_cast<double>(k.direct(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))) * occupied_sun[j];
+    mean.value[static_cast<Eigen::Index>(i)] = m + direct / static_cast<double>(occupied_hours);
+    mean.standard_error[static_cast<Eigen::Index>(i)] =
+        n > 1 ? std::sqrt(std::max(0.0, s2 / n - m * m) / (n - 1)) : std::numeric_limits<double>::infinity();
+  }
+  study.paths_per_sensor = paths;
+  study.cutters = true;
+  study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return study;
+}
+
+}  // namespace fenestra

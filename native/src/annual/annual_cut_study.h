@@ -1,0 +1,26 @@
+#pragma once
+// The annual study of openings from paths traced with the openings really cut (cutters and
+// reveals through thick walls), independent of the contribution records: the ground truth an
+// annual study from the records answers to, and a study of openings the records cannot give
+// (edges off the element grid in a thick wall). See docs/annual.md.
+#include <vector>
+
+#include "annual/annual_study.h"
+#include "scene/scene.h"
+#include "trace/evaluate.h"
+#include "util/progress.h"
+
+namespace fenestra {
+
+// The same AnnualStudy as annual_study(): per sensor and source the unit daylight coefficients of
+// the light that reflected at least once for suns, traced under the unit sources (sky patches and
+// sun clusters) with the openings cut, and per sun hour the sun straight to the sensor at its exact
+// position through the openings' holes. The occupied hours' mean carries the standard error of the
+// paths' spread. Paths per sensor: `paths_per_sensor`, or the scene's render.paths_per_sensor when
+// 0. The same numbers for a seed whatever the thread count.
+// Throws std::invalid_argument when the scene's sky is not "climate" or an opening is off its panel
+// (naming it), Cancelled when `progress` is cancelled.
+AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<OpeningInput>& openings,
+                                      Progress* progress = nullptr, int paths_per_sensor = 0);
+
+}  // namespace fenestra
