@@ -3,6 +3,8 @@
 // figures against the annual metrics' definitions, and the scene file's checks.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <random>
 
 #include "annual/annual_records.h"
@@ -176,7 +178,9 @@ TEST(ClimateGoals, GeneticFitnessEqualsFullRecomputationOfItsBest) {
 
 TEST(ClimateGoals, SolveMeetsReachableGoalsWithTheLeastGlazing) {
   TempDir dir;
-  const Scene scene = side_lit_room(dir, R"({"climate": [{"metric": "sda", "min_area_fraction": 0.5}], "least_glazing": true})");
+  Scene scene =
+      side_lit_room(dir, R"({"climate": [{"metric": "sda", "min_area_fraction": 0.5}], "least_glazing": true})", 2048);
+  scene.solver.verify = true;
   const SolveResult r = solve_openings(scene);
   ASSERT_TRUE(r.climate.active);
   ASSERT_EQ(r.climate.achieved.size(), 1u);
@@ -185,6 +189,9 @@ TEST(ClimateGoals, SolveMeetsReachableGoalsWithTheLeastGlazing) {
   // Least glazing: well under the whole wall, which over-lights (all_open reaches 100 %).
   EXPECT_GT(r.climate.glazing_area_m2, 0.0);
   EXPECT_LT(r.climate.glazing_area_m2, 0.5 * r.climate.domain_area_m2);
+  // Real cutters and independent paths agree (sDA comes in sixths here: one sensor is 17 points).
+  ASSERT_EQ(r.climate.verified.size(), 1u);
+  EXPECT_NEAR(r.climate.verified[0].achieved, r.climate.achieved[0].achieved, 1.0 / 6.0 + 1e-9);
 }
 
 TEST(ClimateGoals, SaysWhichGoalCannotBeMet) {
@@ -203,14 +210,14 @@ TEST(ClimateGoals, SaysWhichGoalCannotBeMet) {
 }
 
 void expect_goal_refused(const std::string& goals, const std::vector<std::string>& needles,
-                         const std::string& groups = "") {
-  TempDir dir;
+                         const std::string& groups = "null") {
   try {
-    side_lit_room(dir, goals, 16, groups);
+    parse_climate_goals(nlohmann::json::parse(goals), nlohmann::json::parse(groups), 6, "scene.json");
     ADD_FAILURE() << "accepted " << goals;
   } catch (const std::invalid_argument& e) {
     for (const std::string& needle : needles)
       EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << "'" << needle << "' not in: " << e.what();
+    EXPECT_NE(std::string(e.what()).find("scene 'scene.json'"), std::string::npos) << e.what();
   }
 }
 
@@ -219,7 +226,7 @@ TEST(ClimateGoals, BadGoalsAreRefusedByName) {
                       {"goals.climate[0].min_area_fraction", "1.5"});
   expect_goal_refused(R"({"climate": [{"metric": "sda", "time_fraction": 0}]})", {"goals.climate[0].time_fraction"});
   expect_goal_refused(R"({"climate": [{"metric": "ase", "hours": -1}]})", {"goals.climate[0].hours", "-1"});
-  expect_goal_refused(R"({"climate": [{"metric": "sda", "illuminance_lux": 1e9}]})", {"illuminance_lux", "1e+09"});
+  expect_goal_refused(R"({"climate": [{"metric": "sda", "illuminance_lux": 1e9}]})", {"illuminance_lux", "1000000000"});
   expect_goal_refused(R"({"climate": [{"metric": "udi", "lower_lux": 500, "upper_lux": 100}]})", {"lower_lux < upper_lux"});
   expect_goal_refused(R"({"climate": [{"metric": "en17037", "level": "gold"}]})", {"goals.climate[0].level", "gold"});
   expect_goal_refused(R"({"climate": [{"metric": "mean"}]})", {"goals.climate[0].illuminance_lux", "missing"});
@@ -230,7 +237,18 @@ TEST(ClimateGoals, BadGoalsAreRefusedByName) {
   expect_goal_refused(R"({"climate": [{"metric": "sda", "weight": 0}]})", {"goals.climate[0].weight"});
   expect_goal_refused(R"({"climate": {"metric": "sda"}})", {"goals.climate", "expected a list"});
   expect_goal_refused(R"({"least_glazing": "yes"})", {"goals.least_glazing"});
-  expect_goal_refused(R"({"climate": []})", {"sensors.groups.x"}, R"(, "groups": {"x": []})");
+  expect_goal_refused(R"({"climate": []})", {"sensors.groups.x"}, R"({"x": []})");
+  expect_goal_refused(R"({"climate": [{"metric": "sda", "sensors": "front"}]})", {"sensors.groups has back"},
+                      R"({"back": [4, 5]})");
+  // The defaults, and a group by name.
+  const ClimateGoals ok = parse_climate_goals(
+      nlohmann::json::parse(R"({"climate": [{"metric": "ase", "sensors": "back"}, {"metric": "sda"}]})"),
+      nlohmann::json::parse(R"({"back": [5, 4, 5]})"), 6, "scene.json");
+  ASSERT_EQ(ok.goals.size(), 2u);
+  EXPECT_EQ(ok.goals[0].sensors, (std::vector<int>{4, 5}));
+  EXPECT_EQ(ok.goals[0].describe(), "ASE1000,250 <= 10 % (back)");
+  EXPECT_EQ(ok.goals[1].describe(), "sDA300/50% >= 55 %");
+  EXPECT_EQ(ok.goals[1].sensors.size(), 6u);
 }
 
 TEST(ClimateGoals, NeedAClimateSky) {
@@ -238,7 +256,8 @@ TEST(ClimateGoals, NeedAClimateSky) {
   ObjBuilder obj;
   obj.box({0, 0, 0}, {3, 4, 2.5f}, [](const std::string& f) { return f == "south" ? "glazing" : "wall"; });
   dir.write("scene.obj", obj.str());
-  dir.write("scene.json", R"({"fenestra": 1, "geometry": "scene.obj", "opening_domain": {"materials": ["glazing"]},
+  dir.write("scene.json", R"({"fenestra": 1, "geometry": "scene.obj",
+    "materials": {"glazing": {"reflectance": 0.5}, "wall": {"reflectance": 0.5}}, "opening_domain": {"materials": ["glazing"]},
     "sensors": {"points": [[1, 1, 0.8]]}, "sky": {"type": "uniform", "radiance": 100},
     "goals": {"climate": [{"metric": "sda"}]}})");
   try {

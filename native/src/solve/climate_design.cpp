@@ -121,15 +121,27 @@ std::vector<ClimateFigure> climate_figures(const ClimateProblem& p, const Eigen:
 
 ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& p, const ElementGrid& grid,
                                  const GeneticSettings& ga, const std::vector<std::vector<uint8_t>>& seeds,
-                                 Progress* progress) {
+                                 const std::vector<uint8_t>& excluded, Progress* progress) {
+  // Excluded elements change nothing in the model (their flips are dropped) and leave every state.
+  auto exclude = [&](HourlyFlipModel* m) {
+    for (size_t k = 0; k < excluded.size(); ++k)
+      if (excluded[k]) m->flip_total[k].resize(0, 0), m->flip_direct[k].clear();
+  };
+  auto within = [&](std::vector<std::vector<uint8_t>> states) {
+    for (auto& s : states)
+      for (size_t k = 0; k < excluded.size(); ++k)
+        if (excluded[k]) s[k] = 0;
+    return states;
+  };
   const size_t n = c.element_count();
   ClimateDesign out;
   auto t = Clock::now();
   if (progress) progress->start("solving: the year's hourly model", 1);
   const std::vector<uint8_t> closed(n, 0), all_open(n, 1);
   HourlyFlipModel model = hourly_flip_model(c, closed, p.rows, p.columns, progress);
+  exclude(&model);
   out.model_bytes = static_cast<double>(model.memory_bytes());
-  const HourlyFlipModel everything = hourly_state(c, all_open, p.rows, p.columns, progress);
+  const HourlyFlipModel everything = hourly_state(c, within({all_open})[0], p.rows, p.columns, progress);
   out.all_open_figures = p.objective->figures(everything.total, everything.direct);
   out.seconds_model += since(t);
 
@@ -138,12 +150,13 @@ ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& p
   if (level > 0.0)
     for (double k : kStartLevels) starts.push_back(mean_start(c, p.rows, grid, k * level, progress));
   starts.insert(starts.end(), seeds.begin(), seeds.end());
+  starts = within(std::move(starts));
 
   t = Clock::now();
   const GeneticResult first = run_climate_genetic(model, *p.objective, grid, starts, ga, progress);
   out.history = first.history;
   out.generations = first.generations;
-  std::vector<std::vector<uint8_t>> pool = first.elite;
+  std::vector<std::vector<uint8_t>> pool = within(first.elite);
   pool.insert(pool.end(), starts.begin(), starts.end());
   std::vector<Ranked> ranked = rank_exactly(c, p, grid, ga.shape, pool, progress);
   out.seconds_search += since(t);
@@ -153,6 +166,7 @@ ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& p
     t = Clock::now();
     if (progress) progress->start("solving: the hourly model about the best state", 1);
     model = hourly_flip_model(c, ranked.front().open, p.rows, p.columns, progress);
+    exclude(&model);
     out.model_bytes = std::max(out.model_bytes, static_cast<double>(model.memory_bytes()));
     out.seconds_model += since(t);
     t = Clock::now();
@@ -161,7 +175,7 @@ ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& p
     local.seed = ga.seed + 1 + round;
     const GeneticResult refined = run_climate_genetic(model, *p.objective, grid, {ranked.front().open}, local, progress);
     out.generations += refined.generations;
-    std::vector<std::vector<uint8_t>> again = refined.elite;
+    std::vector<std::vector<uint8_t>> again = within(refined.elite);
     for (const Ranked& r : ranked) again.push_back(r.open);
     const double before = ranked.front().fitness;
     ranked = rank_exactly(c, p, grid, ga.shape, again, progress);

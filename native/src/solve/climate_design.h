@@ -43,10 +43,11 @@ struct ClimateDesign {
   double seconds_model = 0.0, seconds_search = 0.0;
 };
 
-// `seeds`: further starting states (e.g. the linear start of per-sensor goals).
+// `seeds`: further starting states (e.g. the linear start of per-sensor goals); `excluded`: elements
+// no admissible opening can cover (empty: none), kept closed.
 ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& problem, const ElementGrid& grid,
                                  const GeneticSettings& ga, const std::vector<std::vector<uint8_t>>& seeds,
-                                 Progress* progress = nullptr);
+                                 const std::vector<uint8_t>& excluded = {}, Progress* progress = nullptr);
 
 struct AnnualStudy;  // annual/annual_study.h
 

@@ -160,10 +160,16 @@ std::vector<ClimateFigure> ClimateObjective::figures(const HourlyMatrix& total, 
 }
 
 double ClimateObjective::shortfall(const ClimateGoal& goal, const ClimateFigure& f) const {
-  const double x = goal.required();
+  const double m = settings_.margin;
   switch (goal.sense()) {
-    case GoalSense::AtLeast: return excess(x - f.achieved) + excess(x - f.smooth);
-    case GoalSense::AtMost: return excess(f.achieved - x) + excess(f.smooth - x);
+    case GoalSense::AtLeast: {
+      const double x = std::min(1.0, goal.required() + m);
+      return excess(x - f.achieved) + excess(x - f.smooth);
+    }
+    case GoalSense::AtMost: {
+      const double x = std::max(0.0, goal.required() - m);
+      return excess(f.achieved - x) + excess(f.smooth - x);
+    }
     case GoalSense::Target: return 0.0;  // per sensor, in error()
   }
   return 0.0;

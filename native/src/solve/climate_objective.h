@@ -26,6 +26,9 @@ struct ClimateObjectiveSettings {
   double glazing_weight = 0.0;
   double bound_weight = 10.0;  // as LinearObjective's
   bool horizontal_openings = false;  // EN 17037: rooflights alone (the 95 % criterion)
+  // The search aims this far past each fraction goal (sDA, ASE, UDI, EN 17037), so that the
+  // openings made within the constraints from its answer, and the real cutters, keep meeting it.
+  double margin = 0.02;
 };
 
 class ClimateObjective {

@@ -10,6 +10,7 @@
 
 #include "solve/catalogue_snap.h"
 #include "solve/climate_design.h"
+#include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
 #include "solve/coarse_grid.h"
 #include "solve/compensation.h"
@@ -28,6 +29,9 @@
 #include "solve/tradeoffs.h"
 
 namespace fenestra {
+
+OpeningConstraints measured_constraints(const Scene& scene);  // below
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -351,7 +355,8 @@ std::vector<std::string> unmet_climate_goals(const ClimateGoals& goals, const st
 // The final openings' year and each climate goal's figure: from the path records, and with real
 // cutters when verification is on.
 void report_climate(const Scene& scene, const Contributions& c, const ClimateProblem& problem,
-                    const std::vector<PanelRectangle>& openings, SolveResult* out, Progress* progress) {
+                    const std::vector<PanelRectangle>& openings, bool verify, int verify_paths, SolveResult* out,
+                    Progress* progress) {
   ClimateOutcome& climate = out->climate;
   for (const PanelRectangle& r : openings) climate.glazing_area_m2 += (r.u1 - r.u0) * (r.v1 - r.v0);
   for (const Element& e : scene.domain.elements()) climate.domain_area_m2 += static_cast<double>(e.width()) * e.height();
@@ -362,6 +367,20 @@ void report_climate(const Scene& scene, const Contributions& c, const ClimatePro
   } catch (const std::invalid_argument& e) {
     out->warnings.push_back(std::string("climate goals: the path records cannot give the final openings' year (") +
                             e.what() + ")");
+  }
+  if (verify) {
+    const std::vector<OpeningInput> cutters(openings.begin(), openings.end());
+    auto cut = std::make_shared<AnnualStudy>(annual_study_with_cutters(scene, cutters, progress, verify_paths));
+    climate.verified = climate_figures(problem, cut->illuminance.total, cut->illuminance.direct);
+    climate.verified_study = std::move(cut);
+  }
+  for (size_t g = 0; g < climate.verified.size() && g < climate.achieved.size(); ++g) {
+    const ClimateGoal& goal = scene.sensors.climate_goals.goals[g];
+    if (figure_meets(goal, climate.achieved[g].achieved) && !figure_meets(goal, climate.verified[g].achieved))
+      out->warnings.push_back("climate goals: " + goal.describe() + " is met from the path records (" +
+                              figure_text(goal, climate.achieved[g].achieved) + ") but not with real cutters (" +
+                              figure_text(goal, climate.verified[g].achieved) +
+                              "): a result at the edge of the goal; more paths per sensor tell which is right");
   }
   const std::vector<ClimateFigure>& judged = climate.achieved.empty() ? climate.verified : climate.achieved;
   climate.unmet = unmet_climate_goals(scene.sensors.climate_goals, judged, climate.all_open_figures);
@@ -387,10 +406,13 @@ ElementStage climate_element_stage(const Scene& scene, const Contributions& c, c
                                    const ShapeWeights& shape, const GeneticSettings& ga, ExactValues& exact_values,
                                    LinearObjective* objective, SolveResult& out,
                                    std::optional<ClimateProblem>* problem, Progress* progress) {
+  // Elements no admissible opening can cover stay closed: the answer must survive the constraints.
+  const std::vector<uint8_t> excluded =
+      elements_out_of_bounds(scene.domain, grid_search_constraints(scene.domain, measured_constraints(scene)));
   problem->emplace(climate_problem(scene, c, out.goals));
   std::vector<std::vector<uint8_t>> seeds;
   if (out.goals.count() > 0) seeds.push_back(linear_start(*objective, grid, progress).open);
-  const ClimateDesign design = design_for_climate(c, **problem, grid, ga, seeds, progress);
+  const ClimateDesign design = design_for_climate(c, **problem, grid, ga, seeds, excluded, progress);
   out.history = design.history;
   out.generations = design.generations;
   out.climate.active = true;
@@ -732,7 +754,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   }
   if (climate) {
     t = Clock::now();
-    report_climate(scene, c, *climate_problem_of, final_rects, &out, progress);
+    report_climate(scene, c, *climate_problem_of, final_rects, settings.verify, settings.verify_paths, &out, progress);
     out.timings.push_back({"climate figures", since(t)});
   }
   for (const std::string& w : {sparse_sampling_warning(c.paths_per_sensor, c.element_count()),
