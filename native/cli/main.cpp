@@ -213,6 +213,30 @@ std::vector<std::string> output_paths(const Args& a) {
   return {a.output};
 }
 
+// Each climate goal: required, reached (path records) and checked (real cutters), and the glazing.
+void print_climate_summary(const fenestra::Scene& scene, const fenestra::SolveResult& r) {
+  using namespace fenestra;
+  if (!r.climate.active) return;
+  const auto text = [](const ClimateGoal& g, double x) {
+    char s[32];
+    if (g.unit() == "lux") std::snprintf(s, sizeof s, "%.0f lx", x);
+    else std::snprintf(s, sizeof s, "%.1f %%", 100.0 * x);
+    return std::string(s);
+  };
+  const ClimateOutcome& c = r.climate;
+  for (size_t g = 0; g < scene.sensors.climate_goals.goals.size(); ++g) {
+    const ClimateGoal& goal = scene.sensors.climate_goals.goals[g];
+    std::string line = "climate goal " + goal.describe() + ":";
+    if (g < c.achieved.size())
+      line += " " + text(goal, c.achieved[g].achieved) + (figure_meets(goal, c.achieved[g].achieved) ? " met" : " NOT met");
+    if (g < c.verified.size())
+      line += "; real cutters " + text(goal, c.verified[g].achieved) +
+              (figure_meets(goal, c.verified[g].achieved) ? " met" : " NOT met");
+    std::printf("%s\n", line.c_str());
+  }
+  std::printf("glazing %.2f m2 of %.2f m2 of opening domain\n", c.glazing_area_m2, c.domain_area_m2);
+}
+
 int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& progress) {
   using namespace fenestra;
   if (!scene.climate)
@@ -300,14 +324,19 @@ int run(const Args& a) {
     write_json(a.output, solve_result_json(scene, r));
     double total = 0.0;
     for (const auto& t : r.timings) total = t.stage == "total" ? t.seconds : total;
-    std::printf("solve: %zu openings, %zu open elements; relative RMS error %.2f%% (linear model %.2f%%, "
-                "compensated %.2f%%), worst sensor %.1f%%; %.2f s\nwrote %s\n",
-                r.openings.size(), static_cast<size_t>(std::count(r.open.begin(), r.open.end(), 1)),
-                100 * r.error.relative_rms, 100 * r.linear_error.relative_rms, 100 * r.compensated_error.relative_rms,
-                100 * r.error.max_relative, total, a.output.c_str());
-    if (r.verified)
+    if (r.climate.active)  // its per-sensor errors measure how the openings follow the element answer's light
+      std::printf("solve: %zu openings, %zu open elements; %.2f s\nwrote %s\n", r.openings.size(),
+                  static_cast<size_t>(std::count(r.open.begin(), r.open.end(), 1)), total, a.output.c_str());
+    else
+      std::printf("solve: %zu openings, %zu open elements; relative RMS error %.2f%% (linear model %.2f%%, "
+                  "compensated %.2f%%), worst sensor %.1f%%; %.2f s\nwrote %s\n",
+                  r.openings.size(), static_cast<size_t>(std::count(r.open.begin(), r.open.end(), 1)),
+                  100 * r.error.relative_rms, 100 * r.linear_error.relative_rms, 100 * r.compensated_error.relative_rms,
+                  100 * r.error.max_relative, total, a.output.c_str());
+    if (r.verified && !r.climate.active)
       std::printf("checked with real cutters: relative RMS error %.2f%%, worst sensor %.1f%%\n",
                   100 * r.verified_error.relative_rms, 100 * r.verified_error.max_relative);
+    print_climate_summary(scene, r);
     for (const std::string& w : r.warnings) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
     return 0;
   }

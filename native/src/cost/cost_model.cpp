@@ -1,5 +1,7 @@
 #include "cost/cost_model.h"
 
+#include "annual/hourly_flip_model.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -133,6 +135,25 @@ void add_contributions(const Scene& scene, long long paths, CostEstimate* e) {
                      fewer_paths});
 }
 
+// Climate goals (solve/climate_design.h): the hourly model, every element's change of each goal
+// sensor's year (its lit occupied hours, at most half of the year), held twice while a model about
+// the best state replaces the first, and each individual's year (total and direct sun).
+void add_climate_goals(const Scene& scene, CostEstimate* e) {
+  std::vector<uint8_t> goal_sensor(scene.sensors.size(), 0);
+  for (const ClimateGoal& g : scene.sensors.climate_goals.goals)
+    for (int i : g.sensors) goal_sensor[i] = 1;
+  const double rows = static_cast<double>(std::count(goal_sensor.begin(), goal_sensor.end(), 1));
+  const double hours = 0.5 * static_cast<double>(scene.climate->sky->hours.size());
+  const double N = static_cast<double>(e->elements), pop = scene.solver.population;
+  const std::string fewer = "fewer sensors in the climate goals or " + std::string(kLargerElementSize);
+  e->memory.push_back({"climate_model", "the climate goals' hourly model (goal sensors x hours x elements)",
+                       2.0 * hourly_flip_model_bytes(static_cast<size_t>(rows), static_cast<size_t>(hours),
+                                                     static_cast<size_t>(N)),
+                       "solving", fewer});
+  e->memory.push_back({"climate_population", "the genetic algorithm's years (goal sensors x hours per individual)",
+                       3.0 * pop * 2.0 * 4.0 * rows * hours, "solving", "a smaller solver.population, or " + fewer});
+}
+
 void add_solver(const Scene& scene, CostEstimate* e) {
   const SolverSettings& s = scene.solver;
   const double S = static_cast<double>(e->sensors), N = static_cast<double>(e->elements);
@@ -144,6 +165,7 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                          kRaySceneBytesPerTriangle * static_cast<double>(e->triangles), "solving", "fewer triangles"});
   e->memory.push_back({"population", "the genetic algorithm's populations", 3 * pop * (N + 8 * S + 64), "solving",
                        "a smaller solver.population"});
+  if (!scene.sensors.climate_goals.empty() && scene.climate && scene.climate->sky) add_climate_goals(scene, e);
   const double path_records = S * static_cast<double>(e->paths_per_sensor) * e->bytes_per_path;
   e->memory.push_back({"exact_values_index", "the exact evaluation's index of the elements each path met",
                        kExactValuesIndexShare * path_records, "solving", "fewer solver paths"});
