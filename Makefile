@@ -33,6 +33,7 @@ bench: build
 	$(BUILD)/bench/fenestra_bench
 	$(BUILD)/bench/fenestra_annual_metrics_bench
 	$(BUILD)/bench/fenestra_annual_bench
+	$(BUILD)/bench/fenestra_climate_design_bench
 
 # Ground truth: known openings' light as goals, solved for and checked (out/validate/, README table).
 validate: build examples-blend
