@@ -914,9 +914,10 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     parse_goals(sp, j.value("goals", json()), &scene.sensors);
     check_goals(sp, scene.sensors);
     // No "sky" at all: the default uniform sky; a "sky" must name its type.
-    parse_sky(sp, j.contains("sky") ? j.at("sky") : json{{"type", "uniform"}}, base, &scene, progress);
+    // Before the sky: a climate sky takes seconds to build, a bad goal should not wait for it.
     scene.sensors.climate_goals = parse_climate_goals(j.value("goals", json()), j.at("sensors").value("groups", json()),
                                                       scene.sensors.size(), sp.source());
+    parse_sky(sp, j.contains("sky") ? j.at("sky") : json{{"type", "uniform"}}, base, &scene, progress);
     if (!scene.sensors.climate_goals.empty() && !scene.climate)
       sp.fail("goals.climate", "climate goals need a sky of type \"climate\" (a weather file)");
     scene.render = parse_render(sp, j.value("render", json()));

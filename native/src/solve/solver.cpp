@@ -392,6 +392,44 @@ void report_climate(const Scene& scene, const Contributions& c, const ClimatePro
   for (const std::string& u : climate.unmet) out->warnings.push_back("climate goals: " + u);
 }
 
+// Gains on the followed light when openings within the constraints miss a climate goal the
+// element answer met.
+constexpr double kClimateFollowGains[] = {1.15, 1.35, 1.6};
+
+// The year of a set of open elements scored by the climate objective, and whether every goal is met.
+struct ClimateScore {
+  double error = 0.0;
+  bool all_met = false;
+};
+ClimateScore climate_error_of(const Contributions& c, const ClimateProblem& problem, const std::vector<uint8_t>& open,
+                              const Progress* progress) {
+  const HourlyFlipModel year = hourly_state(c, open, problem.rows, problem.columns, progress);
+  double area = 0.0;
+  for (size_t k = 0; k < open.size(); ++k)
+    if (open[k]) area += problem.objective->element_area(static_cast<int>(k));
+  ClimateScore score;
+  score.error = problem.objective->error(year.total, year.direct, area);
+  const std::vector<ClimateFigure> figures = problem.objective->figures(year.total, year.direct);
+  score.all_met = true;
+  for (size_t g = 0; g < figures.size(); ++g)
+    score.all_met = score.all_met && figure_meets(problem.objective->goals().goals[g], figures[g].achieved);
+  return score;
+}
+
+// Per sensor, whether the scene gives it a goal of its own (those are not raised).
+std::vector<uint8_t> scene_goal_weight(const Scene& scene, const Contributions& c) {
+  const SolverGoals own = resolve_goals(scene, c);
+  std::vector<uint8_t> has(own.weight.size());
+  for (Eigen::Index i = 0; i < own.weight.size(); ++i) has[i] = own.weight[i] > 0.0;
+  return has;
+}
+
+SolverGoals raised_goals(SolverGoals goals, const std::vector<int>& rows, const std::vector<uint8_t>& own, double gain) {
+  for (int i : rows)
+    if (!own[i]) goals.target[i] *= gain;
+  return goals;
+}
+
 // The per-sensor goals the constraints stage follows after a climate search: each sensor the
 // climate goals look at takes the answer's mean illuminance of the occupied hours as its goal
 // (sensors with a goal of their own keep it), so that openings within the constraints give the
@@ -569,6 +607,31 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     Constrained second = constrain(within.open, within.values, grid_constraints);
     out.second_start = true;
     if (second.fitness < kept.fitness) kept = std::move(second), out.second_start_kept = true;
+  }
+  // Climate goals: openings that follow the element answer's light can still fall short of a goal
+  // it met (a sensor just over its threshold drops below). The constraints stage again with the
+  // followed light raised, kept when the year of its openings is better.
+  if (climate) {
+    if (progress) progress->start("solving: openings for the climate goals", 1);
+    const ClimateProblem& problem = *climate_problem_of;
+    auto climate_score = [&](const std::vector<GridRectangle>& rects) {
+      return climate_error_of(c, problem, rectangles_mask(scene.domain, rects), progress);
+    };
+    ClimateScore kept_score = climate_score(kept.rects);
+    const SolverGoals followed = out.goals;
+    for (double gain : kClimateFollowGains) {
+      if (kept_score.all_met) break;
+      const SolverGoals raised = raised_goals(followed, problem.rows, scene_goal_weight(scene, c), gain);
+      const LinearObjective previous = objective;
+      objective = linear_objective(c, raised, settings.bound_weight);
+      Constrained k = constrain(stage.open, stage.values, grid_constraints);
+      const ClimateScore score = climate_score(k.rects);
+      if (score.error < kept_score.error) {
+        kept = std::move(k), kept_score = score, out.goals = raised;
+      } else {
+        objective = previous;
+      }
+    }
   }
   // When the constraints cost much light, which of them: each family lifted in turn.
   const double free_rms = out.unconstrained_error.relative_rms;

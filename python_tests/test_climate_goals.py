@@ -1,0 +1,160 @@
+"""Climate goals (docs/scene-format.md, "Climate goals"; docs/solver.md): a solve on sDA and ASE
+through the command line and Python, what a goal that cannot be met says, and seeded mutations of
+the goals section that must each end in a result or a clear error naming the key."""
+
+import copy
+import json
+import os
+import random
+import subprocess
+
+import numpy as np
+import pytest
+
+from conftest import CLI, EXAMPLES, box_obj
+
+import fenestra
+
+CHICAGO = os.path.join(EXAMPLES, "weather", "USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw")
+
+
+def short_wea(path, days=(1, 2, 3, 15, 16, 17)):
+    """A Radiance .wea of some days of each month of the Chicago TMY3 year (fast to build)."""
+    rows = []
+    with open(CHICAGO) as f:
+        for line in f.readlines()[8:]:
+            v = line.split(",")
+            month, day, hour = int(v[1]), int(v[2]), int(v[3])
+            if day in days:
+                rows.append("%d %d %.1f %s %s" % (month, day, hour - 0.5, v[14], v[15]))
+    header = ["place Chicago_OHare", "latitude 41.98", "longitude 87.92", "time_zone 90", "site_elevation 201.0",
+              "weather_data_file_units 1"]
+    path.write_text("\n".join(header + rows) + "\n")
+
+
+def climate_room(tmp_path, goals, paths=1024, groups=None):
+    """A 3 x 4 x 2.5 m room lit by its south wall (0.5 m elements), six floor sensors, a year of 72 days."""
+    (tmp_path / "room.obj").write_text(
+        box_obj((0, 0, 0), (3, 4, 2.5), lambda f: "facade" if f == "south" else "floor" if f == "floor" else "grey"))
+    short_wea(tmp_path / "chicago.wea")
+    sensors = {"points": [[0.75, y, 0.8] for y in (0.75, 2.0, 3.25)] + [[2.25, y, 0.8] for y in (0.75, 2.0, 3.25)],
+               "normals": [0, 0, 1]}
+    if groups is not None:
+        sensors["groups"] = groups
+    scene = {
+        "fenestra": 1, "geometry": "room.obj",
+        "materials": {"grey": {"reflectance": 0.5}, "floor": {"reflectance": 0.2}, "facade": {"reflectance": 0.5}},
+        "opening_domain": {"materials": ["facade"], "element_size": 0.5},
+        "sensors": sensors,
+        "sky": {"type": "climate", "weather": "chicago.wea", "resolution": [64, 32]},
+        "goals": goals,
+        "render": {"paths_per_sensor": paths, "max_bounces": 6, "seed": 2},
+        "solver": {"population": 16, "generations": 40, "improve_iterations": 200, "tradeoffs": False},
+    }
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    return path, scene
+
+
+SDA_ASE = {"climate": [{"metric": "sda", "min_area_fraction": 0.5}, {"metric": "ase", "hours": 40, "max_area_fraction": 0.2}],
+           "least_glazing": True}
+
+
+def test_cli_solves_for_sda_and_ase_with_the_least_glazing(tmp_path):
+    scene, _ = climate_room(tmp_path, SDA_ASE)
+    out = tmp_path / "result.json"
+    run = subprocess.run([CLI, "solve", str(scene), "-o", str(out), "--quiet"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "climate goal sDA300/50% >= 50 %:" in run.stdout and "glazing" in run.stdout, run.stdout
+    climate = json.loads(out.read_text())["climate"]
+    sda, ase = climate["goals"]
+    assert (sda["metric"], sda["sense"], sda["unit"], sda["required"]) == ("sda", "at_least", "area fraction", 0.5)
+    assert (ase["metric"], ase["sense"]) == ("ase", "at_most")
+    assert sda["met"] and ase["met"] and climate["all_met"] and not climate["unmet"], climate["goals"]
+    assert sda["achieved"] >= 0.5 and ase["achieved"] <= 0.2
+    # Real cutters and independent paths: within one sensor (a sixth) of the records.
+    assert sda["verified"] is not None and abs(sda["verified"] - sda["achieved"]) <= 1 / 6 + 1e-9
+    # Least glazing: less than half of the wall; every element open over-lights (ASE above the goal).
+    assert 0 < climate["glazing_area_m2"] < 0.5 * climate["domain_area_m2"]
+    assert ase["all_open"] > 0.2
+    per = climate["per_sensor"]
+    assert len(per["daylight_autonomy"]) == 6 and all(0 <= x <= 1 for x in per["daylight_autonomy"])
+    assert np.mean(np.asarray(per["daylight_autonomy"]) >= 0.5) == pytest.approx(sda["achieved"])
+    assert climate["space"]["spatial_daylight_autonomy"] == pytest.approx(sda["achieved"])
+
+
+def test_python_solve_reports_a_goal_that_cannot_be_met(tmp_path):
+    goals = {"climate": [{"metric": "sda", "sensors": "back", "illuminance_lux": 5000, "min_area_fraction": 1.0}]}
+    path, _ = climate_room(tmp_path, goals, paths=256, groups={"back": [2, 5]})
+    result = fenestra.solve(fenestra.load_scene(str(path)))
+    climate = result["climate"]
+    assert climate["goals"][0]["met"] is False and climate["all_met"] is False
+    assert len(climate["unmet"]) == 1
+    assert "sDA5000/50% >= 100 % (back) is not met" in climate["unmet"][0]
+    assert "cannot be met" in climate["unmet"][0]
+    assert any("climate goals: sDA5000" in w for w in result["warnings"])
+
+
+@pytest.mark.parametrize("goal,key", [
+    ({"metric": "sda", "min_area_fraction": 2}, "goals.climate[0].min_area_fraction"),
+    ({"metric": "ase", "hours": 1e6}, "goals.climate[0].hours"),
+    ({"metric": "udi", "lower_lux": 3000, "upper_lux": 100}, "lower_lux < upper_lux"),
+    ({"metric": "en17037", "level": 3}, "goals.climate[0].level"),
+    ({"metric": "sda", "sensors": "nowhere"}, "no sensor group named 'nowhere'"),
+    ({"metric": "sda", "sensors": [6]}, "goals.climate[0].sensors"),
+    ({"metric": "sda", "illuminance_lux": -300}, "goals.climate[0].illuminance_lux"),
+])
+def test_bad_climate_goals_are_refused_with_their_key(tmp_path, goal, key):
+    path, _ = climate_room(tmp_path, {"climate": [goal]})
+    out = tmp_path / "result.json"
+    run = subprocess.run([CLI, "solve", str(path), "-o", str(out), "--quiet"], capture_output=True, text=True)
+    assert run.returncode == 1
+    assert key in run.stderr and "scene.json" in run.stderr
+    assert not out.exists()
+    with pytest.raises(ValueError, match="goals|sensors"):
+        fenestra.load_scene(str(path))
+
+
+NASTY = [0, -1, 1, 0.5, 1.5, 1e-300, 1e39, -1e39, 2 ** 64 + 5, 8760, 8785, "x", "", None, True, [], {}, [0, 99],
+         "all", "sda", "minimum"]
+KEYS = ["metric", "sensors", "weight", "illuminance_lux", "time_fraction", "min_area_fraction", "hours",
+        "max_area_fraction", "lower_lux", "upper_lux", "level", "area_fraction"]
+METRICS = ["sda", "ase", "en17037", "udi", "mean"]
+
+
+def mutate_goals(rng):
+    goals = []
+    for _ in range(rng.randint(0, 3)):
+        g = {"metric": rng.choice(METRICS)}
+        if g["metric"] == "mean":
+            g["illuminance_lux"] = 300
+        for _ in range(rng.randint(1, 3)):
+            g[rng.choice(KEYS)] = rng.choice(NASTY)
+        goals.append(g)
+    section = {"climate": goals}
+    if rng.random() < 0.3:
+        section["least_glazing"] = rng.choice(NASTY)
+    if rng.random() < 0.1:
+        section["climate"] = rng.choice(NASTY)
+    return section
+
+
+def test_seeded_mutations_of_climate_goals_end_in_a_scene_or_a_clear_error(tmp_path):
+    """Only loading (the goals are read before the sky, so a refusal is immediate); every case
+    either loads or raises ValueError naming a key of goals or sensors."""
+    climate_room(tmp_path, SDA_ASE)
+    base = json.loads((tmp_path / "scene.json").read_text())
+    rng = random.Random(17)
+    loaded = refused = 0
+    for case in range(60):
+        scene = copy.deepcopy(base)
+        scene["goals"] = mutate_goals(rng)
+        if rng.random() < 0.2:
+            scene["sensors"]["groups"] = {"g": rng.choice(NASTY)}
+        try:
+            fenestra.scene_from_dict(scene, base_dir=str(tmp_path))
+            loaded += 1
+        except ValueError as e:
+            refused += 1
+            assert "scene" in str(e) and ("goals" in str(e) or "sensors.groups" in str(e)), (case, scene["goals"], e)
+    assert refused > 20 and loaded > 3  # the mutations reach both sides
