@@ -245,9 +245,12 @@ def solve(scene, contributions=None, progress=None, callback=None, max_memory=No
     contributions first unless given. Returns the result as a dict, the same as `fenestra solve`
     writes: "openings" (rectangles, corners in meters, accepted by evaluate()), "open_elements",
     "sensors" (per sensor "goal" and "predicted" in lux, input order), "error" ("relative_rms", ...),
-    "timings_s", "genetic" (with the convergence history) and "warnings" (each also issued as a
-    RuntimeWarning: too few paths for the elements, a prediction the real-cutter check
-    contradicts). Refused (ValueError) before any work
+    "timings_s", "genetic" (with the convergence history), with climate goals (a "climate" sky
+    and goals.climate: sDA, ASE, EN 17037, UDI, annual mean) "climate" (each goal's figure from
+    the path records and with real cutters, "unmet", glazing area in m^2, per-sensor DA; see
+    docs/solver.md, "Climate goals") and "warnings" (each also issued as a RuntimeWarning: too
+    few paths for the elements, a prediction the real-cutter check contradicts, a climate goal
+    not met). Refused (ValueError) before any work
     when the cost model (docs/cost.md) says it will not fit in max_memory (bytes or "8G"; default
     what the system has available) or a stage would exceed its time limit."""
     _cost.check_cost(scene, "solve" if contributions is None else "solver", max_memory)
