@@ -172,6 +172,7 @@ ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& p
     t = Clock::now();
     GeneticSettings local = ga;
     local.generations = std::max(1, ga.generations / 4);
+    local.time_budget_s = ga.time_budget_s / 4.0;
     local.seed = ga.seed + 1 + round;
     const GeneticResult refined = run_climate_genetic(model, *p.objective, grid, {ranked.front().open}, local, progress);
     out.generations += refined.generations;
