@@ -170,7 +170,10 @@ double ClimateObjective::shortfall(const ClimateGoal& goal, const ClimateFigure&
       const double x = std::max(0.0, goal.required() - m);
       return excess(f.achieved - x) + excess(f.smooth - x);
     }
-    case GoalSense::Target: return 0.0;  // per sensor, in error()
+    case GoalSense::Target: {  // the relative squared error of the sensors' average
+      const double d = (f.achieved - goal.required()) / goal.required();
+      return d * d;
+    }
   }
   return 0.0;
 }
@@ -178,23 +181,9 @@ double ClimateObjective::shortfall(const ClimateGoal& goal, const ClimateFigure&
 double ClimateObjective::error(const HourlyMatrix& total, const HourlyMatrix& direct, double open_area) const {
   const std::vector<ClimateFigure> f = figures(total, direct);
   double error = 0.0;
-  bool any_target = false;
-  for (size_t g = 0; g < goals_.goals.size(); ++g) {
-    error += goals_.goals[g].weight * shortfall(goals_.goals[g], f[g]);
-    any_target = any_target || goals_.goals[g].sense() == GoalSense::Target;
-  }
-  if (any_target || target_.size()) {
+  for (size_t g = 0; g < goals_.goals.size(); ++g) error += goals_.goals[g].weight * shortfall(goals_.goals[g], f[g]);
+  if (target_.size()) {
     const Eigen::VectorXd mean = occupied_mean(total);
-    for (size_t g = 0; g < goals_.goals.size(); ++g) {
-      const ClimateGoal& goal = goals_.goals[g];
-      if (goal.sense() != GoalSense::Target) continue;
-      double sum = 0.0;
-      for (int r : goal_rows_[g].rows) {
-        const double d = (mean[r] - goal.illuminance_lux) / goal.illuminance_lux;
-        sum += d * d;
-      }
-      error += goal.weight * sum / static_cast<double>(goal_rows_[g].rows.size());
-    }
     for (Eigen::Index r = 0; r < target_.size(); ++r) {
       if (!(weight_[r] > 0.0)) continue;
       const double d = mean[r] - target_[r];

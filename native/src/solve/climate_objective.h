@@ -45,8 +45,8 @@ class ClimateObjective {
   std::vector<ClimateFigure> figures(const HourlyMatrix& total, const HourlyMatrix& direct) const;
   // Per model row: the mean of the occupied hours, lux (dark occupied hours count as 0).
   Eigen::VectorXd occupied_mean(const HourlyMatrix& total) const;
-  // The error: goals' shortfalls (hard and smooth), the per-sensor goals' relative squared error,
-  // and the glazing term for `open_area` m^2.
+  // The error: goals' shortfalls (hard and smooth; a mean goal's relative squared error), the
+  // per-sensor goals' relative squared error, and the glazing term for `open_area` m^2.
   double error(const HourlyMatrix& total, const HourlyMatrix& direct, double open_area) const;
   double element_area(int k) const { return element_area_[static_cast<size_t>(k)]; }
 
