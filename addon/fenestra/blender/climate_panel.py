@@ -14,11 +14,11 @@ class FENESTRA_UL_climate_goals(bpy.types.UIList):
     """One row per climate goal: its metric and thresholds, and its sensors."""
 
     def draw_item(self, context, layout, data, item, icon, active_data, active_property, index=0, flt_flag=0):
-        row = layout.row(align=True)
-        row.label(text=item.summary(), icon='LIGHT_SUN' if item.metric == 'ASE' else 'LIGHT_AREA')
-        sub = row.row()
+        split = layout.split(factor=0.68, align=True)
+        split.label(text=item.summary())
+        sub = split.row()
         sub.active = False
-        sub.label(text=item.sensor_group or "All sensors")
+        sub.label(text=item.sensor_group or "all")
 
 
 class FENESTRA_OT_climate_goal_add(bpy.types.Operator):
@@ -63,7 +63,7 @@ def draw_goal(layout, goal):
         unit = {"sda_lux": "lx", "ase_lux": "lx", "udi_lower": "lx", "udi_upper": "lx", "mean_lux": "lx",
                 "ase_hours": "h"}.get(key)
         col.prop(goal, key, text="%s (%s)" % (prop.name, unit) if unit else prop.name)
-    layout.prop(goal, "sensor_group", icon='GROUP_VERTEX')
+    layout.prop(goal, "sensor_group", text="Group", icon='GROUP_VERTEX')
     layout.prop(goal, "weight")
 
 
@@ -125,8 +125,10 @@ class FENESTRA_PT_climate_results(FenestraPanel, bpy.types.Panel):
                           icon='CHECKMARK' if goal.verified_met else 'X')
         share = c.glazing_area / c.domain_area if c.domain_area > 0 else 0.0
         col = layout.column(align=True)
-        col.label(text="Glazing %.2f m² of %.2f m² (%.0f %%)" % (c.glazing_area, c.domain_area, 100 * share),
-                  icon='MOD_BOOLEAN')
+        col.label(text="Glazing %.2f m² (%.0f %%)" % (c.glazing_area, 100 * share), icon='MOD_BOOLEAN')
+        row = col.row()
+        row.active = False
+        row.label(text="of %.2f m² of opening domain" % c.domain_area)
         if c.least_glazing:
             row = col.row()
             row.active = False
