@@ -286,6 +286,12 @@ class Solved(unittest.TestCase):
         self.assertTrue(f.results.climate.valid)
         self.assertEqual(len(f.results.climate.goals), 2)
 
+        # Evaluate path-traces the cutters as they stand: the solve's climate figures are no longer theirs.
+        self.assertEqual(bpy.ops.fenestra.evaluate_openings(), {'FINISHED'})
+        self.assertFalse(f.results.climate.valid)
+        self.assertEqual(f.display.false_colour, 'ACHIEVED')
+        self.assertTrue(f.results.evaluated)
+
         # Clear Results forgets them.
         self.assertEqual(bpy.ops.fenestra.clear_results(), {'FINISHED'})
         self.assertFalse(f.results.climate.valid)

@@ -14,7 +14,7 @@ class FENESTRA_UL_climate_goals(bpy.types.UIList):
     """One row per climate goal: its metric and thresholds, and its sensors."""
 
     def draw_item(self, context, layout, data, item, icon, active_data, active_property, index=0, flt_flag=0):
-        split = layout.split(factor=0.68, align=True)
+        split = layout.split(factor=0.75, align=True)
         split.label(text=item.summary())
         sub = split.row()
         sub.active = False
