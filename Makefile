@@ -3,7 +3,7 @@ PYTHON := /usr/bin/python3
 BUILD  := build
 JOBS   ?= $(shell nproc)
 
-.PHONY: deps build test cpp-test py-test demo bench validate install install-addon examples-blend clean
+.PHONY: deps build test cpp-test py-test demo demo-annual bench validate install install-addon examples-blend clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -26,6 +26,14 @@ demo: build install-addon
 	  echo "installing python3-matplotlib (the demo's goal / achieved image)"; \
 	  DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends python3-matplotlib >/dev/null; fi
 	@./scripts/demo.sh $(BUILD)
+
+# An annual design: examples/annual_room/design.json (sDA300/50% >= 55 %, ASE1000,250 <= 10 %, the least
+# glazing, Chicago weather) solved headless; docs/annual-design.png and out/annual_design/result.json.
+demo-annual: build
+	@if ! $(PYTHON) -c "import matplotlib" 2>/dev/null && command -v apt-get >/dev/null && [ "$$(id -u)" = 0 ]; then \
+	  echo "installing python3-matplotlib (the demo's picture)"; \
+	  DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends python3-matplotlib >/dev/null; fi
+	$(PYTHON) scripts/annual_design_demo.py examples/annual_room/design.json docs/annual-design.png out/annual_design/result.json
 
 bench: build
 	$(BUILD)/bench/fenestra_sky_bench

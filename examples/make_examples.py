@@ -23,7 +23,9 @@ solid_wall_room: window_room's room with its south wall modelled as a 0.3 m soli
 annual_room: a side-lit 4 x 6 x 3 m room in Chicago (O'Hare's latitude, longitude and time zone), its
     south wall the opening domain with one 2.4 x 1.5 m window (sill 0.9 m) in window.json, 96 sensors
     on a 0.5 m grid at 0.76 m; the same room written for Radiance (room.rad, sensors.pts), whose
-    annual daylight-coefficient reference is python_tests/data/radiance_annual_room/.
+    annual daylight-coefficient reference is python_tests/data/radiance_annual_room/. design.json is
+    the same room under the Chicago weather file with climate goals instead of openings (sDA300/50%
+    at least 55 %, ASE1000,250 at most 10 %, the least glazing): `make demo-annual` solves it.
 """
 
 import json
@@ -506,6 +508,26 @@ def annual_room():
         f.write("".join("%g %g %g 0 0 1\n" % tuple(p) for p in sensors))
 
 
+def annual_room_design():
+    """annual_room's scene under its weather file with climate goals (docs/scene-format.md): the
+    openings that give sDA300/50% >= 55 % and ASE1000,250 <= 10 % with the least glazing. Paths and
+    generations keep `make demo-annual` to about a minute on two cores."""
+    out = os.path.join(HERE, "annual_room")
+    with open(os.path.join(out, "scene.json")) as f:
+        scene = json.load(f)
+    scene["sky"] = {"type": "climate", "weather": "../weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw",
+                    "occupied": ["08:00", "18:00"], "patches": 1, "ground_reflectance": 0.2}
+    scene["goals"] = {"climate": [{"metric": "sda", "sensors": "all", "illuminance_lux": 300, "time_fraction": 0.5,
+                                   "min_area_fraction": 0.55},
+                                  {"metric": "ase", "sensors": "all", "illuminance_lux": 1000, "hours": 250,
+                                   "max_area_fraction": 0.10}],
+                      "least_glazing": True}
+    scene["render"] = {"paths_per_sensor": 2048, "max_bounces": 16, "seed": 1, "threads": 0}
+    scene["solver"] = {"generations": 100, "seed": 1}
+    with open(os.path.join(out, "design.json"), "w") as f:
+        json.dump(scene, f, indent=2)
+
+
 if __name__ == "__main__":
     reference_room()
     paper_scale()
@@ -516,4 +538,5 @@ if __name__ == "__main__":
     curved_wall_room()
     vault_room()
     annual_room()
+    annual_room_design()
     print("examples written under", HERE)

@@ -120,6 +120,16 @@ def test_goal_outside_its_bounds(tmp_path):
     translated(message, "Minimum", "Goal", "Maximum")
 
 
+@pytest.mark.parametrize("goal, words", [
+    ({"metric": "ase", "max_area_fraction": 2}, ["Climate goal 2", "must lie in [0, 1]", "got 2"]),
+    ({"metric": "sda", "sensors": "front"}, ["Climate goal 2", "no sensor group named 'front'"]),
+])
+def test_a_climate_goal_is_named_by_its_place_in_the_list(tmp_path, goal, words):
+    message = core_message(tmp_path, lambda s: s["goals"].update(climate=[{"metric": "sda"}, goal]))
+    assert "goals.climate[1]" in message  # the core's
+    translated(message, *words)
+
+
 def test_painted_goal_names_the_object_and_vertex(tmp_path):
     def painted(s):
         del s["goals"]

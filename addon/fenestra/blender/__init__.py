@@ -15,17 +15,22 @@ cancels it), study_folder (replaced only on success), study_fingerprint and cont
 (the contributions reused when only goals or solver settings changed).
 Climate-based daylight: weather_file (the climate sky's file), annual_operator and annual_job (Annual
 Daylight on the cutters as they stand, a job like a solve's), annual_properties and annual_results
-(its figures in scene.fenestra.annual), annual_panel (the metrics under Results).
+(its figures in scene.fenestra.annual), annual_panel (the metrics under Results). Climate goals: climate_goal_properties (the goals and a
+solve's figures), climate_goals (their part of the study), climate_results (the result's figures in
+the model), climate_panel (their list under Sensors, what was reached under Results); sensor_table
+(a per-sensor figure by object and vertex).
 """
 
 import bpy
 
-from . import (annual_operator, annual_panel, check_setup, contributions_cache, evaluate_openings, false_colour_overlay,
+from . import (annual_operator, annual_panel, check_setup, climate_panel, contributions_cache, evaluate_openings,
+               false_colour_overlay,
                legend, operators, overlay, panels, properties, result_operators, result_panels, sensor_hover,
                sensor_labels, solve_guard, solve_job, solve_progress, tradeoff_operators)
 
 classes = (properties.classes + operators.classes + result_operators.classes + sensor_hover.classes
-           + evaluate_openings.classes + solve_progress.classes + panels.classes + result_panels.classes
+           + evaluate_openings.classes + solve_progress.classes + panels.classes + climate_panel.classes
+           + result_panels.classes
            + check_setup.classes + tradeoff_operators.classes + annual_operator.classes + annual_panel.classes)
 DRAWN = (overlay, false_colour_overlay, legend, sensor_labels)
 

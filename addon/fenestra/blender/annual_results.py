@@ -4,8 +4,7 @@ Nothing is computed here: every number is the native core's (docs/climate-metric
 
 import os
 
-import numpy as np
-
+from . import sensor_table
 from .sky import clock
 
 # Per-sensor metric -> (its property on FenestraAnnualSensor, factor to the unit shown).
@@ -18,7 +17,7 @@ METRICS = {
 }
 AUTONOMOUS_BAND = "autonomous"  # the native core's name for the UDI band from 300 to 3000 lx
 
-_cache = {"key": None}
+_table = sensor_table.SensorTable()
 
 
 def clear(scene):
@@ -29,7 +28,7 @@ def clear(scene):
             annual.property_unset(key)
     for collection in (annual.sensors, annual.sda_levels, annual.udi):
         collection.clear()
-    _cache["key"] = None
+    _table.forget()
 
 
 def _number(value, default=0.0):
@@ -96,30 +95,11 @@ def table(annual, metric):
     run or the metric changes."""
     if not annual.valid:
         return {}
-    key = (metric, len(annual.sensors), annual.study_path, annual.seconds, annual.openings)
-    if _cache["key"] != key:
-        field, factor = METRICS[metric]
-        n = len(annual.sensors)
-        values = np.zeros(n)
-        annual.sensors.foreach_get(field, values)
-        rows = {}
-        for i, sensor in enumerate(annual.sensors):
-            rows.setdefault(sensor.object_name, []).append((sensor.vertex, i))
-        by_object = {}
-        for name, pairs in rows.items():
-            vertices, index = np.array(pairs, np.int64).T
-            by_object[name] = (vertices, values[index] * factor)
-        _cache.update(key=key, table=by_object)
-    return _cache["table"]
+    field, factor = METRICS[metric]
+    return _table.get(annual.sensors, field, factor, (annual.study_path, annual.seconds, annual.openings))
 
 
 def per_vertex(annual, metric, obj_name, vertex_count):
     """The metric over the object's vertices (NaN where a vertex has none); None when the run has no
     sensor of this object or its vertex count changed since."""
-    entry = table(annual, metric).get(obj_name)
-    if entry is None or len(entry[0]) != vertex_count:
-        return None
-    vertices, values = entry
-    shown = np.full(vertex_count, np.nan)
-    shown[vertices] = values
-    return shown
+    return sensor_table.per_vertex(table(annual, metric), obj_name, vertex_count)

@@ -13,7 +13,16 @@ QUANTITIES = (
     ('DAYLIGHT_FACTOR', "Daylight Factor", "Achieved illuminance as a percentage of the solved sky's "
                                            "unobstructed horizontal illuminance"),
     ('ANNUAL', "Annual Metric", "The chosen metric of the last Annual Daylight run (climate sky)"),
+    # A solve with climate goals: the year of its openings at each sensor (climate_results.py).
+    ('CLIMATE_DA', "Daylight Autonomy", "Solve with climate goals: the share of the occupied hours with at least "
+                                        "300 lx (DA300) with the solved openings, percent"),
+    ('CLIMATE_MEAN', "Annual Mean (Solve)", "Solve with climate goals: the mean illuminance over the occupied "
+                                            "hours with the solved openings, lux"),
+    ('CLIMATE_ASE_HOURS', "Direct Sun Hours (Solve)", "Solve with climate goals: occupied hours with more than "
+                                                      "1000 lx of direct sun with the solved openings, hours"),
 )
+# The quantities with a Top of Scale (the others have a fixed scale).
+SCALED = frozenset({'ACHIEVED', 'DAYLIGHT_FACTOR', 'CLIMATE_MEAN', 'CLIMATE_ASE_HOURS'})
 # Per-sensor metrics of an Annual Daylight run (docs/climate-metrics.md), for the false colour.
 ANNUAL_METRICS = (
     ('DA', "Daylight Autonomy", "Share of the occupied hours with at least 300 lx (DA300), percent"),

@@ -14,7 +14,7 @@ import os
 import bpy
 import numpy as np
 
-from . import export, native, opening_cutters, results, user_messages
+from . import climate_results, export, native, opening_cutters, results, user_messages
 
 
 def goal_error(goals, values):
@@ -76,6 +76,11 @@ class FENESTRA_OT_evaluate_openings(bpy.types.Operator):
         results.write_achieved(study, np.asarray(values, np.float64))
         r.relative_rms, r.max_relative, r.verified_rms = rms, worst, -1.0
         r.openings, r.evaluated = len(cutters), True
+        if r.climate.valid:  # its climate figures were of the solved openings (Annual Daylight gives these)
+            climate_results.apply(r, None)
+            display = context.scene.fenestra.display
+            if display.false_colour in climate_results.QUANTITIES:
+                display.false_colour = 'ACHIEVED'
         self.report({'INFO'}, "%d openings as they stand: relative RMS error %.1f %% (before: %.1f %%), worst "
                     "sensor %.1f %%" % (len(cutters), 100 * rms, 100 * solved, 100 * worst))
         return {'FINISHED'}

@@ -11,7 +11,7 @@ import re
 import bpy
 import numpy as np
 
-from . import materials, sky, visibility
+from . import climate_goals, materials, sky, visibility
 
 DOMAIN_ATTRIBUTE = "fenestra_domain"
 GOAL_ATTRIBUTE = "fenestra_goal"
@@ -154,6 +154,16 @@ def _point_goals(mesh, obj_name, scale):
     return values * scale
 
 
+def _group_members(obj, mesh, name):
+    """The vertices of the (evaluated) mesh in the object's vertex group `name` with a weight above
+    0, as indices; none when the object has no such group."""
+    index = obj.vertex_groups.find(name)
+    if index < 0:
+        return np.zeros(0, np.int64)
+    return np.array([v.index for v in mesh.vertices if any(g.group == index and g.weight > 0 for g in v.groups)],
+                    np.int64)
+
+
 def _evaluated(obj, depsgraph):
     """(evaluated object, its temporary mesh with loop triangles, or None); free with to_mesh_clear()."""
     obj_eval = obj.evaluated_get(depsgraph)
@@ -197,6 +207,7 @@ def _build(context, depsgraph):
     problem = sky.climate_problem(settings.sky)
     if problem:  # before anything is read or written
         raise StudyError(problem)
+    climate_goals.check_setup(settings)
     objects = [o for o in scene.objects if o.type in GEOMETRY_TYPES and o.visible_get()
                and not o.fenestra.is_opening]
     sensor_objects = [o for o in objects if o.fenestra.is_sensor]
@@ -206,6 +217,8 @@ def _build(context, depsgraph):
 
     # Sensors, and their goals, first (cheap, so a bad setup fails fast).
     points, normals, goals = [], [], []
+    group_names = climate_goals.group_names(settings.goals)
+    groups, first = {name: [] for name in group_names}, 0
     for obj in sensor_objects:
         obj_eval, mesh = _evaluated(obj, depsgraph)
         try:
@@ -215,7 +228,10 @@ def _build(context, depsgraph):
             normals.append(_world_normals(mesh, obj_eval.matrix_world))
             if settings.goals.source == 'ATTRIBUTE':
                 goals.append(_point_goals(mesh, obj.name, settings.goals.scale))
+            for name in group_names:
+                groups[name] += (_group_members(obj, mesh, name) + first).tolist()
             study.sensor_objects.append((obj.name, len(mesh.vertices)))
+            first += len(mesh.vertices)
         finally:
             obj_eval.to_mesh_clear()
     points, normals = np.concatenate(points), np.concatenate(normals)
@@ -326,7 +342,7 @@ def _build(context, depsgraph):
     if settings.goals.source == 'ATTRIBUTE':
         sensors["goals"] = np.round(np.concatenate(goals), 6).tolist()
         sensors["goal_units"] = units
-    else:
+    elif settings.goals.source == 'UNIFORM':
         g = settings.goals
         uniform = {"sensors": "all", "level": g.level}
         if g.use_min:
@@ -334,6 +350,11 @@ def _build(context, depsgraph):
         if g.use_max:
             uniform["max"] = g.max
         scene_dict["goals"] = {"units": units, "uniform": [uniform]}
+    if len(settings.goals.climate):  # Climate goals (climate sky; checked above): on all sensors or a group
+        sensors_groups = climate_goals.checked_groups(settings.goals, groups, [n for n, _ in study.sensor_objects])
+        if sensors_groups:
+            sensors["groups"] = sensors_groups
+        scene_dict.setdefault("goals", {}).update(climate_goals.goals_dict(settings.goals))
     constraints = solve.constraints.as_dict()
     if constraints:
         from . import native

@@ -25,8 +25,13 @@ TITLES = {'ACHIEVED': ("Achieved illuminance", "lx"), 'RATIO': ("Achieved / goal
           'CDA': ("Continuous daylight autonomy cDA300", "%"),
           'UDI_A': ("UDI autonomous, 300-3000 lx", "%"),
           'MEAN': ("Annual mean illuminance", "lx"),
-          'ASE_HOURS': ("Hours of direct sun > 1000 lx", "h")}
-SHARES_OF_TIME = frozenset({'DA', 'CDA', 'UDI_A'})  # percent of the occupied hours: always 0 to 100
+          'ASE_HOURS': ("Hours of direct sun > 1000 lx", "h"),
+          # A solve with climate goals: its openings' year (climate_results.QUANTITIES).
+          'CLIMATE_DA': ("Daylight autonomy DA300 of the solve", "%"),
+          'CLIMATE_MEAN': ("Annual mean illuminance of the solve", "lx"),
+          'CLIMATE_ASE_HOURS': ("Hours of direct sun > 1000 lx, solve", "h")}
+# Percent of the occupied hours: always 0 to 100.
+SHARES_OF_TIME = frozenset({'DA', 'CDA', 'UDI_A', 'CLIMATE_DA'})
 
 
 class Scale:

@@ -251,6 +251,11 @@ class FENESTRA_OT_solve_openings(job_operator.JobOperator, bpy.types.Operator):
         if leftover:
             self.report({'WARNING'}, "Files of the previous study folder stayed in %s" % leftover)
         reused = " (contributions reused)" if job.reused else ""
+        if r.climate.valid:  # climate goals: whether they are met is the news, and the glazing it takes
+            met = sum(1 for g in r.climate.goals if g.has_achieved and g.met)
+            return self._tell(job, 'INFO', "%d openings, %d of %d climate goals met, glazing %.2f m², %.1f s%s (study in %s)"
+                              % (r.openings, met, len(r.climate.goals), r.climate.glazing_area, r.seconds_total,
+                                 reused, self._study.directory))
         return self._tell(job, 'INFO', "%d openings, relative RMS error %.1f %%, %.1f s%s (study in %s)"
                           % (r.openings, 100 * r.relative_rms, r.seconds_total, reused, self._study.directory))
 

@@ -2,7 +2,8 @@
 
 import bpy
 
-from . import constraint_defaults, export, native, sensor_results, sky, solve_progress, visibility, weather_file
+from . import (climate_results, constraint_defaults, export, native, sensor_results, sky, solve_progress, visibility,
+               weather_file)
 
 SHOWN = 12  # sensors listed in the Results panel
 
@@ -79,6 +80,9 @@ class FENESTRA_PT_sensors(FenestraPanel, bpy.types.Panel):
             draw_warning(layout, "%d in '%s': %s; left out of the study" % (count, obj.name, reason))
         goals = settings.goals
         layout.prop(goals, "source")
+        if goals.source == 'NONE':
+            layout.label(text="Climate goals below", icon='INFO')
+            return
         layout.prop(goals, "units")
         if goals.source == 'UNIFORM':
             layout.prop(goals, "level")
@@ -249,7 +253,8 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
         if r.verified_rms >= 0:
             col.label(text="Checked: %.1f %% (noise %.1f %%)" % (100 * r.verified_rms, 100 * r.verified_noise))
         for warning in filter(None, r.warnings.split("\n")):
-            draw_warning(layout, warning)
+            if not (r.climate.valid and climate_results.is_unmet_warning(warning)):  # (listed with the goals)
+                draw_warning(layout, warning)
         if len(r.tradeoffs) > 1:
             box = layout.box()
             box.label(text="Trade-offs (predicted)")

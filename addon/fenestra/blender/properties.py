@@ -7,8 +7,9 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
                        PointerProperty, StringProperty)
 from bpy.types import PropertyGroup
 
-from . import annual_properties, goal_bounds, sky_preview
+from . import annual_properties, climate_goal_properties, goal_bounds, sky_preview
 from .annual_properties import FenestraAnnualResults
+from .climate_goal_properties import FenestraClimateGoal, FenestraClimateResult
 from .display_settings import FenestraDisplaySettings
 
 TODAY = datetime.date.today()
@@ -95,7 +96,8 @@ class FenestraGoalSettings(PropertyGroup):
         name="Goals", default='UNIFORM',
         items=(('UNIFORM', "Uniform", "One goal for every sensor, with optional bounds"),
                ('ATTRIBUTE', "Painted", "Per vertex from the sensor mesh's 'fenestra_goal' attribute: "
-                "a colour attribute (its brightness) or a float attribute, times the scale")))
+                "a colour attribute (its brightness) or a float attribute, times the scale"),
+               ('NONE', "Climate Goals Only", "No goal per sensor: the climate goals alone (climate sky)")))
     units: EnumProperty(
         name="Units", default='NORMALIZED',
         items=(('NORMALIZED', "Normalized", "0 = dark, 1 = the sensor's value with every element open"),
@@ -117,6 +119,12 @@ class FenestraGoalSettings(PropertyGroup):
                        description="Penalised above this, goal units (at least the goal)")
     scale: FloatProperty(name="Scale", min=0.0, default=1.0,
                          description="Painted goals: the goal of a white vertex (or of a float value 1)")
+    # Climate goals (climate sky): annual metrics over all sensors or a vertex group (climate_goal_properties.py).
+    climate: CollectionProperty(type=FenestraClimateGoal)
+    climate_index: IntProperty(name="Active Climate Goal", default=0, min=0)
+    least_glazing: BoolProperty(
+        name="Least Glazing", default=False,
+        description="Among the designs that meet the climate goals, prefer the one with the least open area")
 
 
 CATALOGUES = (('NONE', "Free Sizes", "Any size within the limits below"),
@@ -268,6 +276,13 @@ class FenestraSensorResult(PropertyGroup):
     achieved: FloatProperty(name="Achieved", description="Lux")
     object_name: StringProperty(name="Object", description="The sensor object this sensor is a vertex of")
     vertex: IntProperty(name="Vertex", description="Its vertex index in that object")
+    # A solve with climate goals: the solved openings' year at this sensor (negative: not known).
+    daylight_autonomy: FloatProperty(name="DA300", default=-1.0,
+                                     description="Share of the occupied hours with at least 300 lx (0 to 1)")
+    mean_illuminance: FloatProperty(name="Annual Mean", default=-1.0,
+                                    description="Mean illuminance over the occupied hours, lux")
+    ase_hours: FloatProperty(name="Direct Sun Hours", default=-1.0,
+                             description="Occupied hours with more than 1000 lx of direct sun")
 
 
 class FenestraTradeoff(PropertyGroup):
@@ -306,6 +321,7 @@ class FenestraResults(PropertyGroup):
         name="Unobstructed Horizontal Illuminance", default=0.0,
         description="Lux of the solved sky on an unobstructed horizontal surface, for daylight factors "
                     "(0: not known yet)")
+    climate: PointerProperty(type=FenestraClimateResult, description="The climate goals and what the openings reach")
 
 
 class FenestraSceneSettings(PropertyGroup):
@@ -328,7 +344,7 @@ class FenestraSceneSettings(PropertyGroup):
     setup_checked: BoolProperty(name="Setup Checked", default=False)
 
 
-classes = (
+classes = climate_goal_properties.classes + (
     FenestraObjectSettings,
     FenestraSkySettings,
     FenestraGoalSettings,

@@ -1,11 +1,12 @@
 """What the viewport shows of the current result: per sensor object, the chosen quantity at each
 vertex, and the one colour scale for all of them (shared by the false colour and its legend). The
-quantity is a solve's (achieved lux, achieved / goal, daylight factor) or, with *Annual Metric*,
-the chosen per-sensor metric of the last Annual Daylight run."""
+quantity is a solve's (achieved lux, achieved / goal, daylight factor; with climate goals, its
+openings' DA300, annual mean or direct-sun hours) or, with *Annual Metric*, the chosen per-sensor
+metric of the last Annual Daylight run."""
 
 import numpy as np
 
-from . import annual_results, false_colour, sensor_results
+from . import annual_results, climate_results, false_colour, sensor_results
 
 
 def sensor_objects(context):
@@ -21,6 +22,15 @@ def _solve_values(context, settings, quantity):
         pair = sensor_results.per_vertex(results, obj.name, len(obj.data.vertices))
         if pair is not None:
             shown[obj.name] = false_colour.values(quantity, pair[0], pair[1], results.horizontal_illuminance)
+    return shown
+
+
+def _climate_values(context, settings, quantity):
+    shown = {}
+    for obj in sensor_objects(context):
+        values = climate_results.per_vertex(settings.results, quantity, obj.name, len(obj.data.vertices))
+        if values is not None:
+            shown[obj.name] = values
     return shown
 
 
@@ -43,6 +53,9 @@ def current(context):
     if display.false_colour == 'ANNUAL':
         quantity = display.annual_metric
         shown = _annual_values(context, settings, quantity)
+    elif display.false_colour in climate_results.QUANTITIES:
+        quantity = display.false_colour
+        shown = _climate_values(context, settings, quantity)
     else:
         quantity = display.false_colour
         shown = _solve_values(context, settings, quantity)

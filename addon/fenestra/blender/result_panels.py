@@ -6,6 +6,7 @@ import math
 import bpy
 
 from . import false_colour, sensor_results
+from .display_settings import SCALED
 from .panels import FenestraPanel
 
 
@@ -31,7 +32,7 @@ class FENESTRA_PT_result_display(ResultSubPanel, bpy.types.Panel):
         layout.prop(display, "false_colour", text="")
         if display.false_colour == 'ANNUAL':
             layout.prop(display, "annual_metric", text="")
-        if display.false_colour in {'ACHIEVED', 'DAYLIGHT_FACTOR'} or (
+        if display.false_colour in SCALED or (
                 display.false_colour == 'ANNUAL' and display.annual_metric not in false_colour.SHARES_OF_TIME):
             layout.prop(display, "colour_max")
         row = layout.row()

@@ -5,7 +5,7 @@ import bmesh
 import bpy
 import numpy as np
 
-from . import annual_results, sky_reference
+from . import annual_results, climate_goal_properties, climate_results, sky_reference
 from .cutter import Cutter
 from .export import BOOLEAN_NAME, OPEN_THROUGH_NAME, is_result_modifier
 
@@ -42,9 +42,10 @@ def clear(scene):
                 obj.data.attributes.remove(attr)
     results = scene.fenestra.results
     for key in results.bl_rna.properties.keys():
-        if key not in {"rna_type", "name", "sensors"}:
+        if key not in {"rna_type", "name", "sensors", "climate"}:
             results.property_unset(key)  # back to its default: no old count is left on show
     results.sensors.clear()
+    climate_goal_properties.clear(results.climate)
     annual_results.clear(scene)
     return len(cutters)
 
@@ -191,7 +192,9 @@ def tradeoff_result(result, index):
     sensors = [dict(s, predicted=p, predicted_stderr=e)
                for s, p, e in zip(result["sensors"], entry["predicted"], entry["predicted_stderr"])]
     error = dict(result["error"], **entry["error"], verified=None)  # the check was of the answer
-    return dict(result, openings=entry["openings"], sensors=sensors, error=error,
+    # The climate figures are of the answer's openings too: kept only with the answer.
+    climate = result.get("climate") if index == 0 else None
+    return dict(result, openings=entry["openings"], sensors=sensors, error=error, climate=climate,
                 open_elements=[], warnings=[w for w in result.get("warnings", []) if not w.startswith("checked")])
 
 
@@ -247,6 +250,7 @@ def apply(context, study, result):
         item.goal = s["goal"] if s["goal"] is not None else -1.0
         item.achieved = s["predicted"]
         item.object_name, item.vertex = name, vertex
+    climate_results.apply(r, result.get("climate"))
     timings = result.get("timings_s", {})
     r.relative_rms = result["error"]["relative_rms"]
     r.max_relative = result["error"].get("max_relative", 0.0)
@@ -269,6 +273,11 @@ def apply(context, study, result):
     r.seconds_solver = r.seconds_total - r.seconds_contributions
     r.study_path = study.scene_path
     r.valid = True
+    display = settings.display
+    if r.climate.valid and display.false_colour != 'NONE' and display.false_colour not in climate_results.QUANTITIES:
+        display.false_colour = 'CLIMATE_DA'  # the year of the openings: what climate goals are about
+    elif not r.climate.valid and display.false_colour in climate_results.QUANTITIES:
+        display.false_colour = 'ACHIEVED'
     if settings.display.false_colour == 'DAYLIGHT_FACTOR':
         sky_reference.ensure_horizontal_illuminance(scene)
     settings.domain_faces = study.domain_faces

@@ -13,7 +13,7 @@ SOLVER_ONLY_KEYS = frozenset({
     "elite", "constraints", "panel_constraints", "improve_iterations", "verify", "verify_paths",
     "refine_edges",
 })
-GOAL_KEYS = frozenset({"goals", "goal_units"})  # of the sensors section
+GOAL_KEYS = frozenset({"goals", "goal_units", "groups"})  # of the sensors section (groups: of climate goals)
 
 
 def _weather_stamp(scene_dict):

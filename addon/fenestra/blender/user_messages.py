@@ -191,6 +191,11 @@ def _field(key):
     key = key.strip()
     if key.startswith("-"):
         return None
+    climate = re.match(r"goals\.climate\[(\d+)\]", key)
+    if climate:  # its place in the Climate Goals list, numbered from 1
+        return "Climate goal %d" % (int(climate.group(1)) + 1)
+    if key.startswith("sensors.groups"):
+        return "the climate goals' sensor groups"
     bare = re.sub(r"\[\d+\]", "", key)
     if bare in FIELDS:
         return FIELDS[bare]
