@@ -246,11 +246,16 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
         col = layout.column(align=True)
         col.label(text="%d openings" % r.openings)
         col.label(text="%d of %d elements open" % (r.open_elements, r.elements))
-        col.label(text="Error %.1f %% RMS" % (100 * r.relative_rms))
+        # A climate solve's per-sensor goals are its own element answer's light: its figures are the
+        # climate goals' (their sub-panel), not these errors.
+        per_sensor_goals = not r.climate.valid
+        if per_sensor_goals:
+            col.label(text="Error %.1f %% RMS" % (100 * r.relative_rms))
         if r.evaluated:
             col.label(text="Evaluated as placed", icon='CHECKMARK')
-        col.label(text="Worst sensor %.1f %%" % (100 * r.max_relative))
-        if r.verified_rms >= 0:
+        if per_sensor_goals:
+            col.label(text="Worst sensor %.1f %%" % (100 * r.max_relative))
+        if r.verified_rms >= 0 and per_sensor_goals:
             col.label(text="Checked: %.1f %% (noise %.1f %%)" % (100 * r.verified_rms, 100 * r.verified_noise))
         for warning in filter(None, r.warnings.split("\n")):
             if not (r.climate.valid and climate_results.is_unmet_warning(warning)):  # (listed with the goals)
@@ -260,12 +265,16 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             box.label(text="Trade-offs (predicted)")
             col_t = box.column(align=True)
             for i, t in enumerate(r.tradeoffs):
-                op = col_t.operator("fenestra.apply_tradeoff", depress=(i == r.tradeoff_shown),
-                                    text="%d opening%s: %.1f %%, %.1f m\u00b2" % (
-                                        t.openings, "" if t.openings == 1 else "s", 100 * t.relative_rms,
-                                        t.glazing_area))
+                plural = "" if t.openings == 1 else "s"
+                text = ("%d opening%s: %.1f %%, %.1f m\u00b2" % (t.openings, plural, 100 * t.relative_rms, t.glazing_area)
+                        if per_sensor_goals else "%d opening%s: %.1f m\u00b2" % (t.openings, plural, t.glazing_area))
+                op = col_t.operator("fenestra.apply_tradeoff", depress=(i == r.tradeoff_shown), text=text)
                 op.index = i
         col.label(text="Time %.1f s (solver %.1f s)" % (r.seconds_total, r.seconds_solver))
+        if not per_sensor_goals:
+            layout.operator("fenestra.evaluate_openings", icon='PLAY')
+            layout.operator("fenestra.clear_results", icon='X')
+            return
         box = layout.box()
         box.label(text="Farthest from their goals:" if len(r.sensors) > SHOWN else "Sensors:")
         col = box.column(align=True)
