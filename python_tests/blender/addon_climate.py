@@ -241,6 +241,13 @@ class Solved(unittest.TestCase):
         self.assertAlmostEqual(r.climate.domain_area, climate["domain_area_m2"], places=4)
         self.assertGreater(r.climate.glazing_area, 0.0)
         self.assertLessEqual(r.climate.glazing_area, r.climate.domain_area + 1e-6)
+        # The space metrics of the solved openings' year, in the Annual Daylight figures.
+        annual = f.annual
+        self.assertTrue(annual.valid)
+        self.assertAlmostEqual(annual.spatial_daylight_autonomy, climate["space"]["spatial_daylight_autonomy"], places=6)
+        self.assertAlmostEqual(annual.mean_illuminance, climate["space"]["mean_illuminance_lux"], places=3)
+        self.assertEqual(annual.openings, len(result["openings"]))
+        self.assertEqual(len(annual.sensors), len(r.sensors))
         # Per sensor, and the false colour: DA of the solve in percent, 0 to 100.
         da = np.array(climate["per_sensor"]["daylight_autonomy"])
         stored = np.zeros(len(r.sensors))

@@ -273,6 +273,11 @@ def apply(context, study, result):
     r.seconds_solver = r.seconds_total - r.seconds_contributions
     r.study_path = study.scene_path
     r.valid = True
+    climate = result.get("climate") or {}
+    if climate.get("space") and climate.get("per_sensor") and climate.get("year"):
+        # The solved openings' year fills the Annual Daylight figures: its space metrics and maps.
+        summary = dict(climate["year"], space=climate["space"], per_sensor=climate["per_sensor"])
+        annual_results.apply(scene, study, summary, r.openings, r.seconds_total, False, study.scene_path)
     display = settings.display
     if r.climate.valid and display.false_colour != 'NONE' and display.false_colour not in climate_results.QUANTITIES:
         display.false_colour = 'CLIMATE_DA'  # the year of the openings: what climate goals are about

@@ -1,6 +1,7 @@
 #include "io/climate_result.h"
 
 #include "annual/annual_study.h"
+#include "daylight/sky_matrix.h"
 
 namespace fenestra {
 namespace {
@@ -64,6 +65,16 @@ json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
     space = annual_space_json(m);
   }
   if (c.verified_study) verified_space = annual_space_json(c.verified_study->metrics);
+  json year = nullptr;  // what the year is, as `fenestra annual` names it
+  if (c.study && scene.climate) {
+    const AnnualStudy& st = *c.study;
+    year = {{"weather", scene.climate->settings.weather_path},
+            {"hours", st.metrics.hours},
+            {"occupied_hours", st.metrics.occupied_hours},
+            {"occupied", {{"start_hour", st.settings.occupied_start_hour}, {"end_hour", st.settings.occupied_end_hour},
+                          {"clock", "local standard time"}}},
+            {"paths_per_sensor", st.paths_per_sensor}};
+  }
   return {{"goals", list},
           {"all_met", c.achieved.empty() ? json(nullptr) : json(all_met(goals, c.achieved))},
           {"verified_all_met", c.verified.empty() ? json(nullptr) : json(all_met(goals, c.verified))},
@@ -74,6 +85,7 @@ json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
           {"per_sensor", per_sensor},
           {"space", space},
           {"verified_space", verified_space},
+          {"year", year},
           {"linearisations", c.linearisations},
           {"model_bytes", c.model_bytes},
           {"units", "fractions in [0, 1] (of the sensors, or of EN 17037's daylight hours), illuminance in lux, "
