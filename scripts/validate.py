@@ -677,6 +677,13 @@ def climate_table(truth, standard):
                          % (met_strips[0]["height_m"], met_strips[0]["glazing_m2"], dsg["glazing_m2"]))
         else:
             lines.append("No strip up to a head of %.2f m meets the goals." % (s["strip_sill_m"] + s["strips"][-1]["height_m"]))
+        for g, goal in enumerate(s["goals"]):
+            sense, required = s["sense"][g], s["required"][g]
+            first = next((st for st in s["strips"] if (st["check"][g] >= required - 1e-12 if sense == "at_least"
+                                                        else st["check"][g] <= required + 1e-12)), None)
+            lines.append("The strip meets %s %s." % (goal, "from %.2f m high (%.2f m², %.2f times the designed glazing)" % (
+                first["height_m"], first["glazing_m2"], first["glazing_m2"] / dsg["glazing_m2"]) if first
+                else "at no height"))
         lines.append("The solver's own figures for its answer: from the path records %s, with real cutters %s%s. "
                      "Solve %.0f s (contributions %.1f s, climate model %.1f s, search %.1f s)." % (
                          ", ".join(_pct(x) for x in dsg["achieved"]), ", ".join(_pct(x) for x in dsg["verified"]),
