@@ -26,6 +26,10 @@ annual_room: a side-lit 4 x 6 x 3 m room in Chicago (O'Hare's latitude, longitud
     annual daylight-coefficient reference is python_tests/data/radiance_annual_room/. design.json is
     the same room under the Chicago weather file with climate goals instead of openings (sDA300/50%
     at least 55 %, ASE1000,250 at most 10 %, the least glazing): `make demo-annual` solves it.
+deep_room: a deep side-lit 4 x 8 x 3 m room in Chicago, its south wall the opening domain (0.25 m
+    elements), 128 sensors on a 0.5 m grid at 0.76 m, climate sky; climate.json asks for
+    sDA300/50 % >= 55 % and ASE1000,250 <= 10 % with the least glazing (scripts/validate.py,
+    "Designing for the year"; docs/validation-climate.md).
 """
 
 import json
@@ -528,6 +532,47 @@ def annual_room_design():
         json.dump(scene, f, indent=2)
 
 
+# A deep side-lit room for designing to the year's standards (scripts/validate.py): the climate
+# goals of LEED v4 option 1 (sDA300/50 % >= 55 %, ASE1000,250 <= 10 %) with the least glazing.
+DEEP_ROOM = {"width": 4.0, "depth": 8.0, "height": 3.0, "element_size": 0.25,
+             "reflectance": {"floor": 0.2, "wall": 0.5, "wall_south": 0.5, "ceiling": 0.7},
+             "sensor_height": 0.76, "sensor_spacing": 0.5}
+
+
+def deep_room_sensors():
+    """Cell centres of a 0.5 m grid over the floor at 0.76 m, x fastest (8 x 16 = 128)."""
+    r = DEEP_ROOM
+    a = r["sensor_spacing"]
+    return [[float(x), float(y), r["sensor_height"]]
+            for y in np.arange(a / 2, r["depth"], a) for x in np.arange(a / 2, r["width"], a)]
+
+
+def deep_room():
+    out = os.path.join(HERE, "deep_room")
+    os.makedirs(out, exist_ok=True)
+    r = DEEP_ROOM
+    obj = Obj()
+    room(obj, r["width"], r["depth"], r["height"], "wall_south")
+    obj.write(os.path.join(out, "scene.obj"))
+    scene = {
+        "fenestra": 1,
+        "geometry": "scene.obj",
+        "materials": {name: {"type": "diffuse", "reflectance": v} for name, v in r["reflectance"].items()},
+        "opening_domain": {"materials": ["wall_south"], "element_size": r["element_size"], "thickness": 0.0},
+        "sensors": {"points": deep_room_sensors(), "normals": [0, 0, 1]},
+        "sky": {"type": "climate", "weather": "../weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw",
+                "occupied": ["08:00", "18:00"], "patches": 1, "ground_reflectance": 0.2},
+        "goals": {"climate": [
+            {"metric": "sda", "sensors": "all", "illuminance_lux": 300, "time_fraction": 0.5, "min_area_fraction": 0.55},
+            {"metric": "ase", "sensors": "all", "illuminance_lux": 1000, "hours": 250, "max_area_fraction": 0.10}],
+            "least_glazing": True},
+        "render": {"paths_per_sensor": 2048, "max_bounces": 16, "seed": 1, "threads": 0},
+        "solver": {"paths": 2048, "population": 64, "generations": 250, "seed": 1, "verify_paths": 8192},
+    }
+    with open(os.path.join(out, "climate.json"), "w") as f:
+        json.dump(scene, f, indent=2)
+
+
 if __name__ == "__main__":
     reference_room()
     paper_scale()
@@ -539,4 +584,5 @@ if __name__ == "__main__":
     vault_room()
     annual_room()
     annual_room_design()
+    deep_room()
     print("examples written under", HERE)
