@@ -268,6 +268,12 @@ class Solved(unittest.TestCase):
         from fenestra.blender.climate_panel import FENESTRA_PT_climate_results
         self.assertTrue(FENESTRA_PT_climate_results.poll(bpy.context))
 
+        # Each trade-off says whether its openings meet the climate goals (the core's figures).
+        for item, entry in zip(r.tradeoffs, result["tradeoffs"]):
+            self.assertIsNotNone(entry["climate"])
+            self.assertEqual(len(entry["climate"]["achieved"]), len(climate["goals"]))
+            self.assertEqual(item.climate_met, int(entry["climate"]["all_met"]))
+        self.assertEqual(result["tradeoffs"][0]["climate"]["achieved"], [g["achieved"] for g in climate["goals"]])
         # A trade-off's openings are not the ones the figures are of: the figures go with the answer.
         # (A second trade-off, a copy of the answer, is put in result.json when the solve found one.)
         if len(r.tradeoffs) < 2:

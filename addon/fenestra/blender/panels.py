@@ -266,8 +266,11 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             col_t = box.column(align=True)
             for i, t in enumerate(r.tradeoffs):
                 plural = "" if t.openings == 1 else "s"
-                text = ("%d opening%s: %.1f %%, %.1f m\u00b2" % (t.openings, plural, 100 * t.relative_rms, t.glazing_area)
-                        if per_sensor_goals else "%d opening%s: %.1f m\u00b2" % (t.openings, plural, t.glazing_area))
+                if per_sensor_goals:
+                    text = "%d opening%s: %.1f %%, %.1f m\u00b2" % (t.openings, plural, 100 * t.relative_rms, t.glazing_area)
+                else:  # whether the climate goals are met
+                    met = {1: ", goals met", 0: ", goals not met"}.get(t.climate_met, "")
+                    text = "%d opening%s: %.1f m\u00b2%s" % (t.openings, plural, t.glazing_area, met)
                 op = col_t.operator("fenestra.apply_tradeoff", depress=(i == r.tradeoff_shown), text=text)
                 op.index = i
         col.label(text="Time %.1f s (solver %.1f s)" % (r.seconds_total, r.seconds_solver))

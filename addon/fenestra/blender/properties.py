@@ -289,6 +289,9 @@ class FenestraTradeoff(PropertyGroup):
     openings: IntProperty(name="Openings")
     relative_rms: FloatProperty(name="Relative RMS Error")
     glazing_area: FloatProperty(name="Glazing Area", unit='AREA', description="Total area of the openings")
+    climate_met: IntProperty(name="Climate Goals Met", default=-1, min=-1, max=1,
+                             description="With climate goals: 1 when these openings meet them all, 0 when not, "
+                                         "-1 when unknown")
 
 
 class FenestraResults(PropertyGroup):

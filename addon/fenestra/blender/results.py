@@ -265,6 +265,8 @@ def apply(context, study, result):
         item.openings = entry["openings_count"]
         item.relative_rms = entry["error"]["relative_rms"]
         item.glazing_area = entry["glazing_area_m2"]
+        climate = entry.get("climate")
+        item.climate_met = -1 if not climate else int(bool(climate.get("all_met")))
     r.tradeoff_shown = 0
     r.open_elements = len(result.get("open_elements", []))
     r.elements = result.get("element_count", 0)

@@ -53,12 +53,22 @@ json openings_json(const std::vector<OpeningRectangle>& openings) {
   return list;
 }
 
-json tradeoffs_json(const SolveResult& r) {
+json tradeoffs_json(const Scene& scene, const SolveResult& r) {
   json list = json::array();
   for (const TradeoffResult& t : r.tradeoffs) {
     double area = 0.0;
     for (const OpeningRectangle& o : t.openings) area += o.width * o.height;
-    list.push_back({{"openings_count", t.openings.size()},
+    json climate = nullptr;
+    if (!t.climate.empty()) {
+      json figures = json::array();
+      bool met = true;
+      for (size_t g = 0; g < t.climate.size(); ++g) {
+        figures.push_back(t.climate[g].achieved);
+        met = met && figure_meets(scene.sensors.climate_goals.goals[g], t.climate[g].achieved);
+      }
+      climate = {{"achieved", figures}, {"all_met", met}};
+    }
+    list.push_back({{"climate", climate},{"openings_count", t.openings.size()},
                     {"answer", t.answer},
                     {"glazing_area_m2", area},
                     {"error", error_json(t.error)},
@@ -153,7 +163,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
       {"fitness", r.fitness},
       {"warnings", r.warnings},
       {"constraints_met", r.constraint_violations.empty()},
-      {"tradeoffs", tradeoffs_json(r)},
+      {"tradeoffs", tradeoffs_json(scene, r)},
       {"composition", [&] {
          json steps = json::array();
          for (const CompositionStep& c : r.composition)

@@ -430,6 +430,20 @@ SolverGoals raised_goals(SolverGoals goals, const std::vector<int>& rows, const 
   return goals;
 }
 
+// A trade-off's climate figures: the answer's, or its openings' year from the path records.
+std::vector<ClimateFigure> tradeoff_climate(const Scene& scene, const Contributions& c, const ClimateProblem& problem,
+                                            const TradeoffResult& entry, const SolveResult& out) {
+  if (entry.answer) return out.climate.achieved;
+  std::vector<PanelRectangle> rects;
+  for (const OpeningRectangle& o : entry.openings) rects.push_back(o.parameter);
+  try {
+    const AnnualStudy year = annual_study(scene, c, OpenRegion(scene.domain, rects));
+    return climate_figures(problem, year.illuminance.total, year.illuminance.direct);
+  } catch (const std::invalid_argument&) {
+    return {};  // edges off the grid lines of a thick wall: the records cannot tell
+  }
+}
+
 // The per-sensor goals the constraints stage follows after a climate search: each sensor the
 // climate goals look at takes the answer's mean illuminance of the occupied hours as its goal
 // (sensors with a goal of their own keep it), so that openings within the constraints give the
@@ -825,6 +839,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   if (climate) {
     t = Clock::now();
     report_climate(scene, c, *climate_problem_of, final_rects, settings.verify, settings.verify_paths, &out, progress);
+    for (TradeoffResult& entry : out.tradeoffs) entry.climate = tradeoff_climate(scene, c, *climate_problem_of, entry, out);
     out.timings.push_back({"climate figures", since(t)});
   }
   for (const std::string& w : {sparse_sampling_warning(c.paths_per_sensor, c.element_count()),

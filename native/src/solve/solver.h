@@ -26,6 +26,9 @@ struct TradeoffResult {
   GoalError error;
   bool cut = false;     // predicted by real cutters (thick walls), not the path records
   bool answer = false;  // the solver's answer (the one with the most openings)
+  // With climate goals: each goal's figure for these openings, from the path records (empty when
+  // they cannot tell).
+  std::vector<ClimateFigure> climate;
 };
 
 struct SolveResult {
