@@ -114,6 +114,21 @@ def test_max_memory_lowers_the_limit(tmp_path):
         assert r.returncode == 2 and "--max-memory expects a size" in r.stderr, r.stderr
 
 
+def test_a_refusal_names_the_paths_that_fit_and_the_estimate_is_printed_first(tmp_path):
+    r = run("contributions", REFERENCE, "-o", tmp_path / "out.npz", "--paths", 4096, "--quiet", "--max-memory", "10M")
+    fit = re.search(r"at most ([\d ]+) per sensor fit", r.stderr)
+    assert r.returncode == 1 and fit, r.stderr
+    n = int(fit.group(1).replace(" ", ""))
+    assert 1 <= n < 4096
+    # The figure is the largest that fits: it runs, one more path per sensor is refused.
+    r = run("contributions", REFERENCE, "-o", tmp_path / "out.npz", "--paths", n, "--max-memory", "10M")
+    assert r.returncode == 0, r.stderr
+    assert re.search(r"estimated memory: path records [\d.]+ [kMG]B \(%s paths per sensor x \d+ sensors\), "
+                     r"[\d.]+ [kMG]B at the peak; 10.0 MB allowed by --max-memory" % fit.group(1), r.stderr), r.stderr
+    r = run("contributions", REFERENCE, "-o", tmp_path / "more.npz", "--paths", n + 1, "--quiet", "--max-memory", "10M")
+    assert r.returncode == 1 and "at most %s per sensor fit" % fit.group(1) in r.stderr, r.stderr
+
+
 def test_max_memory_overrides_an_address_space_limit(tmp_path):
     # What is left under `ulimit -v 1000000` (about 1 GB, minus what the program maps at start):
     # read from the refusal of a run that cannot fit. Threads create their malloc arenas (64 MB of

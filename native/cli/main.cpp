@@ -320,6 +320,8 @@ int run(const Args& a) {
     if (a.overrides.count("--paths")) scene.solver.paths_per_sensor = scene.render.paths_per_sensor;
     if (a.overrides.count("--seed")) scene.solver.seed = scene.render.seed;
     check_cost(scene, CostCommand::Solve);  // memory and time, before any work (docs/cost.md)
+    if (!a.quiet)
+      std::fprintf(stderr, "estimated memory: %s\n", memory_summary(scene, CostCommand::Solve, memory_limit()).c_str());
     const SolveResult r = with_progress(progress, a.quiet, [&] { return solve_openings(scene, &progress); });
     write_json(a.output, solve_result_json(scene, r));
     double total = 0.0;
@@ -341,6 +343,9 @@ int run(const Args& a) {
     return 0;
   }
   if (a.command == "contributions") {
+    if (!a.quiet)
+      std::fprintf(stderr, "estimated memory: %s\n",
+                   memory_summary(scene, CostCommand::Contributions, memory_limit()).c_str());
     const Contributions c = with_progress(progress, a.quiet, [&] { return compute_contributions(scene, &progress); });
     const auto paths = write_contributions(scene, c, a.output);
     std::printf("contributions: %zu sensors x %zu elements, %d paths per sensor, %.2f s\n", c.sensor_count(),

@@ -291,7 +291,7 @@ std::string cost_command_name(CostCommand command) {
   }
 }
 
-CostEstimate estimate_cost(const Scene& scene, CostCommand command, double elements) {
+CostEstimate estimate_cost(const Scene& scene, CostCommand command, double elements, double paths) {
   CostEstimate e;
   e.command = command;
   e.sensors = scene.sensors.size();
@@ -300,6 +300,7 @@ CostEstimate estimate_cost(const Scene& scene, CostCommand command, double eleme
   e.paths_per_sensor = scene.render.paths_per_sensor;
   if ((command == CostCommand::Solve || command == CostCommand::Solver) && scene.solver.paths_per_sensor > 0)
     e.paths_per_sensor = scene.solver.paths_per_sensor;
+  if (paths >= 0.0) e.paths_per_sensor = static_cast<int>(std::llround(paths));
   e.bytes_per_path = path_record_bytes(scene);
   const double ray_scene = kRaySceneBytesPerTriangle * static_cast<double>(e.triangles);
   switch (command) {
@@ -342,6 +343,31 @@ std::string memory_refusal(const std::string& what, double bytes, double total_b
   return s.str();
 }
 
+std::string memory_summary(const Scene& scene, CostCommand command, const MemoryLimit& limit) {
+  const CostEstimate e = estimate_cost(scene, command);
+  std::ostringstream s;
+  for (const MemoryItem& m : e.memory)
+    if (m.key == "path_records")
+      s << "path records " << format_bytes(m.bytes) << " (" << format_count(e.paths_per_sensor) << " paths per sensor x "
+        << format_count(static_cast<double>(e.sensors)) << " sensors), ";
+  s << format_bytes(e.peak_bytes()) << " at the peak; " << format_bytes(static_cast<double>(limit.bytes)) << " "
+    << limit.source;
+  return s.str();
+}
+
+// ": at most N per sensor fit" (N the most paths whose peak stays under the limit), or "" when
+// not even one path fits.
+std::string paths_that_fit(const Scene& scene, CostCommand command, const CostEstimate& e, const MemoryLimit& limit) {
+  auto fits = [&](double n) { return estimate_cost(scene, command, -1.0, n).peak_bytes() <= static_cast<double>(limit.bytes); };
+  double lo = 1.0, hi = static_cast<double>(e.paths_per_sensor);
+  if (!fits(lo)) return "";
+  while (hi - lo > 1.0) {  // the peak grows with the paths
+    const double mid = std::floor(0.5 * (lo + hi));
+    (fits(mid) ? lo : hi) = mid;
+  }
+  return ": at most " + format_count(lo) + " per sensor fit";
+}
+
 void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limit) {
   const CostEstimate e = estimate_cost(scene, command);
   const std::string prefix = "scene '" + scene.source + "': ";
@@ -357,6 +383,7 @@ void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limi
           kMaxElements);
       setting.replace(generic, std::string(kLargerElementSize).size(), larger_element_size(fits));
     }
+    if (setting.rfind("fewer paths", 0) == 0) setting += paths_that_fit(scene, command, e, limit);
     throw CostError(prefix + describe_sizes(scene, e, big) + "; " +
                     memory_refusal(big.description + (peak > 1.05 * big.bytes ? " alone" : ""), big.bytes, peak, limit,
                                    setting));

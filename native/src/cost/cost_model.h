@@ -61,7 +61,12 @@ CostCommand cost_command(const std::string& name);  // "contributions", "evaluat
 std::string cost_command_name(CostCommand command);
 
 // `elements` >= 0 stands in for the domain's element count (what another element size would give).
-CostEstimate estimate_cost(const Scene& scene, CostCommand command, double elements = -1.0);
+// `elements` and `paths` (per sensor) replace the scene's when >= 0 (what would fit, for messages).
+CostEstimate estimate_cost(const Scene& scene, CostCommand command, double elements = -1.0, double paths = -1.0);
+
+// What a computation will hold, in a line: "path records 61.5 MB (1 024 paths per sensor x 100
+// sensors), 157 MB at the peak; 20.1 GB available (MemAvailable)".
+std::string memory_summary(const Scene& scene, CostCommand command, const MemoryLimit& limit);
 
 // Throws CostError when the estimate's peak exceeds `limit` or a stage exceeds its time limit.
 void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limit);
