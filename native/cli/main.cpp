@@ -41,6 +41,9 @@ const char* kUsage = R"(usage:
       Contributions, then the opening solver (NNLS start, genetic algorithm, exact re-ranking):
       writes the openings (rectangles, readable by evaluate --openings), predicted values, errors,
       timings and the genetic history. Settings from the scene's "goals" and "solver" sections.
+      With a "climate" sky, goals.climate asks for sDA, ASE, EN 17037, UDI or an annual mean (and
+      goals.least_glazing for the least glass): each goal's figure is printed, from the path records
+      and with real cutters, and written under "climate". See docs/solver.md, "Climate goals".
   fenestra annual SCENE.json --openings OPENINGS.json -o OUT[.npz] [--cutters] [options]
       A scene whose sky is "climate" (a weather file): one pass of paths per sensor, then every
       sensor's illuminance at every hour of the year with the openings open, its direct-sun part,
