@@ -176,6 +176,17 @@ def test_the_genetic_algorithm(small_room):
                                            "genetic algorithm"))
 
 
+def test_the_genetic_algorithm_on_climate_goals(tmp_path):
+    from test_climate_goals import climate_room  # a climate sky and sDA / ASE goals
+    path, scene = climate_room(tmp_path, {"climate": [{"metric": "sda", "min_area_fraction": 0.5},
+                                                      {"metric": "ase", "hours": 40, "max_area_fraction": 0.2}]},
+                               paths=256)
+    scene["solver"]["generations"] = 10 ** 6  # each individual carries its sensors' year
+    path.write_text(json.dumps(scene))
+    loaded = fenestra.load_scene(str(path))
+    assert_cancelled_soon(*cancel_in_stage(lambda p: fenestra.solve(loaded, progress=p), "genetic algorithm"))
+
+
 def test_the_local_search_over_openings(small_room):
     # 5e7 proposals: about half a minute (the constraints stage used to ignore cancel all along).
     scene, c = solvable(small_room, improve_iterations=50_000_000)
