@@ -237,6 +237,7 @@ TEST(ClimateGoals, BadGoalsAreRefusedByName) {
   expect_goal_refused(R"({"climate": [{"metric": "sda", "weight": 0}]})", {"goals.climate[0].weight"});
   expect_goal_refused(R"({"climate": {"metric": "sda"}})", {"goals.climate", "expected a list"});
   expect_goal_refused(R"({"least_glazing": "yes"})", {"goals.least_glazing"});
+  expect_goal_refused(R"({"least_glazing": true})", {"goals.least_glazing", "goals.climate"});
   expect_goal_refused(R"({"climate": []})", {"sensors.groups.x"}, R"({"x": []})");
   expect_goal_refused(R"({"climate": [{"metric": "sda", "sensors": "front"}]})", {"sensors.groups has back"},
                       R"({"back": [4, 5]})");

@@ -238,6 +238,9 @@ ClimateGoals parse_climate_goals(const json& goals, const json& groups, size_t s
     if (!goals.at("least_glazing").is_boolean()) reader.fail("goals.least_glazing", "expected true or false");
     out.least_glazing = goals.at("least_glazing").get<bool>();
   }
+  const bool any = goals.contains("climate") && goals.at("climate").is_array() && !goals.at("climate").empty();
+  if (out.least_glazing && !any)
+    reader.fail("goals.least_glazing", "weighs the glass against climate goals: give them in goals.climate");
   if (!goals.contains("climate") || goals.at("climate").is_null()) return out;
   const json& list = goals.at("climate");
   if (!list.is_array()) reader.fail("goals.climate", "expected a list of goals, e.g. [{\"metric\": \"sda\"}]");
