@@ -15,7 +15,6 @@ import math
 import os
 import sys
 import time
-import traceback
 
 import bpy
 import numpy as np
@@ -24,6 +23,7 @@ from mathutils import Euler
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import addon_study  # noqa: E402
+import window_script  # noqa: E402
 
 OUT = os.path.abspath(sys.argv[sys.argv.index("--") + 1])
 addon_study.OUT = os.path.join(os.path.dirname(OUT), "annual_study")
@@ -43,25 +43,6 @@ def check(name, passed, numbers):
         state["failed"].append(name)
 
 
-def only_the_fenestra_tab():
-    """The sidebar shows the Fenestra tab, with the panels that are not about this run closed."""
-    for name in dir(bpy.types):
-        cls = getattr(bpy.types, name)
-        if (isinstance(cls, type) and issubclass(cls, bpy.types.Panel) and getattr(cls, "bl_space_type", "") == 'VIEW_3D'
-                and getattr(cls, "bl_region_type", "") == 'UI' and getattr(cls, "bl_category", "") != "Fenestra"
-                and not name.startswith("FENESTRA_")):
-            try:
-                bpy.utils.unregister_class(cls)
-            except RuntimeError:
-                pass
-    for name in ("FENESTRA_PT_domain", "FENESTRA_PT_sensors", "FENESTRA_PT_solve", "FENESTRA_PT_result_display",
-                 "FENESTRA_PT_selected_sensor"):
-        panel = getattr(bpy.types, name)
-        bpy.utils.unregister_class(panel)
-        panel.bl_options = {'DEFAULT_CLOSED'}
-        bpy.utils.register_class(panel)
-
-
 def setup():
     addon_study.enable()
     for obj in list(bpy.data.objects):
@@ -72,7 +53,9 @@ def setup():
     f.solve.constraints.max_openings, f.solve.constraints.max_width = 1, 1.5
     f.solve.wall_thickness = 0.0
     assert bpy.ops.fenestra.solve_openings() == {'FINISHED'}
-    only_the_fenestra_tab()
+    window_script.only_the_fenestra_tab((
+        "FENESTRA_PT_domain", "FENESTRA_PT_sensors", "FENESTRA_PT_solve", "FENESTRA_PT_result_display",
+        "FENESTRA_PT_selected_sensor"))
     window, area, region = view3d()
     space = area.spaces.active
     space.show_region_ui = True
@@ -104,7 +87,7 @@ def wait_for_the_run():
             os._exit(1)
         return 0.5
     check("annual_run_modal", True, "%.1f s" % (time.time() - state["started"]))
-    bpy.app.timers.register(guarded(shoot), first_interval=1.0)
+    bpy.app.timers.register(window_script.guarded(shoot), first_interval=1.0)
     return None
 
 
@@ -154,28 +137,14 @@ def shoot():
     print("ANNUAL sDA %.3f ASE %.3f DA %.3f mean %.0f lx EN17037 %r; screenshot %s"
           % (a.spatial_daylight_autonomy, a.annual_sunlight_exposure, a.daylight_autonomy, a.mean_illuminance,
              a.en17037_level, OUT))
-    print("RESULT %s" % ("FAILED " + " ".join(state["failed"]) if state["failed"] else "all checks ok"))
-    sys.stdout.flush()
-    os._exit(1 if state["failed"] else 0)
-
-
-def guarded(step):
-    """A timer callback that ends Blender with status 1 on an exception."""
-    def run():
-        try:
-            return step()
-        except Exception:
-            traceback.print_exc()
-            sys.stdout.flush()
-            os._exit(1)
-    return run
+    window_script.exit_with_verdict(state["failed"])
 
 
 def start():
     os.makedirs(os.path.dirname(OUT), exist_ok=True)
     setup()
-    bpy.app.timers.register(guarded(wait_for_the_run), first_interval=0.5)
+    bpy.app.timers.register(window_script.guarded(wait_for_the_run), first_interval=0.5)
     return None
 
 
-bpy.app.timers.register(guarded(start), first_interval=1.0)
+bpy.app.timers.register(window_script.guarded(start), first_interval=1.0)

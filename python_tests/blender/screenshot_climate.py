@@ -18,7 +18,6 @@ import os
 import subprocess
 import sys
 import time
-import traceback
 
 import bpy
 import numpy as np
@@ -27,6 +26,7 @@ from mathutils import Euler
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import addon_study  # noqa: E402
+import window_script  # noqa: E402
 
 OUT = os.path.abspath(sys.argv[sys.argv.index("--") + 1])
 addon_study.OUT = os.path.join(os.path.dirname(OUT), "climate_study")
@@ -61,25 +61,6 @@ def press(key):
     xdotool("key", key)
 
 
-def only_the_fenestra_tab():
-    """The sidebar shows the Fenestra tab with the Sensors (and its Climate Goals) and Results panels."""
-    for name in dir(bpy.types):
-        cls = getattr(bpy.types, name)
-        if (isinstance(cls, type) and issubclass(cls, bpy.types.Panel) and getattr(cls, "bl_space_type", "") == 'VIEW_3D'
-                and getattr(cls, "bl_region_type", "") == 'UI' and getattr(cls, "bl_category", "") != "Fenestra"
-                and not name.startswith("FENESTRA_")):
-            try:
-                bpy.utils.unregister_class(cls)
-            except RuntimeError:
-                pass
-    for name in ("FENESTRA_PT_domain", "FENESTRA_PT_sky", "FENESTRA_PT_solve", "FENESTRA_PT_result_display",
-                 "FENESTRA_PT_selected_sensor", "FENESTRA_PT_annual"):
-        panel = getattr(bpy.types, name)
-        bpy.utils.unregister_class(panel)
-        panel.bl_options = {'DEFAULT_CLOSED'}
-        bpy.utils.register_class(panel)
-
-
 def setup():
     addon_study.enable()
     for obj in list(bpy.data.objects):
@@ -98,7 +79,9 @@ def setup():
     keymap = bpy.context.window_manager.keyconfigs.addon.keymaps.new(name="Window", space_type='EMPTY')
     keymap.keymap_items.new("fenestra.climate_goal_add", 'F6', 'PRESS')
     keymap.keymap_items.new("fenestra.solve_openings", 'F5', 'PRESS')
-    only_the_fenestra_tab()
+    window_script.only_the_fenestra_tab((
+        "FENESTRA_PT_domain", "FENESTRA_PT_sky", "FENESTRA_PT_solve", "FENESTRA_PT_result_display",
+        "FENESTRA_PT_selected_sensor", "FENESTRA_PT_annual"))
     window, area, region = view3d()
     space = area.spaces.active
     space.show_region_ui = True
@@ -122,7 +105,7 @@ def add_the_goals():
     press("F6")
     press("F6")
     state["started"] = time.time()
-    bpy.app.timers.register(guarded(wait_for_the_goals), first_interval=0.5)
+    bpy.app.timers.register(window_script.guarded(wait_for_the_goals), first_interval=0.5)
     return None
 
 
@@ -140,7 +123,7 @@ def wait_for_the_goals():
     goals.climate_index = 1
     press("F5")
     state["started"] = time.time()
-    bpy.app.timers.register(guarded(wait_for_the_solve), first_interval=0.5)
+    bpy.app.timers.register(window_script.guarded(wait_for_the_solve), first_interval=0.5)
     return None
 
 
@@ -160,7 +143,7 @@ def wait_for_the_solve():
         return 0.5
     check("solve_modal", solve_job.last() is not None and r.climate.valid,
           "%.1f s: %s" % (time.time() - state["started"], solve_job.last().outcome))
-    bpy.app.timers.register(guarded(shoot), first_interval=1.0)
+    bpy.app.timers.register(window_script.guarded(shoot), first_interval=1.0)
     return None
 
 
@@ -214,28 +197,14 @@ def shoot():
 
 
 def finish():
-    print("RESULT %s" % ("FAILED " + " ".join(state["failed"]) if state["failed"] else "all checks ok"))
-    sys.stdout.flush()
-    os._exit(1 if state["failed"] else 0)
-
-
-def guarded(step):
-    """A timer callback that ends Blender with status 1 on an exception."""
-    def run():
-        try:
-            return step()
-        except Exception:
-            traceback.print_exc()
-            sys.stdout.flush()
-            os._exit(1)
-    return run
+    window_script.exit_with_verdict(state["failed"])
 
 
 def start():
     os.makedirs(os.path.dirname(OUT), exist_ok=True)
     setup()
-    bpy.app.timers.register(guarded(add_the_goals), first_interval=0.5)
+    bpy.app.timers.register(window_script.guarded(add_the_goals), first_interval=0.5)
     return None
 
 
-bpy.app.timers.register(guarded(start), first_interval=1.0)
+bpy.app.timers.register(window_script.guarded(start), first_interval=1.0)

@@ -12,7 +12,6 @@ import math
 import os
 import sys
 import time
-import traceback
 
 import bpy
 import numpy as np
@@ -21,6 +20,7 @@ from mathutils import Euler
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import addon_study  # noqa: E402
+import window_script  # noqa: E402
 
 OUT = os.path.abspath(sys.argv[sys.argv.index("--") + 1])
 addon_study.OUT = os.path.join(OUT, "study")
@@ -109,7 +109,7 @@ def check_sky():
     check("sky_not_black", mean > 0.15, "mean %.3f" % mean)
     state["sky_mean"] = mean
     bpy.context.scene.fenestra.sky.preview_strength *= 4.0  # two stops, without Preview Sky
-    bpy.app.timers.register(guarded(check_brighter), first_interval=4.0)
+    bpy.app.timers.register(window_script.guarded(check_brighter), first_interval=4.0)
     return None
 
 
@@ -127,7 +127,7 @@ def check_brighter():
     r3d.view_rotation = Euler((0, 0, 0)).to_quaternion()  # from above, through the ceiling
     r3d.view_distance = 9.0
     bpy.context.scene.fenestra.display.show_legend = True
-    bpy.app.timers.register(guarded(check_legend), first_interval=3.0)
+    bpy.app.timers.register(window_script.guarded(check_legend), first_interval=3.0)
     return None
 
 
@@ -161,7 +161,7 @@ def check_legend():
     window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x - 40, y=y)
     window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
     state["target"], state["where"] = target, (where.x, where.y)
-    bpy.app.timers.register(guarded(check_hover), first_interval=2.0)
+    bpy.app.timers.register(window_script.guarded(check_hover), first_interval=2.0)
     return None
 
 
@@ -180,35 +180,21 @@ def check_hover():
     check("hover_label_drawn", (label.min(axis=2) > 0.8).sum() > 30, "%d white pixels" % (label.min(axis=2) > 0.8).sum())
     window = view3d()[0]
     window.event_simulate(type='ESC', value='PRESS')
-    bpy.app.timers.register(guarded(finish), first_interval=1.0)
+    bpy.app.timers.register(window_script.guarded(finish), first_interval=1.0)
     return None
 
 
 def finish():
     from fenestra.blender import sensor_hover
     check("inspect_ends_on_esc", not sensor_hover.hovered, str(sensor_hover.hovered))
-    print("RESULT %s" % ("FAILED " + " ".join(state["failed"]) if state["failed"] else "all checks ok"))
-    sys.stdout.flush()
-    os._exit(1 if state["failed"] else 0)
-
-
-def guarded(step):
-    """A timer callback that ends Blender with status 1 on an exception."""
-    def run():
-        try:
-            return step()
-        except Exception:
-            traceback.print_exc()
-            sys.stdout.flush()
-            os._exit(1)
-    return run
+    window_script.exit_with_verdict(state["failed"])
 
 
 def start():
     os.makedirs(OUT, exist_ok=True)
     setup()
-    bpy.app.timers.register(guarded(wait_for_the_world), first_interval=3.0)
+    bpy.app.timers.register(window_script.guarded(wait_for_the_world), first_interval=3.0)
     return None
 
 
-bpy.app.timers.register(guarded(start), first_interval=1.0)
+bpy.app.timers.register(window_script.guarded(start), first_interval=1.0)

@@ -1,0 +1,45 @@
+"""What the screenshot scripts that drive Blender's window share: timer callbacks that end Blender
+on an exception, the checks' verdict as the exit status, and a sidebar showing only the Fenestra tab."""
+
+import os
+import sys
+import traceback
+
+import bpy
+
+
+def guarded(step):
+    """A timer callback that ends Blender with status 1 on an exception."""
+    def run():
+        try:
+            return step()
+        except Exception:
+            traceback.print_exc()
+            sys.stdout.flush()
+            os._exit(1)
+    return run
+
+
+def exit_with_verdict(failed):
+    """Prints RESULT (the names of the failed checks, or all ok) and ends Blender with its status."""
+    print("RESULT %s" % ("FAILED " + " ".join(failed) if failed else "all checks ok"))
+    sys.stdout.flush()
+    os._exit(1 if failed else 0)
+
+
+def only_the_fenestra_tab(closed_panels):
+    """The sidebar shows the Fenestra tab alone, with the panels named in `closed_panels` closed."""
+    for name in dir(bpy.types):
+        cls = getattr(bpy.types, name)
+        if (isinstance(cls, type) and issubclass(cls, bpy.types.Panel) and getattr(cls, "bl_space_type", "") == 'VIEW_3D'
+                and getattr(cls, "bl_region_type", "") == 'UI' and getattr(cls, "bl_category", "") != "Fenestra"
+                and not name.startswith("FENESTRA_")):
+            try:
+                bpy.utils.unregister_class(cls)
+            except RuntimeError:
+                pass
+    for name in closed_panels:
+        panel = getattr(bpy.types, name)
+        bpy.utils.unregister_class(panel)
+        panel.bl_options = {'DEFAULT_CLOSED'}
+        bpy.utils.register_class(panel)
