@@ -621,18 +621,60 @@ void write_json(const std::string& path, const json& report) {
   std::printf("wrote %s\n", path.c_str());
 }
 
-std::string parse_json_path(int argc, char** argv) {
+std::string parse_json_path(int argc, char** argv, bool* estimators_only) {
   std::string path;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--json" && i + 1 < argc) {
       path = argv[++i];
+    } else if (arg == "--estimators") {
+      *estimators_only = true;
     } else {
-      std::fprintf(stderr, "usage: fenestra_bench [--json PATH] | --thick-walls\n");
+      std::fprintf(stderr, "usage: fenestra_bench [--json PATH] [--estimators] | --thick-walls\n");
       std::exit(arg == "-h" || arg == "--help" ? 0 : 2);
     }
   }
   return path;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Estimators side by side: the stratified first decisions (render.sampler "sobol", the default)
+// against independent random numbers (the estimator before them), same scene, same reference.
+
+Scene with_sampler(const Scene& base, fenestra::RenderSettings::Sampler sampler) {
+  Scene scene = base;
+  scene.render.sampler = sampler;
+  return scene;
+}
+
+json estimator_comparison(const Scene& scene, int top, const Reference& ref, const std::vector<int>& columns,
+                          const std::vector<Rung>& sobol_ladder, const RawThroughput& raw) {
+  std::printf("[2b] The same ladder with independent random numbers (render.sampler \"independent\")\n");
+  const Scene independent = with_sampler(scene, fenestra::RenderSettings::Sampler::kIndependent);
+  const std::vector<Rung> ladder = one_pass_ladder(independent, top, ref, columns);
+  const TimeToAccuracy before = time_to_accuracy(ladder), now = time_to_accuracy(sobol_ladder);
+  print_time_to_accuracy(before, ladder);
+  // Raw-Embree-equivalent rays: time to accuracy x this run's raw rays/s (a ratio of times).
+  const double ray_ratio = before.seconds / now.seconds;
+  const double path_ratio = before.paths / now.paths;
+  const double memory_ratio = now.memory_bytes / before.memory_bytes;
+  std::printf("    to ||dE||_F <= %.0f%% and every all-open value within %.0f%%:\n"
+              "      independent: %8.0f paths, %7.2f s = %6.1f M raw-Embree rays, %7.1f MiB of records%s\n"
+              "      sobol:       %8.0f paths, %7.2f s = %6.1f M raw-Embree rays, %7.1f MiB of records%s\n"
+              "      ratios: %.2f x fewer raw-Embree-equivalent rays (target >= 5), %.2f x fewer paths, "
+              "records %.2f x (target <= 0.25)\n\n",
+              100 * kFrobeniusTarget, 100 * kAllOpenTarget, before.paths, before.seconds,
+              before.seconds * raw.all_threads * 1e-6, mib(before.memory_bytes), before.measured ? "" : " (extrapolated)",
+              now.paths, now.seconds, now.seconds * raw.all_threads * 1e-6, mib(now.memory_bytes),
+              now.measured ? "" : " (extrapolated)", ray_ratio, path_ratio, memory_ratio);
+  json rungs = json::array();
+  for (const Rung& r : ladder) rungs.push_back(rung_json(r));
+  return {{"independent_ladder", rungs},
+          {"independent_time_to_accuracy", time_to_accuracy_json(before, ladder)},
+          {"sobol_time_to_accuracy", time_to_accuracy_json(now, sobol_ladder)},
+          {"raw_embree_equivalent_ray_ratio", ray_ratio},
+          {"path_ratio", path_ratio},
+          {"record_memory_ratio", memory_ratio}};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -750,7 +792,7 @@ json thick_wall_comparison(const std::string& scene_path) {
 
 // ---------------------------------------------------------------------------------------------
 
-int run(const std::string& json_path) {
+int run(const std::string& json_path, bool estimators_only) {
   const auto bench_start = Clock::now();
   const Scene scene = fenestra::load_scene(kScenePath);
   const size_t elements = scene.domain.element_count();
@@ -769,7 +811,7 @@ int run(const std::string& json_path) {
   print_raw(raw);
   report["raw_embree"] = raw_json(raw);
 
-  std::printf("[2] One pass: E for all %zu elements; errors against the reference; own se_F is the run's own\n"
+  std::printf("[2] One pass (render.sampler \"sobol\"): E for all %zu elements; errors against the reference; own se_F is the run's own\n"
               "    estimated relative Frobenius standard error; err 8col: the baseline's columns only\n",
               elements);
   double pilot_seconds_per_path = 0.0;
@@ -791,6 +833,11 @@ int run(const std::string& json_path) {
   for (const Rung& r : ladder) report["ladder"].push_back(rung_json(r));
   report["time_to_accuracy"] = time_to_accuracy_json(tta, ladder);
   report["one_pass_over_raw_embree"] = one_pass_rate / raw.all_threads;
+  report["estimators"] = estimator_comparison(scene, top, ref, columns, ladder, raw);
+  if (estimators_only) {
+    if (!json_path.empty()) write_json(json_path, report);
+    return 0;
+  }
 
   std::printf("[3] The paper's way: one element open at a time, %d columns k = i*%zu/%d, each\n"
               "    evaluate({element k}) - evaluate({}) with shared seed; 'all cols s' = closed + %zu/%d x 8 cols\n",
@@ -833,9 +880,10 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  const std::string json_path = parse_json_path(argc, argv);
+  bool estimators_only = false;  // sections 1, 2 and 2b: the estimators side by side
+  const std::string json_path = parse_json_path(argc, argv, &estimators_only);
   try {
-    return run(json_path);
+    return run(json_path, estimators_only);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fenestra_bench: error: %s\n", e.what());
     return 1;

@@ -13,6 +13,8 @@
 
 #include "math/vec.h"
 #include "scene/scene.h"
+#include "student_t.h"
+#include "trace/replicates.h"
 
 namespace fenestra::test {
 
@@ -122,12 +124,19 @@ inline std::vector<uint8_t> mask_of_elements_inside(const Scene& scene, const st
   return mask;
 }
 
-// |a - b| within k combined standard errors.
+// |a - b| within k combined standard errors, k read as the false-alarm rate of a normal k sigma.
+// Each standard error is estimated from kReplicates groups (kReplicates - 1 degrees of freedom),
+// so the bound is the Student t quantile of that rate at the Welch-Satterthwaite degrees of
+// freedom of the combination (a normal bound would claim a false-alarm rate ten times too low).
 inline ::testing::AssertionResult within_sigma(double a, double sa, double b, double sb, double k = 4.0) {
   const double sigma = std::sqrt(sa * sa + sb * sb);
-  if (std::abs(a - b) <= k * sigma) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << a << " and " << b << " differ by " << std::abs(a - b) << " > " << k
-                                       << " x " << sigma << " (combined standard error)";
+  constexpr double nu_each = static_cast<double>(kReplicates - 1);
+  const double nu = sigma > 0.0 ? std::pow(sigma, 4) / ((std::pow(sa, 4) + std::pow(sb, 4)) / nu_each) : nu_each;
+  const double bound = normal_equivalent_t(k, nu);
+  if (std::abs(a - b) <= bound * sigma) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << a << " and " << b << " differ by " << std::abs(a - b) << " > " << bound
+                                       << " x " << sigma << " (combined standard error; t quantile of a normal " << k
+                                       << " sigma at " << nu << " degrees of freedom)";
 }
 
 // A 4 x 3 x 2.5 m room whose south wall and ceiling are the opening domain (0.5 m elements), a

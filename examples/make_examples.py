@@ -4,7 +4,8 @@
 
 reference_room: the grey 4 x 4 x 3 m room of ../shared/reference/radiance-scene-b.md, its south
     wall the opening domain, under the reference's sky (upper hemisphere 1000/pi cd/m^2, lower
-    0.2 x 1000/pi), with that reference's window in window.json.
+    0.2 x 1000/pi) as an image (scene.json) and in closed form (scene_uniform.json), with that
+    reference's window in window.json.
 paper_scale: the benchmark scene of the size the paper reports (100 sensors, 200 elements,
     a few thousand triangles): a grey room with furniture on a ground plane, uniform sky.
 
@@ -117,6 +118,11 @@ def reference_room():
         "render": {"paths_per_sensor": 4096, "max_bounces": 16, "seed": 1, "threads": 0},
     }
     with open(os.path.join(out, "scene.json"), "w") as f:
+        json.dump(scene, f, indent=2)
+    # The same sky in closed form (a uniform sky over a uniform ground): no image to read, for
+    # forward checks whose start-up time counts.
+    scene["sky"] = {"type": "uniform", "radiance": 1000.0 / np.pi, "ground_radiance": 0.2 * 1000.0 / np.pi}
+    with open(os.path.join(out, "scene_uniform.json"), "w") as f:
         json.dump(scene, f, indent=2)
     window = {"openings": [{"corners": [[1, 0, 0.9], [3, 0, 0.9], [3, 0, 2.1], [1, 0, 2.1]]}]}
     with open(os.path.join(out, "window.json"), "w") as f:

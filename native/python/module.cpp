@@ -233,6 +233,13 @@ PYBIND11_MODULE(_core, m) {
       .def_property(
           "threads", [](const RenderSettings& r) { return r.threads; },
           [](RenderSettings& r, py::handle v) { r.threads = static_cast<int>(render_integer(v, limits::kThreads)); })
+      .def_property(
+          "sampler", [](const RenderSettings& r) { return std::string(sampler_name(r.sampler)); },
+          [](RenderSettings& r, const std::string& name) {
+            if (!parse_sampler(name, &r.sampler))
+              throw py::value_error("render.sampler: expected 'sobol' or 'independent', got '" + name + "'");
+          },
+          "'sobol' (stratified first decisions, the default) or 'independent' random numbers")
       .def("__repr__", &RenderSettings::to_string);
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A scene read from a Fenestra scene file (JSON + OBJ).")

@@ -9,6 +9,7 @@
 #include "annual/annual_records.h"
 #include "trace/parallel.h"
 #include "trace/path_tracer.h"
+#include "trace/replicates.h"
 
 namespace fenestra {
 namespace {
@@ -45,7 +46,8 @@ AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<Open
   k.direct.setZero(sensors, annual->sun_hours.size());
   // Per task, the sum and the sum of squares of its paths' values under the design sky (the
   // occupied hours' mean strengths) without the sun straight to the sensor, which is exact.
-  std::vector<double> sum(sensors * tasks_per_sensor, 0.0), sum_sq(sensors * tasks_per_sensor, 0.0);
+  // By replicate group: stratified paths are not independent, the groups are (replicates.h).
+  std::vector<ReplicateSums> sum(sensors * tasks_per_sensor);
   if (progress) progress->start("tracing the year with the openings cut", sum.size() + sensors);
   for (size_t first = 0; first < sensors; first += batch) {
     const size_t count = std::min(batch, sensors - first);
@@ -59,9 +61,11 @@ AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<Open
       auto row = rows.col(static_cast<Eigen::Index>(t));
       std::vector<PathTracer::SourceLight> lights;
       for (size_t p = from; p < to; ++p) {
-        Rng rng = path_rng(scene.render.seed ^ kAnnualCutStream, sensor, p);
+        const uint64_t seed = scene.render.seed ^ kAnnualCutStream;
+        Rng rng = path_rng(seed, sensor, p);
+        const std::optional<PathSamples> samples = path_samples(scene.render, seed, sensor, p);
         lights.clear();
-        tracer.sensor_sample_by_source(sensor, rng, &lights);
+        tracer.sensor_sample_by_source(sensor, samples ? &*samples : nullptr, rng, &lights);
         double design = 0.0;
         for (const PathTracer::SourceLight& l : lights) {
           // The sun a sensor's own sample finds straight away: the exact hourly sun counts it below.
@@ -70,8 +74,7 @@ AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<Open
           row[l.source] += unit;
           design += unit * annual->design_strength[l.source];
         }
-        sum[task] += design;
-        sum_sq[task] += design * design;
+        sum[task].add(p, design);
       }
     });
     for (size_t i = 0; i < count; ++i)
@@ -103,15 +106,15 @@ AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<Open
   mean.value.resize(static_cast<Eigen::Index>(sensors));
   mean.standard_error.resize(static_cast<Eigen::Index>(sensors));
   for (size_t i = 0; i < sensors; ++i) {
-    double s = 0.0, s2 = 0.0;
-    for (size_t t = 0; t < tasks_per_sensor; ++t) s += sum[i * tasks_per_sensor + t], s2 += sum_sq[i * tasks_per_sensor + t];
-    const double n = paths, m = s / n;
+    ReplicateSums total;
+    for (size_t t = 0; t < tasks_per_sensor; ++t) total.merge(sum[i * tasks_per_sensor + t]);
+    double m = 0.0, standard_error = 0.0;
+    total.estimate(paths, &m, &standard_error);
     double direct = 0.0;
     for (size_t j = 0; j < occupied_sun.size(); ++j)
       direct += static_cast<double>(k.direct(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))) * occupied_sun[j];
     mean.value[static_cast<Eigen::Index>(i)] = m + direct / static_cast<double>(occupied_hours);
-    mean.standard_error[static_cast<Eigen::Index>(i)] =
-        n > 1 ? std::sqrt(std::max(0.0, s2 / n - m * m) / (n - 1)) : std::numeric_limits<double>::infinity();
+    mean.standard_error[static_cast<Eigen::Index>(i)] = standard_error;
   }
   study.paths_per_sensor = paths;
   study.cutters = true;

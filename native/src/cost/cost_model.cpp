@@ -20,11 +20,13 @@ namespace fenestra {
 namespace {
 
 // Path records (trace/path_record.h): a PathEvent is 16 bytes and its point 8, a path adds a 4-byte
-// offset, and events carry element conditions of 4 bytes and a point of 8; with the vectors' spare
-// capacity, 33-52 bytes per event were measured on the example scenes. Events per path: a few at the sensor (portal samples, the
-// first sky and element samples) and 1-2 per further vertex (next-event estimates, escapes
-// through elements and their parts). Expected vertices: 1 + sum_{k=1..B} rho^k.
-constexpr double kBytesPerEvent = 56.0, kBytesPerPath = 8.0;
+// offset, and events carry element conditions of 4 bytes and a point of 8; the records are
+// assembled with exactly the room they need, and 31-37 bytes per event were measured on the
+// example scenes (reference room, room study, paper scale, thick walls). Events per path: a few at
+// the sensor (portal samples, the first sky and element samples) and 1-2 per further vertex
+// (next-event estimates, escapes through elements and their parts). Expected vertices:
+// 1 + sum_{k=1..B} rho^k.
+constexpr double kBytesPerEvent = 40.0, kBytesPerPath = 8.0;
 // Thick walls: paths branch where they meet the elements' tubes (reveals or open neighbours); on
 // thick_walls_study (0.3 m walls, 0.25 m elements) records were 3.1x and tracing 5.7x the
 // zero-thickness wall's for the same paths.
@@ -32,9 +34,9 @@ constexpr double kThickWallRecordFactor = 3.5, kThickWallTraceFactor = 6.0;
 // Passes over the refined grids of thick walls' openings in a solve (at most; usually one).
 constexpr double kThickWallEdgeRounds = 2.0;
 constexpr double kEventsAtSensor = 3.0, kEventsPerVertex = 1.75;
-// While the per-task records are merged into one per sensor, both exist (peak RSS measured at
-// 2.3x the records kept on the paper-scale scene).
-constexpr double kRecordAssembly = 1.5;
+// While the per-task records are merged into one per sensor, both exist; the tasks' vectors keep
+// up to as much spare room again as they hold.
+constexpr double kRecordAssembly = 2.0;
 // The edge search's index (solve/region_search.h): 17 bytes per point where a path met the domain
 // (its place, path and event, and an open flag) and 8 per path, against at least 12 bytes per
 // point in the records (a condition and its point; an event and its point, 24).

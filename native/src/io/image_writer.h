@@ -1,5 +1,6 @@
 #pragma once
-// Linear float images (environment maps) written with OpenImageIO (.exr, .hdr, ...).
+// Linear float images (environment maps) written with OpenImageIO (.exr, .hdr, ...), through the
+// image module (io/image_library.h).
 #include <string>
 #include <vector>
 

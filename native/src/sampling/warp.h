@@ -65,4 +65,29 @@ inline Vec2 uniform_sphere_to_square(const Vec3& v) {
   return Vec2((1.0f - v.z()) * 0.5f, phi / (2.0f * kPi));
 }
 
+// Linear density on [0, 1] from a at 0 to b at 1 (a, b >= 0, not both 0): inverts its CDF.
+inline float square_to_linear(float u, float a, float b) {
+  if (a == b) return u;
+  const float x = u * (a + b) / (a + std::sqrt((1.0f - u) * a * a + u * b * b));
+  return std::min(x, 0.99999994f);
+}
+inline float linear_pdf(float x, float a, float b) { return 2.0f * ((1.0f - x) * a + x * b) / (a + b); }
+
+// Bilinear density on the unit square with corner weights w = {w00, w10, w01, w11} (w_xy >= 0, sum
+// > 0): the marginal in y, then the conditional in x (Hart et al. 2020, "Practical Product Sampling
+// by Fitting and Composing Warps"). Composed with an area-preserving warp, it follows a smooth
+// factor such as a receiver's cosine.
+inline Vec2 square_to_bilinear(const Vec2& u, const float w[4]) {
+  const float y = square_to_linear(u.y(), w[0] + w[1], w[2] + w[3]);
+  const float x = square_to_linear(u.x(), (1.0f - y) * w[0] + y * w[2], (1.0f - y) * w[1] + y * w[3]);
+  return Vec2(x, y);
+}
+inline float bilinear_pdf(const Vec2& p, const float w[4]) {
+  const float sum = w[0] + w[1] + w[2] + w[3];
+  return 4.0f *
+         ((1.0f - p.x()) * (1.0f - p.y()) * w[0] + p.x() * (1.0f - p.y()) * w[1] + (1.0f - p.x()) * p.y() * w[2] +
+          p.x() * p.y() * w[3]) /
+         sum;
+}
+
 }  // namespace fenestra

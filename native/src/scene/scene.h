@@ -35,8 +35,17 @@ struct RenderSettings {
   int max_bounces = 8;  // surface interactions after the sensor, inside and outside
   uint64_t seed = 1;
   int threads = 0;      // 0: all hardware threads
+  // How a sensor path draws its first decisions (the sensor's sky and sun samples, its first bounce,
+  // and those of the vertex it reaches): Owen-scrambled Sobol points, stratified over the paths of
+  // each replicate group, or independent random numbers (the estimator before stratification).
+  enum class Sampler { kSobol, kIndependent };
+  Sampler sampler = Sampler::kSobol;
   std::string to_string() const;
 };
+
+// "sobol" or "independent" (render.sampler); parse_sampler returns false for any other name.
+const char* sampler_name(RenderSettings::Sampler sampler);
+bool parse_sampler(const std::string& name, RenderSettings::Sampler* out);
 
 struct Scene {
   std::string source;  // scene file, for messages

@@ -403,12 +403,18 @@ void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* 
                         "\"perez\" or \"climate\"");
   const std::string type = text(sp, j, "type", "sky");
   if (type == "uniform") {
-    check_known_keys(sp, j, "sky", {"type", "radiance"});
-    const Rgb l = j.contains("radiance") ? colour(sp, j.at("radiance"), "sky.radiance") : Rgb::Constant(1000.0f / kPi);
-    if ((l < 0.0f).any()) sp.fail("sky.radiance", "must not be negative");
-    if ((l > static_cast<float>(limits::kMaxRadiance)).any())
-      sp.fail("sky.radiance", "must not exceed " + show(limits::kMaxRadiance) + " cd/m^2, got " + j.at("radiance").dump());
-    scene->sky = std::make_shared<UniformSky>(l);
+    check_known_keys(sp, j, "sky", {"type", "radiance", "ground_radiance"});
+    auto radiance = [&](const char* key, const Rgb& fallback) {
+      if (!j.contains(key)) return fallback;
+      const std::string name = std::string("sky.") + key;
+      const Rgb l = colour(sp, j.at(key), name);
+      if ((l < 0.0f).any()) sp.fail(name, "must not be negative");
+      if ((l > static_cast<float>(limits::kMaxRadiance)).any())
+        sp.fail(name, "must not exceed " + show(limits::kMaxRadiance) + " cd/m^2, got " + j.at(key).dump());
+      return l;
+    };
+    const Rgb l = radiance("radiance", Rgb::Constant(1000.0f / kPi));
+    scene->sky = std::make_shared<UniformSky>(l, radiance("ground_radiance", l));
     return;
   }
   if (type == "envmap") {
@@ -823,7 +829,7 @@ RenderSettings parse_render(const ScenePath& sp, const json& j) {
   RenderSettings r;
   if (j.is_null()) return r;
   if (!j.is_object()) sp.fail("render", "expected an object");
-  check_known_keys(sp, j, "render", {"paths_per_sensor", "max_bounces", "seed", "threads"});
+  check_known_keys(sp, j, "render", {"paths_per_sensor", "max_bounces", "seed", "threads", "sampler"});
   auto integer = [&](const IntegerRange& range, long long fallback) {
     const std::string name = std::string(range.key).substr(std::string("render.").size());
     return j.contains(name) ? integer_in(sp, j.at(name), range, range.key) : fallback;
@@ -832,6 +838,11 @@ RenderSettings parse_render(const ScenePath& sp, const json& j) {
   r.max_bounces = static_cast<int>(integer(limits::kMaxBounces, r.max_bounces));
   r.seed = static_cast<uint64_t>(integer(limits::kSeed, 1));
   r.threads = static_cast<int>(integer(limits::kThreads, 0));
+  if (j.contains("sampler")) {
+    const json& v = j.at("sampler");
+    if (!v.is_string() || !parse_sampler(v.get<std::string>(), &r.sampler))
+      sp.fail("render.sampler", "expected \"sobol\" or \"independent\", got " + v.dump());
+  }
   return r;
 }
 
@@ -843,10 +854,21 @@ std::vector<std::string> Scene::material_names() const {
   return out;
 }
 
+const char* sampler_name(RenderSettings::Sampler sampler) {
+  return sampler == RenderSettings::Sampler::kSobol ? "sobol" : "independent";
+}
+
+bool parse_sampler(const std::string& name, RenderSettings::Sampler* out) {
+  if (name == "sobol") *out = RenderSettings::Sampler::kSobol;
+  else if (name == "independent") *out = RenderSettings::Sampler::kIndependent;
+  else return false;
+  return true;
+}
+
 std::string RenderSettings::to_string() const {
   std::ostringstream s;
   s << "RenderSettings(paths_per_sensor=" << paths_per_sensor << ", max_bounces=" << max_bounces << ", seed=" << seed
-    << ", threads=" << threads << ")";
+    << ", threads=" << threads << ", sampler='" << sampler_name(sampler) << "')";
   return s.str();
 }
 

@@ -1,13 +1,12 @@
 #include "scene/sky.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 #include "cost/load_checks.h"
+#include "io/image_library.h"
 #include "sampling/warp.h"
 #include "scene/input_limits.h"
 
@@ -31,7 +30,9 @@ float UniformSky::pdf_toward(const Vec3& dir, const Vec3& normal) const { return
 
 std::string UniformSky::to_string() const {
   std::ostringstream s;
-  s << "UniformSky(radiance=[" << radiance_.transpose() << "])";
+  s << "UniformSky(radiance=[" << radiance_.transpose() << "]";
+  if (!(ground_ == radiance_).all()) s << ", ground_radiance=[" << ground_.transpose() << "]";
+  s << ")";
   return s.str();
 }
 
@@ -70,17 +71,18 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<Rgb> pixels, f
 }
 
 std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, float scale, float rotation_deg) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw std::invalid_argument("cannot read environment map '" + path + "': " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  const int w = spec.width, h = spec.height, channels = spec.nchannels;
-  if (w < 2 || h < 1) throw std::invalid_argument("environment map '" + path + "' is empty");
-  check_image_cost(path, w, h, channels);  // from the header, before the pixels are allocated
-  std::vector<float> data(static_cast<size_t>(w) * h * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
-    throw std::invalid_argument("cannot read environment map '" + path + "': " + in->geterror());
+  FloatImage image;
+  try {
+    // The size is checked from the header, before the pixels are allocated.
+    image = read_float_image(path, [&](int width, int height, int channels) {
+      if (width < 2 || height < 1) throw std::invalid_argument("environment map '" + path + "' is empty");
+      check_image_cost(path, width, height, channels);
+    });
+  } catch (const ImageError& e) {
+    throw std::invalid_argument("cannot read environment map '" + path + "': " + e.reason());
   }
-  in->close();
+  const int w = image.width, h = image.height, channels = image.channels;
+  const std::vector<float>& data = image.pixels;
   std::vector<Rgb> pixels(static_cast<size_t>(w) * h);
   for (size_t i = 0; i < pixels.size(); ++i) {
     const float* p = &data[i * channels];

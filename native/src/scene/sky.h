@@ -28,8 +28,11 @@ class Sky {
 
 class UniformSky final : public Sky {
  public:
-  explicit UniformSky(const Rgb& radiance) : radiance_(radiance) {}
-  Rgb radiance(const Vec3&) const override { return radiance_; }
+  explicit UniformSky(const Rgb& radiance) : radiance_(radiance), ground_(radiance) {}
+  // Another radiance below the horizon (z < 0): an open sky over a uniform ground, as the
+  // reference room of ../shared/reference describes it, without an image.
+  UniformSky(const Rgb& radiance, const Rgb& ground) : radiance_(radiance), ground_(ground) {}
+  Rgb radiance(const Vec3& dir) const override { return dir.z() < 0.0f ? ground_ : radiance_; }
   Vec3 sample(const Vec2& u, float* pdf) const override;
   float pdf(const Vec3&) const override;
   // Constant radiance: cosine-weighted about the normal is the ideal light sampling.
@@ -38,7 +41,7 @@ class UniformSky final : public Sky {
   std::string to_string() const override;
 
  private:
-  Rgb radiance_;
+  Rgb radiance_, ground_;
 };
 
 // Equirectangular map as Blender's Environment Texture reads it: the top row is the zenith,

@@ -153,8 +153,9 @@ Contributions compute_contributions(const Scene& scene, Progress* progress, bool
   // daylight coefficients beside their values under the mean sky of the occupied hours.
   std::shared_ptr<AnnualRecords> annual = scene.climate ? prepare_annual(scene) : nullptr;
   const Scene traced = annual ? annual_tracing_scene(scene, annual->sources) : Scene();
-  const PathTracer tracer(annual ? traced : scene, {}, Mesh{}, annual ? &scene.climate->sky->patches : nullptr);
+  PathTracer tracer(annual ? traced : scene, {}, Mesh{}, annual ? &scene.climate->sky->patches : nullptr);
   tracer.check_sensors();
+  if (scene.render.sampler == RenderSettings::Sampler::kSobol) tracer.prepare_portal_selection(scene.render.threads);
 
   const size_t sensors = scene.sensors.size();
   const size_t elements = scene.domain.element_count();
@@ -172,7 +173,8 @@ Contributions compute_contributions(const Scene& scene, Progress* progress, bool
       rec.sourced = annual != nullptr;
       for (size_t p = first; p < last; ++p) {
         Rng rng = path_rng(scene.render.seed, sensor, p);
-        tracer.record_sensor_path(sensor, p, rng, &rec);
+        const std::optional<PathSamples> samples = path_samples(scene.render, scene.render.seed, sensor, p);
+        tracer.record_sensor_path(sensor, p, samples ? &*samples : nullptr, rng, &rec);
       }
       if (annual) convert_to_design_values(*annual, &rec);
     });
@@ -187,6 +189,7 @@ Contributions compute_contributions(const Scene& scene, Progress* progress, bool
     if (progress) progress->start("assembling the contribution matrix", sensors);
     parallel_tasks(sensors, scene.render.threads, progress, [&](size_t i) {
       SensorRecord& rec = c.records[i];
+      rec.reserve_for(&chunks[i * tasks_per_sensor], tasks_per_sensor);  // exact: no slack kept
       for (size_t t = 0; t < tasks_per_sensor; ++t) {
         if (progress && t % 64 == 0) progress->throw_if_cancelled();  // a sensor's paths may be many chunks
         rec.append(chunks[i * tasks_per_sensor + t]);

@@ -8,6 +8,7 @@
 
 #include "trace/parallel.h"
 #include "trace/path_tracer.h"
+#include "trace/replicates.h"
 
 namespace fenestra {
 namespace {
@@ -111,30 +112,28 @@ SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInpu
   const size_t sensors = scene.sensors.size();
   const int paths = paths_per_sensor > 0 ? paths_per_sensor : scene.render.paths_per_sensor;
   const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
-  std::vector<double> sum(sensors * tasks_per_sensor, 0.0), sum_sq(sensors * tasks_per_sensor, 0.0);
-  if (progress) progress->start("tracing the scene with its openings", sum.size());
-  parallel_tasks(sum.size(), scene.render.threads, progress, [&](size_t task) {
+  // Per task, its paths' sums by replicate group: stratified paths are not independent, the
+  // groups are (replicates.h).
+  std::vector<ReplicateSums> sums(sensors * tasks_per_sensor);
+  const uint64_t seed = scene.render.seed ^ kEvaluateStream;
+  if (progress) progress->start("tracing the scene with its openings", sums.size());
+  parallel_tasks(sums.size(), scene.render.threads, progress, [&](size_t task) {
     const size_t sensor = task / tasks_per_sensor;
     const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
     const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
     for (size_t p = first; p < last; ++p) {
-      Rng rng = path_rng(scene.render.seed ^ kEvaluateStream, sensor, p);
-      const double v = tracer.sensor_sample(sensor, rng);
-      sum[task] += v;
-      sum_sq[task] += v * v;
+      Rng rng = path_rng(seed, sensor, p);
+      const std::optional<PathSamples> samples = path_samples(scene.render, seed, sensor, p);
+      sums[task].add(p, tracer.sensor_sample(sensor, samples ? &*samples : nullptr, rng));
     }
   });
   SensorValues out;
   out.value.resize(sensors);
   out.standard_error.resize(sensors);
   for (size_t i = 0; i < sensors; ++i) {
-    double s = 0.0, s2 = 0.0;
-    for (size_t t = 0; t < tasks_per_sensor; ++t) s += sum[i * tasks_per_sensor + t], s2 += sum_sq[i * tasks_per_sensor + t];
-    const double n = paths;
-    const double mean = s / n;
-    out.value[i] = mean;
-    out.standard_error[i] = n > 1 ? std::sqrt(std::max(0.0, s2 / n - mean * mean) / (n - 1))
-                                  : std::numeric_limits<double>::infinity();  // one path: unknown spread
+    ReplicateSums total;
+    for (size_t t = 0; t < tasks_per_sensor; ++t) total.merge(sums[i * tasks_per_sensor + t]);
+    total.estimate(paths, &out.value[i], &out.standard_error[i]);
   }
   return out;
 }

@@ -20,6 +20,25 @@ void SensorRecord::append(const SensorRecord& other) {
   event_coefficients.insert(event_coefficients.end(), other.event_coefficients.begin(), other.event_coefficients.end());
 }
 
+void SensorRecord::reserve_for(const SensorRecord* parts, size_t count) {
+  size_t paths = path_begin.size(), event_count = events.size(), condition_count = conditions.size();
+  size_t sources = event_sources.size(), coefficients = event_coefficients.size();
+  for (size_t i = 0; i < count; ++i) {
+    paths += parts[i].path_count();
+    event_count += parts[i].events.size();
+    condition_count += parts[i].conditions.size();
+    sources += parts[i].event_sources.size();
+    coefficients += parts[i].event_coefficients.size();
+  }
+  path_begin.reserve(paths);
+  events.reserve(event_count);
+  event_points.reserve(event_count);
+  conditions.reserve(condition_count);
+  condition_points.reserve(condition_count);
+  event_sources.reserve(sources);
+  event_coefficients.reserve(coefficients);
+}
+
 bool SensorRecord::holds(const PathEvent& e, const std::vector<uint8_t>& open) const {
   const int32_t* c = conditions.data() + e.conditions_begin;
   for (uint16_t i = 0; i < e.open_count; ++i)

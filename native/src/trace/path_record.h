@@ -49,6 +49,8 @@ struct SensorRecord {
   size_t path_count() const { return path_begin.size() - 1; }
   void end_path() { path_begin.push_back(static_cast<uint32_t>(events.size())); }
   void append(const SensorRecord& other);
+  // Reserves exactly what appending parts[0 .. count) will need.
+  void reserve_for(const SensorRecord* parts, size_t count);
   // Whether event e's conditions hold for the open mask.
   bool holds(const PathEvent& e, const std::vector<uint8_t>& open) const;
   size_t memory_bytes() const {

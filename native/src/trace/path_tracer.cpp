@@ -7,9 +7,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sampling/spherical_rectangle.h"
 #include "sampling/warp.h"
 #include "scene/bsdf.h"
 #include "annual/annual_sources.h"
+#include "trace/parallel.h"
 #include "trace/replicates.h"
 
 namespace fenestra {
@@ -18,6 +20,10 @@ namespace {
 constexpr float kRayEpsilon = 1e-4f;  // meters: offset of new rays from the surface they leave
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr int kRouletteDepth = 3;
+// Steradians: below, an element is sampled by area (its solid angle's formula loses precision,
+// and area sampling is as good there).
+constexpr double kMinSolidAngle = 1e-4;
+constexpr float kCosineFloor = 0.01f;
 constexpr int kMaxCrossed = 32;
 constexpr int kOutdoorSkySamples = 4;
 
@@ -65,6 +71,9 @@ struct PathTracer::PathState {
   // stratified over each element, far better than MIS weights computed from densities assume.
   bool portal_exclusive = false;
   int depth = 0;              // surface interactions so far
+  // The main path's first vertex draws its sky, sun and bounce decisions from these (then null;
+  // branches and sub-paths never see them).
+  const PathSamples* samples = nullptr;
 };
 
 struct PathTracer::Surface {
@@ -252,6 +261,39 @@ PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, con
     portals_.push_back({e.corners[0], e.width() * panel.u_axis, e.height() * panel.v_axis, panel.normal, e.panel,
                         panel.curved(), {e.u0, e.v0}, {e.width(), e.height()}});
   }
+  build_portal_panels();
+}
+
+void PathTracer::build_portal_panels() {
+  panel_portals_ = scene_.render.sampler == RenderSettings::Sampler::kSobol && !portals_.empty();
+  std::vector<int> index_of_panel(scene_.domain.panels().size(), -1);
+  for (size_t k = 0; k < portals_.size(); ++k) {
+    const int panel = portals_[k].panel;
+    if (index_of_panel[panel] < 0) {
+      index_of_panel[panel] = static_cast<int>(portal_panels_.size());
+      portal_panels_.push_back({});
+      portal_panels_.back().panel = panel;
+      portal_panels_.back().flat = !scene_.domain.panels()[panel].curved();
+    }
+    portal_panels_[index_of_panel[panel]].portals.push_back(static_cast<int>(k));
+  }
+  float running = 0.0f;
+  for (PortalPanel& p : portal_panels_) {
+    const Panel& panel = scene_.domain.panels()[p.panel];
+    float u0 = kInfinity, v0 = kInfinity, u1 = -kInfinity, v1 = -kInfinity;
+    for (const int k : p.portals) {
+      const Portal& portal = portals_[k];
+      u0 = std::min(u0, portal.cell.u), v0 = std::min(v0, portal.cell.v);
+      u1 = std::max(u1, portal.cell.u + portal.size.x()), v1 = std::max(v1, portal.cell.v + portal.size.y());
+    }
+    p.corner = panel.origin + u0 * panel.u_axis + v0 * panel.v_axis;
+    p.u = (u1 - u0) * panel.u_axis;
+    p.v = (v1 - v0) * panel.v_axis;
+    p.share = static_cast<float>(p.portals.size()) / static_cast<float>(portals_.size());
+    running += p.share;
+    p.share_end = running;
+  }
+  if (!portal_panels_.empty()) portal_panels_.back().share_end = 1.0f;
 }
 
 namespace {
@@ -315,12 +357,22 @@ PathTracer::PortalPoint PathTracer::portal_point(int k, const Vec2& uv) const {
   return out;
 }
 
-float PathTracer::portal_pdf(int k, const PanelPoint& at, float distance, const Vec3& dir) const {
-  // Portal chosen with probability 1/No, then a uniform point of its square in panel coordinates,
-  // converted to solid angle (on a curved panel, through the surface's area there). On a refined
-  // domain, the portal is the unrefined element under the point.
-  const int portal_index =
-      scene_.domain.is_refined() ? scene_.domain.portal_at(scene_.domain.elements()[k].panel, at) : k;
+float PathTracer::portal_pdf(int k, const PanelPoint& at, const Vec3& from, float distance, const Vec3& dir) const {
+  const int panel = scene_.domain.elements()[k].panel;
+  const PortalPanel* portal_panel = nullptr;
+  if (panel_portals_) {
+    for (const PortalPanel& p : portal_panels_)
+      if (p.panel == panel) portal_panel = &p;
+    if (!portal_panel) return 0.0f;
+    if (portal_panel->flat) {  // aim_from_vertex: uniform in the solid angle of the panel's rectangle
+      const double omega = rectangle_solid_angle(from, portal_panel->corner, portal_panel->u, portal_panel->v);
+      if (omega > kMinSolidAngle) return portal_panel->share / static_cast<float>(omega);
+    }
+  }
+  // An element chosen among all (or among its panel's), then a uniform point of its square in panel
+  // coordinates, converted to solid angle (on a curved panel, through the surface's area there).
+  // On a refined domain, the portal is the unrefined element under the point.
+  const int portal_index = scene_.domain.is_refined() ? scene_.domain.portal_at(panel, at) : k;
   if (portal_index < 0) return 0.0f;
   const Portal& portal = portals_[portal_index];
   Vec3 normal = portal.normal;
@@ -333,14 +385,72 @@ float PathTracer::portal_pdf(int k, const PanelPoint& at, float distance, const 
   const float cos = std::abs(dir.dot(normal));
   if (!(cos > 1e-6f)) return 0.0f;
   const float element_area = portal.size.x() * portal.size.y();
-  return distance * distance / (element_area * area_ratio * cos) / static_cast<float>(portals_.size());
+  const float selection = portal_panel ? portal_panel->share / static_cast<float>(portal_panel->portals.size())
+                                       : 1.0f / static_cast<float>(portals_.size());
+  return selection * distance * distance / (element_area * area_ratio * cos);
+}
+
+PathTracer::PortalAim PathTracer::aim_at_element(int k, const Vec2& uv, float selection, bool by_solid_angle,
+                                                 const Vec3& x, const Vec3& n) const {
+  const Portal& square = portals_[k];
+  PortalAim aim;
+  aim.portal = k;
+  aim.panel = square.panel;
+  aim.selection = selection;
+  // A flat element seen under a fair solid angle is sampled uniformly in it (sampling by area
+  // would leave the estimate the 1/d^2 and cosine of a near element to average out) ...
+  const double omega =
+      by_solid_angle && !square.curved ? rectangle_solid_angle(x, square.corner, square.u, square.v) : 0.0;
+  if (omega > kMinSolidAngle) {
+    const SphericalRectangle seen(x, square.corner, square.u, square.v);
+    // ... and, within it, bilinearly after the receiver's cosine toward the corners (floored: the
+    // density must stay positive wherever the cosine is).
+    const Vec3 corners[4] = {square.corner, square.corner + square.u, square.corner + square.v,
+                             square.corner + square.u + square.v};
+    float w[4];
+    for (int c = 0; c < 4; ++c) w[c] = std::max(kCosineFloor, (corners[c] - x).normalized().dot(n));
+    const Vec2 warped = square_to_bilinear(uv, w);
+    aim.point.position = seen.sample(warped);
+    aim.point.normal = square.normal;
+    aim.point.at = scene_.domain.panel_point(square.panel, aim.point.position);
+    aim.solid_angle_pdf = selection * bilinear_pdf(warped, w) / static_cast<float>(omega);
+  } else {
+    aim.point = portal_point(k, uv);
+  }
+  return aim;
+}
+
+PathTracer::PortalAim PathTracer::aim_from_vertex(float u_pick, const Vec2& uv, const Vec3& x) const {
+  // A panel by its share of the elements, then a point uniform in the solid angle of the
+  // rectangle its elements span (flat panels), or an element of it and a point by area.
+  size_t p = 0;
+  while (p + 1 < portal_panels_.size() && u_pick >= portal_panels_[p].share_end) ++p;
+  const PortalPanel& panel = portal_panels_[p];
+  const float begin = p == 0 ? 0.0f : portal_panels_[p - 1].share_end;
+  const float remainder = std::clamp((u_pick - begin) / (panel.share_end - begin), 0.0f, 0.99999994f);
+  PortalAim aim;
+  aim.panel = panel.panel;
+  const double omega = panel.flat ? rectangle_solid_angle(x, panel.corner, panel.u, panel.v) : 0.0;
+  if (omega > kMinSolidAngle) {
+    aim.point.position = SphericalRectangle(x, panel.corner, panel.u, panel.v).sample(uv);
+    aim.point.normal = scene_.domain.panels()[panel.panel].normal;
+    aim.point.at = scene_.domain.panel_point(panel.panel, aim.point.position);
+    aim.solid_angle_pdf = panel.share / static_cast<float>(omega);
+    return aim;
+  }
+  const size_t count = panel.portals.size();
+  aim.portal = panel.portals[std::min(count - 1, static_cast<size_t>(remainder * count))];
+  aim.selection = panel.share / static_cast<float>(count);
+  aim.point = portal_point(aim.portal, uv);
+  return aim;
 }
 
 template <typename BsdfOfDirection>
-void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec3& x, const Vec3& n,
-                               const PathState& st, Rng& rng, BsdfOfDirection f_and_pdf, Sink& sink) const {
-  const PortalPoint portal = portal_point(k, uv);
+void PathTracer::sample_portal(const PortalAim& aim, const Vec3& x, const Vec3& n, const PathState& st, Rng& rng,
+                               BsdfOfDirection f_and_pdf, Sink& sink) const {
+  const PortalPoint& portal = aim.point;
   const Vec3& y = portal.position;
+  if (!is_finite(y)) return;
   Vec3 dir = y - x;
   const float dist = dir.norm();
   if (!(dist > 1e-5f)) return;
@@ -351,8 +461,11 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   if (!(f > 0.0f).any()) return;
   const float cos_y = std::abs(dir.dot(portal.normal));
   if (!(cos_y > 1e-6f)) return;
-  const Vec2& size = portals_[k].size;
-  const float pdf = selection * dist * dist / (size.x() * size.y() * portal.area_ratio * cos_y);
+  float pdf = aim.solid_angle_pdf;  // of the direction, per path
+  if (pdf == 0.0f) {
+    const Vec2& size = portals_[aim.portal].size;
+    pdf = aim.selection * dist * dist / (size.x() * size.y() * portal.area_ratio * cos_y);
+  }
   // Everything that arrives through k along dir: sky, and light from outdoor surfaces.
   PathState through_state = st;
   through_state.beta = st.beta * f / pdf;
@@ -366,18 +479,14 @@ void PathTracer::sample_portal(int k, const Vec2& uv, float selection, const Vec
   through_state.beyond_element = true;
   through_state.must_reach = dist;  // portals only reach what lies beyond the element met first
   through_state.branch_both_depth = st.depth;
-  // On a refined grid the point lies in one of the portal's cells: that one is gone through.
-  const int element = scene_.domain.is_refined() ? cell_of_portal(k, uv) : k;
+  // The element under the point (on a refined grid, one of the portal's cells).
+  const int element = aim.portal >= 0 && !scene_.domain.is_refined() ? aim.portal
+                                                                      : scene_.domain.element_at(aim.panel, portal.at);
   if (element < 0) return;
   const CutterSet through{scene_.domain.element_cutter(element)};
   Sink outside = Sink::outside();
   trace(x, dir, through_state, &through, rng, outside);
   sink.light_through({element, portal.at}, outside);
-}
-
-int PathTracer::cell_of_portal(int k, const Vec2& uv) const {
-  const Portal& portal = portals_[k];
-  return scene_.domain.element_at(portal.panel, {portal.cell.u + uv.x() * portal.size.x(), portal.cell.v + uv.y() * portal.size.y()});
 }
 
 PathTracer::Surface PathTracer::surface(const Hit& hit) const {
@@ -472,7 +581,7 @@ void PathTracer::record_escape(const Crossing& met, bool inner_face, const Vec3&
     outside_state.branch_both_depth = st.depth;
     if (st.portals && inner_face) {
       const float distance = (org + t * dir - st.vertex).norm();
-      outside_state.portal_pdf = portal_pdf(met.element, met.point, distance, dir);
+      outside_state.portal_pdf = portal_pdf(met.element, met.point, st.vertex, distance, dir);
     }
     // What would arrive through k if it were open: the same ray, continued with k cut.
     const CutterSet through{scene_.domain.element_cutter(met.element)};
@@ -481,16 +590,19 @@ void PathTracer::record_escape(const Crossing& met, bool inner_face, const Vec3&
   sink.escape(met, outside);
 }
 
-void PathTracer::sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
-                            Sink& sink) const {
-  for (int i = 0; i < count; ++i) sample_sky_once(v, st, cutters, count, rng, sink);
+void PathTracer::sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, int count,
+                            const PathSamples* samples, Rng& rng, Sink& sink) const {
+  for (int i = 0; i < count; ++i) {
+    const Vec2 u = samples && i == 0 ? samples->get2d(PathSamples::kVertexSky) : next2(rng);
+    sample_sky_once(v, st, cutters, count, u, sink);
+  }
 }
 
-void PathTracer::sample_sky_once(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
-                                 Sink& sink) const {
+void PathTracer::sample_sky_once(const Vertex& v, const PathState& st, const CutterSet* cutters, int count,
+                                 const Vec2& u, Sink& sink) const {
   const Sky& sky = *scene_.sky;
   float light_pdf = 0.0f;
-  const Vec3 wl = sky.sample_toward(next2(rng), v.n, &light_pdf);
+  const Vec3 wl = sky.sample_toward(u, v.n, &light_pdf);
   if (!(light_pdf > 0.0f) || wl.dot(v.n) <= 0.0f) return;
   const Vec3 wl_local = v.frame.to_local(wl);
   const Rgb f = bsdf_eval(*v.material, v.wo, wl_local);
@@ -499,18 +611,20 @@ void PathTracer::sample_sky_once(const Vertex& v, const PathState& st, const Cut
   shadow(offset_origin(v.p, v.ng, wl), wl, cutters, sink.recording() || sink.outside_element(), &sh);
   if (!sh.visible) return;
   const float portal = sink.recording() && sh.first_is_element
-                           ? portal_pdf(sh.crossed[0].element, sh.crossed[0].point, sh.crossed_distance[0], wl)
+                           ? portal_pdf(sh.crossed[0].element, sh.crossed[0].point, v.p, sh.crossed_distance[0], wl)
                            : 0.0f;
   const float w = power_heuristic(count * light_pdf, bsdf_pdf(*v.material, v.wo, wl_local), portal);
   sink.light(st.beta * f * sky.radiance(wl) * sh.attenuation * (w / (count * light_pdf)), sh.crossed.data(),
              sh.crossed_count, sky_source(wl));
 }
 
-void PathTracer::sample_sun(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
-                            Sink& sink) const {
+void PathTracer::sample_sun(const Vertex& v, const PathState& st, const CutterSet* cutters, int count,
+                            const PathSamples* samples, Rng& rng, Sink& sink) const {
   for (int i = 0; i < count; ++i) {
-    const float u_pick = rng.uniform();
-    const SunLights::Sample sun = scene_.suns.sample(u_pick, next2(rng));
+    const bool stratified = samples && i == 0;
+    const float u_pick = stratified ? samples->get1d(PathSamples::kVertexSunPick) : rng.uniform();
+    const Vec2 u_disk = stratified ? samples->get2d(PathSamples::kVertexSun) : next2(rng);
+    const SunLights::Sample sun = scene_.suns.sample(u_pick, u_disk);
     if (sun.direction.dot(v.n) <= 0.0f) continue;
     const Rgb f = bsdf_eval(*v.material, v.wo, v.frame.to_local(sun.direction));
     if (!(f > 0.0f).any()) continue;
@@ -523,12 +637,20 @@ void PathTracer::sample_sun(const Vertex& v, const PathState& st, const CutterSe
   }
 }
 
-void PathTracer::sample_interior_portal(const Vertex& v, const PathState& st, Rng& rng, Sink& sink) const {
-  const int k = std::min(static_cast<int>(rng.uniform() * portals_.size()), static_cast<int>(portals_.size()) - 1);
+void PathTracer::sample_interior_portal(const Vertex& v, const PathState& st, const PathSamples* samples, Rng& rng,
+                                        Sink& sink) const {
+  const float u_pick = samples ? samples->get1d(PathSamples::kVertexPortalPick) : rng.uniform();
+  const Vec2 uv = samples ? samples->get2d(PathSamples::kVertexPortal) : next2(rng);
+  PortalAim aim;
+  if (panel_portals_) {
+    aim = aim_from_vertex(u_pick, uv, v.p);
+  } else {
+    const int k = std::min(static_cast<int>(u_pick * portals_.size()), static_cast<int>(portals_.size()) - 1);
+    aim = aim_at_element(k, uv, 1.0f / static_cast<float>(portals_.size()), false, v.p, v.n);
+  }
   PathState from_here = st;
   ++from_here.depth;
-  const Vec2 uv = next2(rng);
-  sample_portal(k, uv, 1.0f / static_cast<float>(portals_.size()), offset_origin(v.p, v.ng, v.n), v.n, from_here, rng,
+  sample_portal(aim, offset_origin(v.p, v.ng, v.n), v.n, from_here, rng,
                 [&](const Vec3& d, float* pdf) {
                   const Vec3 local = v.frame.to_local(d);
                   *pdf = bsdf_pdf(*v.material, v.wo, local);
@@ -579,6 +701,8 @@ bool PathTracer::meet_element_outside(const Crossing& j, bool through_face, cons
 void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutters, Rng& rng, Sink& sink) const {
   const Sky& sky = *scene_.sky;
   for (;;) {
+    const PathSamples* samples = st.samples;
+    st.samples = nullptr;
     const Hit h = rays_->intersect(org, dir, 0.0f, kInfinity, cutters);
     if (st.must_reach > 0.0f) {
       if (h.valid() && h.t < st.must_reach - kRayEpsilon) return;
@@ -622,14 +746,14 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
     const int sky_samples = st.beyond_element && s.reveal_grid_face < 0 ? kOutdoorSkySamples : 1;
     st.beyond_element = false;
     if (!v.material->is_glass()) {
-      sample_sky(v, st, cutters, sky_samples, rng, sink);
-      if (!scene_.suns.empty()) sample_sun(v, st, cutters, sky_samples, rng, sink);
-      if (sink.recording() && !portals_.empty()) sample_interior_portal(v, st, rng, sink);
+      sample_sky(v, st, cutters, sky_samples, samples, rng, sink);
+      if (!scene_.suns.empty()) sample_sun(v, st, cutters, sky_samples, samples, rng, sink);
+      if (sink.recording() && !portals_.empty()) sample_interior_portal(v, st, samples, rng, sink);
     }
 
     BsdfSample bs;
-    const Vec2 u = next2(rng);
-    const float u_lobe = rng.uniform();
+    const Vec2 u = samples ? samples->get2d(PathSamples::kVertexBsdf) : next2(rng);
+    const float u_lobe = samples ? samples->get1d(PathSamples::kVertexLobe) : rng.uniform();
     if (!bsdf_sample(*v.material, v.wo, u, u_lobe, front, &bs)) return;
     const Vec3 wi = v.frame.to_world(bs.wi);
     st.beta *= bs.weight;
@@ -655,7 +779,8 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
   }
 }
 
-void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* cutters, Sink& sink) const {
+void PathTracer::trace_sensor(size_t i, size_t path, const PathSamples* samples, Rng& rng, const CutterSet* cutters,
+                              Sink& sink) const {
   const Sky& sky = *scene_.sky;
   const Vec3& n = scene_.sensors.normals[i];
   const Vec3 p = scene_.sensors.points[i] + kRayEpsilon * n;
@@ -663,7 +788,7 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
 
   // The sensor is a cosine receiver: its "BSDF times cosine" is cos(theta).
   float light_pdf = 0.0f;
-  const Vec3 wl = sky.sample_toward(next2(rng), n, &light_pdf);
+  const Vec3 wl = sky.sample_toward(samples ? samples->get2d(PathSamples::kSensorSky) : next2(rng), n, &light_pdf);
   const float cos_l = wl.dot(n);
   const bool portals = sink.recording() && !portals_.empty();
   if (light_pdf > 0.0f && cos_l > 0.0f) {
@@ -677,8 +802,9 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
   }
   if (!scene_.suns.empty()) {
     // The sun is found by this sample alone, through elements too (portal samples aim at the sky).
-    const float u_pick = rng.uniform();
-    const SunLights::Sample sun = scene_.suns.sample(u_pick, next2(rng));
+    const float u_pick = samples ? samples->get1d(PathSamples::kSensorSunPick) : rng.uniform();
+    const Vec2 u_disk = samples ? samples->get2d(PathSamples::kSensorSun) : next2(rng);
+    const SunLights::Sample sun = scene_.suns.sample(u_pick, u_disk);
     const float cos_s = sun.direction.dot(n);
     Shadow sh;
     if (cos_s > 0.0f) shadow(p, sun.direction, cutters, sink.recording(), &sh);
@@ -696,21 +822,37 @@ void PathTracer::trace_sensor(size_t i, size_t path, Rng& rng, const CutterSet* 
     PathState from_sensor = st;
     from_sensor.beta = Rgb::Ones();
     from_sensor.portal_exclusive = true;
-    SensorPortal samples[kSensorPortals];
-    sensor_portals(i, path, samples);
-    for (const SensorPortal& sp : samples) {
-      sample_portal(sp.element, sp.uv, sp.samples_per_path, p, n, from_sensor, rng,
-                    [&](const Vec3& d, float* pdf) {
-                      const float c = std::max(0.0f, d.dot(n));
-                      *pdf = c * kInvPi;
-                      return Rgb::Constant(c);
-                    },
-                    sink);
+    auto cosine = [&](const Vec3& d, float* pdf) {
+      const float c = std::max(0.0f, d.dot(n));
+      *pdf = c * kInvPi;
+      return Rgb::Constant(c);
+    };
+    if (samples) {
+      // Stratified over the group's samples, aimed by the sensor's view of the elements, and
+      // uniform in each element's solid angle.
+      if (portal_selection_.size() != scene_.sensors.size())
+        throw std::logic_error("PathTracer: prepare_portal_selection() must run before recording stratified paths");
+      for (size_t j = 0; j < kStratifiedSensorPortals; ++j) {
+        const auto [u, v] = samples->portal(j, kStratifiedSensorPortals);
+        const PortalSelection::Choice c = portal_selection_[i].choose(u);
+        const PortalAim aim = aim_at_element(c.element, Vec2(c.remainder, v),
+                                             static_cast<float>(kStratifiedSensorPortals * c.probability), true,
+                                             p, n);
+        sample_portal(aim, p, n, from_sensor, rng, cosine, sink);
+      }
+    } else {
+      SensorPortal chosen[kSensorPortals];
+      sensor_portals(i, path, chosen);
+      for (const SensorPortal& sp : chosen)
+        sample_portal(aim_at_element(sp.element, sp.uv, sp.samples_per_path, false, p, n), p, n, from_sensor, rng,
+                      cosine, sink);
     }
   }
-  const Vec3 local = square_to_cosine_hemisphere(next2(rng));
+  const Vec3 local =
+      square_to_cosine_hemisphere(samples ? samples->get2d(PathSamples::kFirstBounce) : next2(rng));
   st.prev_pdf = square_to_cosine_hemisphere_pdf(local);
   if (st.prev_pdf <= 0.0f) return;
+  st.samples = samples;
   trace(p, frame.to_world(local), st, cutters, rng, sink);
 }
 
@@ -748,21 +890,53 @@ PathTracer::DirectSun PathTracer::direct_sun(size_t sensor, const Vec3& directio
   return out;
 }
 
-float PathTracer::sensor_sample(size_t sensor, Rng& rng) const {
+float PathTracer::sensor_sample(size_t sensor, const PathSamples* samples, Rng& rng) const {
   Sink sink = Sink::sum();
-  trace_sensor(sensor, 0, rng, &openings_, sink);
+  trace_sensor(sensor, 0, samples, rng, &openings_, sink);
   return static_cast<float>(sink.total());
 }
 
-void PathTracer::sensor_sample_by_source(size_t sensor, Rng& rng, std::vector<SourceLight>* out) const {
+void PathTracer::sensor_sample_by_source(size_t sensor, const PathSamples* samples, Rng& rng,
+                                         std::vector<SourceLight>* out) const {
   Sink sink = Sink::by_source(out);
-  trace_sensor(sensor, 0, rng, &openings_, sink);
+  trace_sensor(sensor, 0, samples, rng, &openings_, sink);
 }
 
-void PathTracer::record_sensor_path(size_t sensor, size_t path, Rng& rng, SensorRecord* record) const {
+void PathTracer::record_sensor_path(size_t sensor, size_t path, const PathSamples* samples, Rng& rng,
+                                    SensorRecord* record) const {
   Sink sink = Sink::record(record);
-  trace_sensor(sensor, path, rng, nullptr, sink);
+  trace_sensor(sensor, path, samples, rng, nullptr, sink);
   record->end_path();
+}
+
+void PathTracer::prepare_portal_selection(int threads) {
+  if (portals_.empty() || portal_selection_.size() == scene_.sensors.size()) return;
+  std::vector<PortalShape> shapes(portals_.size());
+  for (size_t k = 0; k < portals_.size(); ++k) {
+    const Portal& p = portals_[k];
+    PortalShape& shape = shapes[k];
+    shape.corner = p.corner, shape.u = p.u, shape.v = p.v, shape.normal = p.normal, shape.curved = p.curved;
+    if (p.curved) {
+      const PortalPoint middle = portal_point(static_cast<int>(k), Vec2(0.5f, 0.5f));
+      shape.center = middle.position;
+      shape.normal = middle.normal;
+      shape.area = p.size.x() * p.size.y() * middle.area_ratio;
+    }
+  }
+  portal_selection_.resize(scene_.sensors.size());
+  parallel_tasks(scene_.sensors.size(), threads, nullptr, [&](size_t i) {
+    const Vec3& n = scene_.sensors.normals[i];
+    const Vec3 p = scene_.sensors.points[i] + kRayEpsilon * n;
+    std::vector<double> weights(shapes.size());
+    for (size_t k = 0; k < shapes.size(); ++k) weights[k] = portal_view_weight(p, n, shapes[k]);
+    portal_selection_[i] = PortalSelection(weights);
+  });
+}
+
+size_t PathTracer::portal_selection_bytes() const {
+  size_t bytes = 0;
+  for (const PortalSelection& s : portal_selection_) bytes += s.memory_bytes();
+  return bytes;
 }
 
 void PathTracer::check_sensors() const {

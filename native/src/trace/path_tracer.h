@@ -16,6 +16,8 @@
 #include "daylight/sky_patches.h"
 #include "scene/scene.h"
 #include "trace/path_record.h"
+#include "trace/path_samples.h"
+#include "trace/portal_selection.h"
 #include "trace/ray_scene.h"
 #include "util/rng.h"
 
@@ -26,6 +28,10 @@ class PathTracer {
   // Portal samples each sensor path sends toward the elements (the direct light through them):
   // 4 balances the direct term (stratified, cheap to improve) against the indirect paths.
   static constexpr size_t kSensorPortals = 4;
+  // With stratified samples (render.sampler "sobol"), aimed by the sensor's view and uniform in
+  // each element's solid angle, two do better than four did (every one now lands on an element
+  // the sensor sees), at less time and memory per path.
+  static constexpr size_t kStratifiedSensorPortals = 2;
 
   // `openings` are cut (closed mode); `reveals` line them through the wall (materials per face).
   // With `patches` (an annual pass: the scene's sky is unit and its suns are the sun clusters), every
@@ -33,8 +39,10 @@ class PathTracer {
   // (AnnualSources; records must be `sourced`).
   PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches = nullptr);
 
+  // `samples`, when given, are the path's stratified first decisions (path_samples.h); every
+  // other decision comes from `rng`.
   // Closed mode: one-path estimate of sensor i's value (luminance-weighted irradiance).
-  float sensor_sample(size_t sensor, Rng& rng) const;
+  float sensor_sample(size_t sensor, const PathSamples* samples, Rng& rng) const;
   // Closed mode, a tracer built with sky patches: the same path's light split by source, as
   // (source, value) pairs appended to `out` (AnnualSources indices; a source may appear more than
   // once, and the sensor's own sun sample keeps its kDirect flag).
@@ -42,9 +50,16 @@ class PathTracer {
     uint16_t source;
     double value;
   };
-  void sensor_sample_by_source(size_t sensor, Rng& rng, std::vector<SourceLight>* out) const;
+  void sensor_sample_by_source(size_t sensor, const PathSamples* samples, Rng& rng,
+                               std::vector<SourceLight>* out) const;
   // Recording mode: appends the events of path `path` (0 <= path < paths_per_sensor) to `record`.
-  void record_sensor_path(size_t sensor, size_t path, Rng& rng, SensorRecord* record) const;
+  void record_sensor_path(size_t sensor, size_t path, const PathSamples* samples, Rng& rng,
+                          SensorRecord* record) const;
+
+  // Recording with stratified samples aims each sensor's portal samples by its view of the
+  // elements (portal_selection.h): builds that table, once, before record_sensor_path.
+  void prepare_portal_selection(int threads);
+  size_t portal_selection_bytes() const;
 
   // Throws std::invalid_argument naming the first sensor that sits inside a closed solid.
   void check_sensors() const;
@@ -90,21 +105,37 @@ class PathTracer {
     float area_ratio = 1.0f;
   };
   PortalPoint portal_point(int k, const Vec2& uv) const;
-  // The element (cell of a refined grid) at uv of portal k, or -1.
-  int cell_of_portal(int k, const Vec2& uv) const;
+  void build_portal_panels();
 
-  void trace_sensor(size_t sensor, size_t path, Rng& rng, const CutterSet* cutters, Sink& sink) const;
-  // Solid-angle density with which portal sampling at a vertex yields `dir`, which meets element k
-  // first (in its portal), at `distance`, at panel point `at`.
-  float portal_pdf(int k, const PanelPoint& at, float distance, const Vec3& dir) const;
-  // Portal sample through point uv of portal k from vertex x (normal n, path state st): a direction
-  // through a random point of k, followed outside with the element there cut; recorded as light
-  // that needs that element open.
+  void trace_sensor(size_t sensor, size_t path, const PathSamples* samples, Rng& rng, const CutterSet* cutters,
+                    Sink& sink) const;
+  // Solid-angle density with which portal sampling at vertex `from` yields `dir`, which meets
+  // element k first (in its portal), at `distance`, at panel point `at`.
+  float portal_pdf(int k, const PanelPoint& at, const Vec3& from, float distance, const Vec3& dir) const;
+  // Where a portal sample aims: a point of the domain, and its density. `solid_angle_pdf` is the
+  // direction's density per path when the point was drawn by solid angle; else (0) the point is
+  // uniform on portal `portal` by area, drawn `selection` times per path on average.
+  struct PortalAim {
+    int portal = -1;  // -1: the element is the one under the point
+    int panel = 0;
+    PortalPoint point;
+    float selection = 0.0f;
+    float solid_angle_pdf = 0.0f;
+  };
+  // Point uv of portal k; `by_solid_angle`: uniform in the solid angle the flat element subtends at
+  // x, bilinearly after the cosine about n (the sensor's portal samples, which no other strategy is
+  // weighed against), else by area.
+  PortalAim aim_at_element(int k, const Vec2& uv, float selection, bool by_solid_angle, const Vec3& x,
+                           const Vec3& n) const;
+  // An interior vertex's portal sample (render.sampler "sobol"): a panel by its share of the
+  // elements, then uniform in the solid angle of the rectangle its elements span (portal_pdf agrees).
+  PortalAim aim_from_vertex(float u_pick, const Vec2& uv, const Vec3& x) const;
+  // Portal sample toward `aim` from vertex x (normal n, path state st): followed outside with the
+  // element there cut; recorded as light that needs that element open.
   // f_and_pdf(dir, &pdf) gives the vertex's BSDF times cosine and BSDF density toward dir.
   template <typename BsdfOfDirection>
-  // `selection` is the expected number of samples aimed at k per path (the element's pdf).
-  void sample_portal(int k, const Vec2& uv, float selection, const Vec3& x, const Vec3& n, const PathState& st,
-                     Rng& rng, BsdfOfDirection f_and_pdf, Sink& sink) const;
+  void sample_portal(const PortalAim& aim, const Vec3& x, const Vec3& n, const PathState& st, Rng& rng,
+                     BsdfOfDirection f_and_pdf, Sink& sink) const;
   // The portal samples a sensor's path sends: element, point on it, and that element's selection.
   struct SensorPortal {
     int element;
@@ -127,15 +158,17 @@ class PathTracer {
   // The element a ray along dir meets at surface s (point p), or -1 (no element: the panel's margin).
   Crossing crossing_met(const Surface& s, const Vec3& p, const Vec3& dir) const;
   // Next-event estimation toward the sky from a vertex, with `count` samples.
-  void sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
-                  Sink& sink) const;
-  void sample_sky_once(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
+  // `samples` (the main path's first vertex): the first sample is stratified.
+  void sample_sky(const Vertex& v, const PathState& st, const CutterSet* cutters, int count,
+                  const PathSamples* samples, Rng& rng, Sink& sink) const;
+  void sample_sky_once(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, const Vec2& u,
                        Sink& sink) const;
   // Next-event estimation toward the sun disks (nothing else finds them), `count` samples.
-  void sample_sun(const Vertex& v, const PathState& st, const CutterSet* cutters, int count, Rng& rng,
-                  Sink& sink) const;
+  void sample_sun(const Vertex& v, const PathState& st, const CutterSet* cutters, int count,
+                  const PathSamples* samples, Rng& rng, Sink& sink) const;
   // One portal sample from a vertex inside: a random element, a random point on it.
-  void sample_interior_portal(const Vertex& v, const PathState& st, Rng& rng, Sink& sink) const;
+  void sample_interior_portal(const Vertex& v, const PathState& st, const PathSamples* samples, Rng& rng,
+                              Sink& sink) const;
   Surface surface(const Hit& hit) const;
   // Source of light from the sky along dir, and of sun `index` (0 outside an annual pass).
   uint16_t sky_source(const Vec3& dir) const;
@@ -149,6 +182,18 @@ class PathTracer {
   std::vector<RevealGridFace> reveal_grid_faces_;
   std::unique_ptr<RayScene> rays_;
   std::vector<Portal> portals_;
+  std::vector<PortalSelection> portal_selection_;  // per sensor (prepare_portal_selection)
+  // The panels holding portals, for aim_from_vertex: the rectangle (panel coordinates' bounding box
+  // of its portals) as corner + s u + t v, its portals, its share of them and the running total.
+  struct PortalPanel {
+    int panel = 0;
+    bool flat = true;
+    Vec3 corner, u, v;
+    std::vector<int> portals;
+    float share = 0.0f, share_end = 0.0f;
+  };
+  std::vector<PortalPanel> portal_panels_;
+  bool panel_portals_ = false;  // interior portal samples by aim_from_vertex (render.sampler "sobol")
   const SkyPatches* patches_ = nullptr;
 };
 

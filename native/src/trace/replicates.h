@@ -44,6 +44,9 @@ inline void replicate_estimate(const double* group_sums, size_t n_paths, double*
 struct ReplicateSums {
   std::array<double, kReplicates> sum{};
   void add(size_t path, double x) { sum[replicate_of(path)] += x; }
+  void merge(const ReplicateSums& other) {
+    for (size_t g = 0; g < kReplicates; ++g) sum[g] += other.sum[g];
+  }
   void estimate(size_t n_paths, double* mean, double* standard_error) const {
     replicate_estimate(sum.data(), n_paths, mean, standard_error);
   }
