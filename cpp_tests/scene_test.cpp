@@ -243,6 +243,28 @@ TEST(Validation, IntegersAreCheckedBeforeTheyAreConverted) {
   expect_scene_error(text + R"(, "render": {"paths": 10}})", {"render.paths", "unknown key"});
 }
 
+TEST(Validation, SamplerAndGroundRadianceAreReadOrRefusedByName) {
+  std::string text = scene_text();
+  text.pop_back();
+  TempDir dir;
+  dir.write("scene.obj", room_obj());
+  dir.write("scene.json", text + R"(, "render": {"sampler": "independent"}})");
+  EXPECT_EQ(load_scene(dir.file("scene.json")).render.sampler, RenderSettings::Sampler::kIndependent);
+  dir.write("scene.json", text + "}");
+  EXPECT_EQ(load_scene(dir.file("scene.json")).render.sampler, RenderSettings::Sampler::kSobol);
+  expect_scene_error(text + R"(, "render": {"sampler": "halton"}})", {"render.sampler", "\"halton\"", "sobol"});
+  expect_scene_error(text + R"(, "render": {"sampler": 1}})", {"render.sampler", "independent"});
+  const std::string points = R"({"points": [[2, 1.5, 0.8]]})";
+  dir.write("scene.json", scene_text(kDomain, points, R"({"type": "uniform", "radiance": 300, "ground_radiance": 60})"));
+  const Scene s = load_scene(dir.file("scene.json"));
+  EXPECT_FLOAT_EQ(s.sky->radiance(Vec3(0, 0, 1))[0], 300.0f);
+  EXPECT_FLOAT_EQ(s.sky->radiance(Vec3(0, 0.6f, -0.8f))[1], 60.0f);
+  expect_scene_error(scene_text(kDomain, points, R"({"type": "uniform", "ground_radiance": -1})"),
+                     {"sky.ground_radiance", "negative"});
+  expect_scene_error(scene_text(kDomain, points, R"({"type": "uniform", "ground_radiance": 1e13})"),
+                     {"sky.ground_radiance", "cd/m^2"});
+}
+
 TEST(Validation, ObjIndicesAndCoordinatesAreCheckedWithTheirLine) {
   TempDir dir;
   dir.write("scene.json", scene_text());
