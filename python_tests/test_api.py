@@ -155,3 +155,31 @@ def test_goal_error_is_the_solvers_measure():
     assert weighted["relative_rms"] == pytest.approx(10.0 / np.sqrt(100.0 ** 2 + 50.0 ** 2), rel=1e-12)
     with pytest.raises(ValueError, match="one entry per sensor"):
         fenestra.goal_error(goals, values[:3])
+
+
+def test_render_sampler_is_read_set_and_checked(small_room):
+    scene = fenestra.load_scene(small_room)
+    assert scene.render.sampler == "sobol"  # the default
+    scene.render.sampler = "independent"
+    assert scene.render.sampler == "independent" and "independent" in repr(scene.render)
+    with pytest.raises(ValueError, match="render.sampler.*'sobol' or 'independent'.*'halton'"):
+        scene.render.sampler = "halton"
+    assert scene.render.sampler == "independent"  # a refused value changes nothing
+
+
+def test_both_samplers_estimate_the_same_light(small_room):
+    # Two unbiased estimators: every sensor's all-open value agrees within a t bound (15 degrees of
+    # freedom per standard error, 30 combined at most: scipy's quantile for a normal 4 sigma).
+    from scipy import stats
+
+    bound = stats.t.isf(stats.norm.sf(4.0), 15)
+    values = {}
+    for sampler in ("sobol", "independent"):
+        scene = fenestra.load_scene(small_room)
+        scene.render.paths_per_sensor = 2048
+        scene.render.sampler = sampler
+        c = fenestra.contributions(scene)
+        values[sampler] = (c.all_open, c.all_open_stderr)
+    (a, sa), (b, sb) = values["sobol"], values["independent"]
+    assert np.all(a > 0)
+    assert np.all(np.abs(a - b) <= bound * np.hypot(sa, sb)), (a, b, sa, sb)

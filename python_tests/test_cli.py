@@ -49,6 +49,30 @@ def test_reference_room_example_runs(tmp_path):
     assert r.returncode == 0, r.stderr
 
 
+def test_reference_room_with_its_sky_in_closed_form_runs(tmp_path):
+    # The reference's sky as a uniform sky over a uniform ground: the same light as the image.
+    values = {}
+    for scene_file in ("scene.json", "scene_uniform.json"):
+        scene = os.path.join(EXAMPLES, "reference_room", scene_file)
+        window = os.path.join(EXAMPLES, "reference_room", "window.json")
+        out = tmp_path / (scene_file + ".values.json")
+        r = run("evaluate", scene, "--openings", window, "-o", out, "--paths", 4096, "--quiet")
+        assert r.returncode == 0, r.stderr
+        values[scene_file] = [(s["value"], s["stderr"]) for s in json.loads(out.read_text())["sensors"]]
+    for (a, sa), (b, sb) in zip(values["scene.json"], values["scene_uniform.json"]):
+        assert abs(a - b) <= 5.5 * (sa * sa + sb * sb) ** 0.5, (a, b)  # t(15) quantile of a normal 4 sigma
+
+
+def test_the_program_loads_openimageio_only_to_read_or_write_images():
+    # OpenImageIO and its ~250 libraries live in the image module (fenestra_images.so), loaded on
+    # first use: the program itself does not link them.
+    linked = subprocess.run(["ldd", CLI], capture_output=True, text=True).stdout
+    assert "libfenestra" not in linked and "OpenImageIO" not in linked, linked
+    module = os.path.join(EXAMPLES, "..", "addon", "fenestra", "fenestra_images.so")
+    assert os.path.exists(module)
+    assert "OpenImageIO" in subprocess.run(["ldd", module], capture_output=True, text=True).stdout
+
+
 @pytest.mark.parametrize("content, fragment", [
     ("{", "not valid JSON"),
     ('{"fenestra": 1}', "materials"),

@@ -9,6 +9,7 @@ import json
 import os
 
 import numpy as np
+import pytest
 
 import fenestra
 from conftest import EXAMPLES, box_obj
@@ -137,9 +138,14 @@ def test_solver_recovers_a_window_between_grid_lines_in_a_thick_wall(tmp_path):
         "relative RMS %.2f %% (noise %.2f %%), solver predicted %.2f %%" % (
             100 * error, 100 * noise, 100 * result["error"]["relative_rms"]))
     # The prediction is the refined records' exact evaluation of these openings: it agrees with
-    # the real cut within the noise of both.
+    # the real cut within the noise of both (the check's, with 2^18 paths, is ~0.1 %; the
+    # prediction's, from 8 192 paths through a thick wall, ~2 %): its relative RMS difference within
+    # twice their relative RMS standard error (a chi-square of 36 sensors beyond 4x its mean).
     predicted = np.array([s["predicted"] for s in result["sensors"]])
-    assert np.sqrt(np.sum((predicted - values) ** 2) / np.sum(values ** 2)) < 0.02
+    predicted_stderr = np.array([s["predicted_stderr"] for s in result["sensors"]])
+    difference = np.sqrt(np.sum((predicted - values) ** 2) / np.sum(values ** 2))
+    prediction_noise = np.sqrt(np.sum(predicted_stderr ** 2) / np.sum(values ** 2))
+    assert difference <= 2 * prediction_noise, (difference, prediction_noise)
 
 
 def quarter_cylinder_obj(radius, height, facets):
@@ -194,14 +200,18 @@ def test_solver_recovers_a_window_on_a_curved_wall(tmp_path):
             [o["parameter_rectangle"] for o in result["openings"]]))
 
 
-def test_solver_recovers_skylights_on_a_vault_with_the_automatic_constraints(tmp_path):
-    """examples/vault_room: two skylights on a barrel vault (one curved panel). The free answer
-    takes light from elements at the vault's edge, inside the automatic 0.2 m margin; the openings
-    must still be found (the constraints stage's second start, solver.md step 6)."""
+@pytest.mark.parametrize("sampler", ["sobol", "independent"])
+def test_solver_recovers_skylights_on_a_vault_with_the_automatic_constraints(tmp_path, sampler):
+    """examples/vault_room: two skylights on a barrel vault (one curved panel). With independent
+    random numbers the free answer takes light from elements at the vault's edge, inside the
+    automatic 0.2 m margin, and the openings must still be found (the constraints stage's second
+    start, solver.md step 6); the stratified estimator's free answer here keeps off the edge (the
+    second start does not run)."""
     folder = os.path.join(EXAMPLES, "vault_room")
     d = json.load(open(os.path.join(folder, "scene.json")))
     d["render"]["paths_per_sensor"] = 1 << 18
     d["render"]["seed"] = 11
+    d["render"]["sampler"] = sampler
     d["solver"] = {"paths": 16384, "population": 64, "generations": 500, "seed": 1, "elite": 8}
     scene = fenestra.scene_from_dict(d, folder)
     truth = json.load(open(os.path.join(folder, "truth.json")))["openings"]
@@ -213,7 +223,8 @@ def test_solver_recovers_skylights_on_a_vault_with_the_automatic_constraints(tmp
     constraints = result["settings"]["constraints"]
     assert "margin" in constraints["automatic"] and constraints["margin"] == 0.2
     assert result["constraints_met"], result["constraint_violations"]
-    assert result["second_start"]["run"]
+    if sampler == "independent":
+        assert result["second_start"]["run"]
     error, noise, _ = checked_error(scene, result["openings"], goals, goals_stderr)
     assert noise < 0.01, noise
     assert error - 3 * noise <= TARGET, (

@@ -96,9 +96,11 @@ def test_verify_paths_sets_the_checks_paths_only(small_room):
     assert 1.6 < noise < 2.5  # the check's noise, in the error's terms, doubles too
     assert [s["predicted"] for s in quarter["sensors"]] == [s["predicted"] for s in full["sensors"]]
     for a, b in zip(full["sensors"], quarter["sensors"]):
-        # The standard error of the check: sqrt(2048 / 512) = 2 times larger, up to the spread of the
-        # estimated standard deviations (thousands of paths each: a few percent).
-        assert 1.6 < b["verified_stderr"] / a["verified_stderr"] < 2.5
+        # The standard error of the check: sqrt(2048 / 512) = 2 times larger, or more (stratified
+        # paths converge faster), up to the spread of two standard errors estimated from 16
+        # replicate groups each (15 degrees of freedom: their ratio lies in 0.5-2 times the true
+        # one with probability 0.99, F(15, 15)).
+        assert 1.0 < b["verified_stderr"] / a["verified_stderr"] < 8.0
         assert abs(a["verified"] - b["verified"]) < 4.0 * np.hypot(a["verified_stderr"], b["verified_stderr"])
 
 

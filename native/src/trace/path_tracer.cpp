@@ -294,6 +294,9 @@ void PathTracer::build_portal_panels() {
     p.share_end = running;
   }
   if (!portal_panels_.empty()) portal_panels_.back().share_end = 1.0f;
+  bool all_flat = true;
+  for (const PortalPanel& p : portal_panels_) all_flat = all_flat && p.flat;
+  stratified_sensor_portals_ = all_flat && !scene_.domain.has_thick_walls() ? kStratifiedSensorPortals : kSensorPortals;
 }
 
 namespace {
@@ -832,11 +835,12 @@ void PathTracer::trace_sensor(size_t i, size_t path, const PathSamples* samples,
       // uniform in each element's solid angle.
       if (portal_selection_.size() != scene_.sensors.size())
         throw std::logic_error("PathTracer: prepare_portal_selection() must run before recording stratified paths");
-      for (size_t j = 0; j < kStratifiedSensorPortals; ++j) {
-        const auto [u, v] = samples->portal(j, kStratifiedSensorPortals);
+      const size_t count = stratified_sensor_portals_;
+      for (size_t j = 0; j < count; ++j) {
+        const auto [u, v] = samples->portal(j, count);
         const PortalSelection::Choice c = portal_selection_[i].choose(u);
         const PortalAim aim = aim_at_element(c.element, Vec2(c.remainder, v),
-                                             static_cast<float>(kStratifiedSensorPortals * c.probability), true,
+                                             static_cast<float>(count * c.probability), true,
                                              p, n);
         sample_portal(aim, p, n, from_sensor, rng, cosine, sink);
       }

@@ -29,9 +29,12 @@ class PathTracer {
   // 4 balances the direct term (stratified, cheap to improve) against the indirect paths.
   static constexpr size_t kSensorPortals = 4;
   // With stratified samples (render.sampler "sobol"), aimed by the sensor's view and uniform in
-  // each element's solid angle, two do better than four did (every one now lands on an element
-  // the sensor sees), at less time and memory per path.
+  // each element's solid angle, two do better than four did on flat, thin walls (every one lands
+  // on an element the sensor sees), at less time and memory per path. On curved panels (sampled
+  // by area) and in thick walls (whose tubes the solid angle of the inner face does not see) they
+  // keep four.
   static constexpr size_t kStratifiedSensorPortals = 2;
+  size_t stratified_sensor_portals() const { return stratified_sensor_portals_; }
 
   // `openings` are cut (closed mode); `reveals` line them through the wall (materials per face).
   // With `patches` (an annual pass: the scene's sky is unit and its suns are the sun clusters), every
@@ -194,6 +197,7 @@ class PathTracer {
   };
   std::vector<PortalPanel> portal_panels_;
   bool panel_portals_ = false;  // interior portal samples by aim_from_vertex (render.sampler "sobol")
+  size_t stratified_sensor_portals_ = kStratifiedSensorPortals;
   const SkyPatches* patches_ = nullptr;
 };
 
