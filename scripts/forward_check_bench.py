@@ -35,7 +35,8 @@ def run(cli, scene, paths, seed):
         out = os.path.join(tmp, "values.json")
         start = time.perf_counter()
         subprocess.run([cli, "evaluate", os.path.join(ROOM, scene), "--openings", os.path.join(ROOM, "window.json"),
-                        "-o", out, "--paths", str(paths), "--seed", str(seed), "--quiet"], check=True)
+                        "-o", out, "--paths", str(paths), "--seed", str(seed), "--quiet"], check=True,
+                       capture_output=True)
         seconds = time.perf_counter() - start
         with open(out) as f:
             values = [s["value"] for s in json.load(f)["sensors"]]
