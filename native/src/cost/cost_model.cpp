@@ -129,6 +129,11 @@ void add_contributions(const Scene& scene, long long paths, CostEstimate* e) {
                        fewer_elements, true});
   e->memory.push_back({"analysis", "per-thread analysis buffers", kAnalysisBytesPerElement * N * worker_threads(scene),
                        "tracing", fewer_elements});
+  // The stratified sampler's per-sensor choice of portal samples (trace/portal_selection.h): a
+  // 32-bit interval start per sensor and element, while the paths are traced.
+  if (scene.render.sampler == RenderSettings::Sampler::kSobol)
+    e->memory.push_back({"portal_selection", "each sensor's choice of portal samples (sensors x elements)", 4 * S * N,
+                         "tracing", "fewer sensors or " + fewer_elements});
   if (scene.climate && scene.climate->sky) add_annual(scene, records, e);
   e->time.push_back({"tracing", "tracing the contribution paths",
                      S * static_cast<double>(paths) * expected_vertices(scene) * kTraceSecondsPerVertex *
