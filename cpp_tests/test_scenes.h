@@ -124,6 +124,11 @@ inline std::vector<uint8_t> mask_of_elements_inside(const Scene& scene, const st
   return mask;
 }
 
+// The reference room's irradiance, all bounces (../shared/reference/radiance-scene-b.md: Radiance
+// 6.1a and radiosity, within 0.3 %), sensors in the order of examples/reference_room.
+inline constexpr double kReferenceRoomTable[16] = {66.90, 258.96, 258.96, 66.90, 50.68, 81.13, 81.13, 50.68,
+                                                   30.73, 36.73, 36.73, 30.73, 22.83, 25.33, 25.33, 22.83};
+
 // |a - b| within k combined standard errors, k read as the false-alarm rate of a normal k sigma.
 // Each standard error is estimated from kReplicates groups (kReplicates - 1 degrees of freedom),
 // so the bound is the Student t quantile of that rate at the Welch-Satterthwaite degrees of
