@@ -59,7 +59,8 @@ class Gui:
         config = tmp / "config"
         config.mkdir()
         self.env.update(BLENDER_USER_SCRIPTS=str(scripts), BLENDER_USER_CONFIG=str(config))
-        self.log = open(tmp / "blender.log", "w")
+        self.log_path = str(tmp / "blender.log")
+        self.log = open(self.log_path, "w")
         self.blender = subprocess.Popen(
             [BLENDER, "--factory-startup", "--window-geometry", "0", "0", str(SIZE[0]), str(SIZE[1]), empty,
              "--python", os.path.join(HERE, "blender", "gui_driver.py"), "--", self.channel],
@@ -103,6 +104,16 @@ class Gui:
         self.xvfb.terminate()
         self.xvfb.wait(10)
 
+    def log_tail(self, lines=40):
+        """The end of Blender's own output, for a failure's message."""
+        self.log.flush()
+        with open(self.log_path, errors="replace") as f:
+            return "".join(f.readlines()[-lines:])
+
+    def assert_running(self):
+        if hasattr(self, "blender") and self.blender.poll() is not None:
+            raise AssertionError("Blender exited (%d); its output ends:\n%s" % (self.blender.returncode, self.log_tail()))
+
     def read_state(self, name="state.json"):
         """The driver's state (state.json), or the running job's alone, more promptly (job.json)."""
         failed = os.path.join(self.channel, "failed.json")
@@ -117,15 +128,15 @@ class Gui:
     def wait_for(self, condition, timeout=60, what="the condition", name="state.json"):
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
-            if hasattr(self, "blender"):
-                assert self.blender.poll() is None, "Blender exited (%d)" % self.blender.returncode
+            self.assert_running()
             s = self.read_state(name)
             if s is not None and condition(s):
                 if name == "state.json":
                     self.state = s
                 return s
             time.sleep(0.002)
-        raise AssertionError("waited %.0f s for %s; last state %r" % (timeout, what, self.read_state(name)))
+        raise AssertionError("waited %.0f s for %s; last state %r; Blender's output ends:\n%s"
+                             % (timeout, what, self.read_state(name), self.log_tail()))
 
     def command(self, what, timeout=60, **args):
         number = self.commands
@@ -137,7 +148,9 @@ class Gui:
         os.replace(part, os.path.join(self.channel, "command-%d.json" % number))
         deadline = time.monotonic() + timeout
         while not os.path.exists(reply):
-            assert time.monotonic() < deadline, "no reply to %r" % what
+            self.assert_running()
+            assert time.monotonic() < deadline, "no reply to %r in %.0f s; last state %r; Blender's output ends:\n%s" % (
+                what, timeout, self.read_state(), self.log_tail())
             self.read_state()  # raises if the driver failed
             time.sleep(0.005)
         value = json.load(open(reply))
