@@ -61,7 +61,7 @@ void attach(Scene* scene, std::shared_ptr<SkyMatrix> sky) {
 
 AnnualIlluminance annual_of(const Contributions& c, const std::vector<uint8_t>& mask) {
   const AnnualCoefficients k =
-      annual_coefficients(c.records, *c.annual, [&](int32_t e, const PanelPoint&) { return mask[e] != 0; });
+      annual_coefficients(c.records, *c.annual, [&](int32_t e, const CellPoint&) { return mask[e] != 0; });
   return annual_illuminance(k, *c.annual);
 }
 

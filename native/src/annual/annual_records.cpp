@@ -101,7 +101,7 @@ void record_direct_sun(const Scene& scene, const PathTracer& tracer, AnnualRecor
         r.event_points.push_back({});
         for (const PathTracer::Crossing& c : sun.crossed) {
           r.conditions.push_back(c.element);
-          r.condition_points.push_back(c.point);
+          r.condition_points.push_back(CellPoint::of(scene.domain.elements()[c.element], c.point));
         }
       }
       r.end_path();

@@ -80,14 +80,14 @@ AnnualStudy annual_study(const Scene& scene, const Contributions& c, const OpenR
                          const Progress* progress) {
   check_contributions_match(scene, c, "an annual study");
   check_annual(c);
-  return study(c, [&](int32_t k, const PanelPoint& p) { return region.is_open(k, p); },
+  return study(c, [&](int32_t k, const CellPoint& p) { return region.is_open(k, p); },
                c.evaluate(region, progress), progress);
 }
 
 AnnualStudy annual_study(const Contributions& c, const std::vector<uint8_t>& open, const Progress* progress) {
   check_annual(c);
   const SensorValues mean = c.evaluate(open, progress);  // checks the mask's size
-  return study(c, [&](int32_t k, const PanelPoint&) { return open[k] != 0; }, mean, progress);
+  return study(c, [&](int32_t k, const CellPoint&) { return open[k] != 0; }, mean, progress);
 }
 
 OpenRegion region_of_openings(const Scene& scene, const std::vector<OpeningInput>& openings) {

@@ -25,7 +25,7 @@ bool is_occupied(const HourStamp& h, const AnnualMetricSettings& s) {
 // exact hourly sun replaces it) when the domain is open where `open` says.
 template <typename Open>
 void add_path_sources(const SensorRecord& r, size_t p, Open open, double sign, double* row) {
-  for_each_counting_event_in_region(r, p, [&](int32_t k, const PanelPoint&) { return open(k); }, [&](uint32_t e) {
+  for_each_counting_event_in_region(r, p, [&](int32_t k, const CellPoint&) { return open(k); }, [&](uint32_t e) {
     const uint16_t source = r.event_sources[e];
     if (!(source & AnnualSources::kDirect)) row[source] += sign * r.event_coefficients[e];
   });
@@ -221,7 +221,7 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
       const float sun = annual.climate->sky->sun_normal_illuminance[hour];
       auto value = [&](int32_t flip) {
         return static_cast<float>(
-            path_value_in_region(d, j, [&](int32_t k, const PanelPoint&) { return (about[k] != 0) != (k == flip); }));
+            path_value_in_region(d, j, [&](int32_t k, const CellPoint&) { return (about[k] != 0) != (k == flip); }));
       };
       const float base = value(-1) * sun;
       m.direct(row, column) = base;

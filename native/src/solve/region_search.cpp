@@ -96,13 +96,13 @@ RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, 
     };
     if (progress && progress->cancelled()) return;
     begin.assign(elements + 1, 0);
-    for_each_point([&](int32_t k, const PanelPoint&, size_t, uint32_t, bool) { ++begin[k + 1]; });
+    for_each_point([&](int32_t k, const CellPoint&, size_t, uint32_t, bool) { ++begin[k + 1]; });
     for (size_t k = 0; k < elements; ++k) begin[k + 1] += begin[k];
     met.resize(begin[elements]);
     open.event.assign(r.events.size(), 0);
     open.condition.assign(r.conditions.size(), 0);
     std::vector<uint32_t> next(begin.begin(), begin.end() - 1);
-    for_each_point([&](int32_t k, const PanelPoint& q, size_t p, uint32_t index, bool is_event) {
+    for_each_point([&](int32_t k, const CellPoint& q, size_t p, uint32_t index, bool is_event) {
       const PanelPoint in_cell = region.point_in_cell(k, q);
       Met& m = met[next[k]++];
       m = {in_cell.u, in_cell.v, static_cast<uint32_t>(p), index, is_event};
@@ -156,7 +156,7 @@ const Eigen::VectorXd& RegionSearch::try_region(const std::vector<PanelRectangle
     std::vector<uint32_t>& paths = t.paths;
     paths.clear();
     points_in(i, strips, [&](int k, const Met& m) {
-      const uint8_t now = region.is_open(k, {m.u, m.v});
+      const uint8_t now = region.is_open(k, PanelPoint{m.u, m.v});
       if (now == open.of(m)) return;
       open.of(m) = now;
       t.flipped.push_back(&m);

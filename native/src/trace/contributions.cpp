@@ -130,14 +130,14 @@ SensorValues Contributions::evaluate(const std::vector<uint8_t>& open, const Pro
   if (open.size() != element_count())
     throw std::invalid_argument("open-element mask has " + std::to_string(open.size()) + " entries, expected " +
                                 std::to_string(element_count()));
-  return evaluate_records(records, [&](int32_t k, const PanelPoint&) { return open[k] != 0; }, progress);
+  return evaluate_records(records, [&](int32_t k, const CellPoint&) { return open[k] != 0; }, progress);
 }
 
 SensorValues Contributions::evaluate(const OpenRegion& region, const Progress* progress) const {
   if (region.element_count() != element_count())
     throw std::invalid_argument("open region of a domain with " + std::to_string(region.element_count()) +
                                 " elements, expected " + std::to_string(element_count()));
-  return evaluate_records(records, [&](int32_t k, const PanelPoint& p) { return region.is_open(k, p); }, progress);
+  return evaluate_records(records, [&](int32_t k, const CellPoint& p) { return region.is_open(k, p); }, progress);
 }
 
 size_t Contributions::memory_bytes() const {

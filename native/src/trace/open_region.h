@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scene/opening_domain.h"
+#include "trace/cell_point.h"
 
 namespace fenestra {
 
@@ -48,17 +49,22 @@ class OpenRegion {
   // exactly the elements they cover.
   bool is_open(int32_t element, const PanelPoint& p) const {
     const Cell& cell = cells_[element];
-    const double u = std::clamp<double>(p.u, cell.u0 + inset_, cell.u1 - inset_);
-    const double v = std::clamp<double>(p.v, cell.v0 + inset_, cell.v1 - inset_);
-    for (const PanelRectangle& r : by_panel_[cell.panel])
-      if (u > r.u0 && u < r.u1 && v > r.v0 && v < r.v1) return true;
-    return false;
+    return is_open_in(cell, std::clamp<double>(p.u, cell.u0 + inset_, cell.u1 - inset_),
+                      std::clamp<double>(p.v, cell.v0 + inset_, cell.v1 - inset_));
   }
-  // The point is_open(element, p) tests: p taken inside the element's cell.
-  PanelPoint point_in_cell(int32_t element, const PanelPoint& p) const {
+  // The same for a point of the records (where in k's cell the path met it), tested as the panel
+  // point point_in_cell gives (the region search keeps those).
+  bool is_open(int32_t element, const CellPoint& q) const {
+    const PanelPoint p = point_in_cell(element, q);
+    return is_open_in(cells_[element], p.u, p.v);
+  }
+  // The point is_open(element, q) tests: q's place in the element's cell, off its edges by the inset.
+  PanelPoint point_in_cell(int32_t element, const CellPoint& q) const {
     const Cell& cell = cells_[element];
-    return {static_cast<float>(std::clamp<double>(p.u, cell.u0 + inset_, cell.u1 - inset_)),
-            static_cast<float>(std::clamp<double>(p.v, cell.v0 + inset_, cell.v1 - inset_))};
+    double u, v;
+    q.to_panel(cell.u0, cell.u1, cell.v0, cell.v1, &u, &v);
+    return {static_cast<float>(std::clamp<double>(u, cell.u0 + inset_, cell.u1 - inset_)),
+            static_cast<float>(std::clamp<double>(v, cell.v0 + inset_, cell.v1 - inset_))};
   }
   size_t element_count() const { return cells_.size(); }
   // The same domain's cells with other open rectangles (a search tries many).
@@ -70,6 +76,12 @@ class OpenRegion {
     double u0, u1, v0, v1;  // the element's cell
   };
   std::vector<Cell> cells_;
+  bool is_open_in(const Cell& cell, double u, double v) const {
+    for (const PanelRectangle& r : by_panel_[cell.panel])
+      if (u > r.u0 && u < r.u1 && v > r.v0 && v < r.v1) return true;
+    return false;
+  }
+
   double inset_ = 0.0;
   std::vector<std::vector<PanelRectangle>> by_panel_;
 };

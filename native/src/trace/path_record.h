@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene/opening_domain.h"  // PanelPoint
+#include "trace/cell_point.h"
 
 namespace fenestra {
 
@@ -35,10 +35,10 @@ struct SensorRecord {
   std::vector<PathEvent> events;
   std::vector<int32_t> conditions;
   // Parallel to `events` (escapes and their parts: where the path met the element) and to
-  // `conditions` (where the element was crossed or met): any open region of the domain, not only
-  // whole elements, can be evaluated (path_value_in_region).
-  std::vector<PanelPoint> event_points;
-  std::vector<PanelPoint> condition_points;
+  // `conditions` (where the element was crossed or met), as places in the element's cell: any
+  // open region of the domain, not only whole elements, can be evaluated (path_value_in_region).
+  std::vector<CellPoint> event_points;
+  std::vector<CellPoint> condition_points;
   // An annual pass only (`sourced`), parallel to `events`: the light source of each event (a sky
   // patch or a sun cluster, AnnualSources) and its daylight coefficient, the value it has with
   // that source at unit strength (`value` is then its value under the scene's design sky).
@@ -54,8 +54,8 @@ struct SensorRecord {
   // Whether event e's conditions hold for the open mask.
   bool holds(const PathEvent& e, const std::vector<uint8_t>& open) const;
   size_t memory_bytes() const {
-    return path_begin.capacity() * sizeof(uint32_t) + events.capacity() * (sizeof(PathEvent) + sizeof(PanelPoint)) +
-           conditions.capacity() * (sizeof(int32_t) + sizeof(PanelPoint)) +
+    return path_begin.capacity() * sizeof(uint32_t) + events.capacity() * (sizeof(PathEvent) + sizeof(CellPoint)) +
+           conditions.capacity() * (sizeof(int32_t) + sizeof(CellPoint)) +
            event_sources.capacity() * sizeof(uint16_t) + event_coefficients.capacity() * sizeof(float);
   }
 };
@@ -102,7 +102,7 @@ double path_value_by_point(const SensorRecord& r, size_t p, EventOpen event_open
 }
 
 // Calls count(i) for every counting event of path p when the domain is open where
-// is_open(element, point) holds.
+// is_open(element, point) holds (point: a CellPoint of that element).
 template <typename IsOpen, typename Count>
 void for_each_counting_event_in_region(const SensorRecord& r, size_t p, IsOpen is_open, Count count) {
   for_each_counting_event(

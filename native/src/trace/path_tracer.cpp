@@ -118,7 +118,12 @@ class PathTracer::Sink {
   static constexpr int kMaxPassed = 3;
 
   static Sink sum() { return Sink(nullptr, false); }
-  static Sink record(SensorRecord* record) { return Sink(record, false); }
+  // `cells`: the domain's elements, where the record keeps its points (CellPoint).
+  static Sink record(SensorRecord* record, const std::vector<Element>* cells) {
+    Sink sink(record, false);
+    sink.cells_ = cells;
+    return sink;
+  }
   static Sink outside() { return Sink(nullptr, true); }
   // Closed mode, light listed by source as it arrives (an annual study with the openings cut).
   static Sink by_source(std::vector<SourceLight>* out) {
@@ -231,7 +236,7 @@ class PathTracer::Sink {
             const Crossing* closed, size_t closed_count, uint16_t source) {
     record_->events.push_back({v, element, static_cast<uint32_t>(record_->conditions.size()),
                                static_cast<uint16_t>(open_count), static_cast<uint8_t>(closed_count), flags});
-    record_->event_points.push_back(at);
+    record_->event_points.push_back(element >= 0 ? CellPoint::of((*cells_)[element], at) : CellPoint());
     if (record_->sourced) record_->event_sources.push_back(source);
     append_conditions(open, open_count);
     append_conditions(closed, closed_count);
@@ -239,11 +244,12 @@ class PathTracer::Sink {
   void append_conditions(const Crossing* c, size_t count) {
     for (size_t i = 0; i < count; ++i) {
       record_->conditions.push_back(c[i].element);
-      record_->condition_points.push_back(c[i].point);
+      record_->condition_points.push_back(CellPoint::of((*cells_)[c[i].element], c[i].point));
     }
   }
 
   SensorRecord* record_;
+  const std::vector<Element>* cells_ = nullptr;
   bool outside_;
   std::vector<SourceLight>* by_source_ = nullptr;
   std::vector<Part> parts_;  // parts_[current_] takes the light now
@@ -908,7 +914,7 @@ void PathTracer::sensor_sample_by_source(size_t sensor, const PathSamples* sampl
 
 void PathTracer::record_sensor_path(size_t sensor, size_t path, const PathSamples* samples, Rng& rng,
                                     SensorRecord* record) const {
-  Sink sink = Sink::record(record);
+  Sink sink = Sink::record(record, &scene_.domain.elements());
   trace_sensor(sensor, path, samples, rng, nullptr, sink);
   record->end_path();
 }
