@@ -96,13 +96,10 @@ void record_direct_sun(const Scene& scene, const PathTracer& tracer, AnnualRecor
     for (const int h : annual->sun_hours) {
       const PathTracer::DirectSun sun = tracer.direct_sun(i, sky.sun_direction[h]);
       if (sun.visible) {
-        r.events.push_back({sun.cosine * sun.attenuation, -1, static_cast<uint32_t>(r.conditions.size()),
-                            static_cast<uint16_t>(sun.crossed.size()), 0, 0});
-        r.event_points.push_back({});
-        for (const PathTracer::Crossing& c : sun.crossed) {
-          r.conditions.push_back(c.element);
-          r.condition_points.push_back(CellPoint::of(scene.domain.elements()[c.element], c.point));
-        }
+        std::vector<MetElement> crossed;
+        for (const PathTracer::Crossing& c : sun.crossed)
+          crossed.push_back({c.element, CellPoint::of(scene.domain.elements()[c.element], c.point)});
+        r.add_light(sun.cosine * sun.attenuation, crossed.data(), crossed.size(), nullptr, 0);
       }
       r.end_path();
     }

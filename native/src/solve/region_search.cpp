@@ -86,12 +86,12 @@ RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, 
     auto for_each_point = [&](auto visit) {
       for (size_t p = 0; p < r.path_count(); ++p) {
         if (progress && p % kPollPaths == 0 && progress->cancelled()) return;
-        for (uint32_t e = r.path_begin[p]; e < r.path_begin[p + 1]; ++e) {
-          const PathEvent& ev = r.events[e];
-          if (ev.is_escape()) visit(ev.element, r.event_points[e], p, e, true);
-          for (uint32_t k = ev.conditions_begin; k < ev.conditions_begin + ev.open_count + ev.closed_count; ++k)
+        r.walk(p, [&](uint32_t e, const PathEvent& ev, uint32_t c) {
+          if (ev.is_escape() || ev.own_condition()) visit(ev.element, r.event_points[e], p, e, true);
+          for (uint32_t k = c; k < c + ev.stored_conditions(); ++k)
             visit(r.conditions[k], r.condition_points[k], p, k, false);
-        }
+          return true;
+        });
       }
     };
     if (progress && progress->cancelled()) return;

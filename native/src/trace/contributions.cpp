@@ -55,8 +55,11 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
       touched.push_back(Touched{k});
       return touched.back();
     };
+    uint32_t next_conditions = rec.path_conditions_begin[p];
     for (size_t j = 0; j < m; ++j) {
       const PathEvent& ev = rec.events[b + j];
+      const uint32_t conditions = next_conditions;
+      next_conditions += ev.stored_conditions();
       if (ev.is_escape_part()) continue;  // taken with its escape
       if (ev.is_escape()) {
         Touched& t = entry(ev.element);
@@ -68,11 +71,11 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
       }
       if (ev.open_count == 0) continue;
       // Light that needs only element k open (k alone open closes all others: closed conditions hold).
-      const int32_t* c = &rec.conditions[ev.conditions_begin];
+      const int32_t* c = rec.condition_elements(ev, conditions);
       const int k = c[0];
       bool single = true;
-      for (uint16_t i = 1; i < ev.open_count; ++i) single = single && c[i] == k;
-      for (uint16_t i = 0; i < ev.closed_count; ++i) single = single && c[ev.open_count + i] != k;
+      for (uint8_t i = 1; i < ev.open_count; ++i) single = single && c[i] == k;
+      for (uint8_t i = 0; i < ev.closed_count; ++i) single = single && c[ev.open_count + i] != k;
       if (single) {
         Touched& t = entry(k);
         if (t.escape_event < 0) t.light_alone += ev.value;

@@ -26,9 +26,9 @@ struct FlipChange {
 // Changes of event e (value v) under single flips, appended to out: when its conditions hold,
 // flipping any of their elements breaks them; when they fail only on one element, every
 // occurrence of it failing, flipping that element makes them hold.
-void event_changes(const SensorRecord& r, const PathEvent& e, const std::vector<uint8_t>& open, uint32_t at, bool part,
-                   std::vector<FlipChange>* out) {
-  const int32_t* c = r.conditions.data() + e.conditions_begin;
+void event_changes(const SensorRecord& r, const PathEvent& e, uint32_t conditions, const std::vector<uint8_t>& open,
+                   uint32_t at, bool part, std::vector<FlipChange>* out) {
+  const int32_t* c = r.condition_elements(e, conditions);
   const int n = e.open_count + e.closed_count;
   auto satisfied = [&](int i) { return (open[c[i]] != 0) == (i < e.open_count); };
   int32_t failing = -1;
@@ -91,16 +91,15 @@ class PathFlips {
     light_before_.clear();
     escape_value_.clear();
     first_open_ = kNone, first_open_element_ = -1;
-    const uint32_t b = r.path_begin[p], end = r.path_begin[p + 1];
+    const uint32_t b = r.path_begin[p];
     double light = 0.0;
     uint32_t escape = kNone;  // the escape the parts that follow belong to
-    for (uint32_t i = b; i < end; ++i) {
-      const PathEvent& e = r.events[i];
+    r.walk(p, [&](uint32_t i, const PathEvent& e, uint32_t c) {
       const uint32_t at = i - b;
       if (e.is_light()) {
         escape = kNone;
-        if (r.holds(e, open)) light += e.value;
-        event_changes(r, e, open, at, false, &changes_);
+        if (r.holds(e, c, open)) light += e.value;
+        event_changes(r, e, c, open, at, false, &changes_);
       } else if (e.is_escape()) {
         escape = at;
         escapes_.push_back({e.element, at});
@@ -109,10 +108,11 @@ class PathFlips {
         escape_value_.push_back(e.value);
         if (first_open_ == kNone && open[e.element]) first_open_ = at, first_open_element_ = e.element;
       } else if (escape != kNone) {  // a part of the escape before it
-        if (r.holds(e, open)) escape_value_.back() += e.value;
-        event_changes(r, e, open, escape, true, &changes_);
+        if (r.holds(e, c, open)) escape_value_.back() += e.value;
+        event_changes(r, e, c, open, escape, true, &changes_);
       }
-    }
+      return true;
+    });
     total_light_ = light;
   }
 

@@ -7,11 +7,11 @@ namespace fenestra {
 void SensorRecord::append(const SensorRecord& other) {
   const uint32_t event_base = static_cast<uint32_t>(events.size());
   const uint32_t condition_base = static_cast<uint32_t>(conditions.size());
-  for (size_t p = 1; p < other.path_begin.size(); ++p) path_begin.push_back(other.path_begin[p] + event_base);
-  for (PathEvent e : other.events) {
-    e.conditions_begin += condition_base;
-    events.push_back(e);
+  for (size_t p = 1; p < other.path_begin.size(); ++p) {
+    path_begin.push_back(other.path_begin[p] + event_base);
+    path_conditions_begin.push_back(other.path_conditions_begin[p] + condition_base);
   }
+  events.insert(events.end(), other.events.begin(), other.events.end());
   conditions.insert(conditions.end(), other.conditions.begin(), other.conditions.end());
   event_points.insert(event_points.end(), other.event_points.begin(), other.event_points.end());
   condition_points.insert(condition_points.end(), other.condition_points.begin(), other.condition_points.end());
@@ -31,6 +31,7 @@ void SensorRecord::reserve_for(const SensorRecord* parts, size_t count) {
     coefficients += parts[i].event_coefficients.size();
   }
   path_begin.reserve(paths);
+  path_conditions_begin.reserve(paths);
   events.reserve(event_count);
   event_points.reserve(event_count);
   conditions.reserve(condition_count);
@@ -39,42 +40,60 @@ void SensorRecord::reserve_for(const SensorRecord* parts, size_t count) {
   event_coefficients.reserve(coefficients);
 }
 
-bool SensorRecord::holds(const PathEvent& e, const std::vector<uint8_t>& open) const {
-  const int32_t* c = conditions.data() + e.conditions_begin;
-  for (uint16_t i = 0; i < e.open_count; ++i)
-    if (!open[c[i]]) return false;
-  for (uint16_t i = 0; i < e.closed_count; ++i)
-    if (open[c[e.open_count + i]]) return false;
+void SensorRecord::add_light(float value, const MetElement* open, size_t open_count, const MetElement* closed,
+                             size_t closed_count) {
+  if (open_count == 1 && closed_count == 0) {  // the commonest: kept in the event itself
+    events.push_back({value, open[0].element, 1, 0, PathEvent::kLight | PathEvent::kOwnCondition});
+    event_points.push_back(open[0].point);
+    return;
+  }
+  events.push_back({value, -1, static_cast<uint8_t>(open_count), static_cast<uint8_t>(closed_count), PathEvent::kLight});
+  event_points.push_back({});
+  add_conditions(open, open_count);
+  add_conditions(closed, closed_count);
+}
+
+void SensorRecord::add_escape(float value, const MetElement& at, bool part, const MetElement* open, size_t open_count,
+                              const MetElement* closed, size_t closed_count) {
+  events.push_back({value, at.element, static_cast<uint8_t>(open_count), static_cast<uint8_t>(closed_count),
+                    part ? PathEvent::kEscapePart : uint8_t(0)});
+  event_points.push_back(at.point);
+  add_conditions(open, open_count);
+  add_conditions(closed, closed_count);
+}
+
+void SensorRecord::add_conditions(const MetElement* met, size_t count) {
+  for (size_t i = 0; i < count; ++i) {
+    conditions.push_back(met[i].element);
+    condition_points.push_back(met[i].point);
+  }
+}
+
+bool SensorRecord::holds(const PathEvent& e, uint32_t c, const std::vector<uint8_t>& open) const {
+  const int32_t* k = condition_elements(e, c);
+  for (uint8_t i = 0; i < e.open_count; ++i)
+    if (!open[k[i]]) return false;
+  for (uint8_t i = 0; i < e.closed_count; ++i)
+    if (open[k[e.open_count + i]]) return false;
   return true;
 }
 
 void path_elements(const SensorRecord& r, size_t p, std::vector<int32_t>* out) {
   out->clear();
-  for (uint32_t i = r.path_begin[p]; i < r.path_begin[p + 1]; ++i) {
-    const PathEvent& e = r.events[i];
-    if (e.element >= 0) out->push_back(e.element);
-    const int32_t* c = r.conditions.data() + e.conditions_begin;
-    out->insert(out->end(), c, c + e.open_count + e.closed_count);
-  }
+  r.walk(p, [&](uint32_t, const PathEvent& e, uint32_t c) {
+    if (!e.is_light()) out->push_back(e.element);
+    const int32_t* k = r.condition_elements(e, c);
+    out->insert(out->end(), k, k + e.open_count + e.closed_count);
+    return true;
+  });
   std::sort(out->begin(), out->end());
   out->erase(std::unique(out->begin(), out->end()), out->end());
 }
 
 double path_value(const SensorRecord& record, size_t p, const std::vector<uint8_t>& open) {
-  double sum = 0.0;
-  const uint32_t end = record.path_begin[p + 1];
-  for (uint32_t i = record.path_begin[p]; i < end; ++i) {
-    const PathEvent& e = record.events[i];
-    if (e.is_light()) {
-      if (record.holds(e, open)) sum += e.value;
-    } else if (e.is_escape() && open[e.element]) {
-      sum += e.value;
-      for (uint32_t j = i + 1; j < end && record.events[j].is_escape_part(); ++j)
-        if (record.holds(record.events[j], open)) sum += record.events[j].value;
-      return sum;
-    }
-  }
-  return sum;
+  return path_value_by_point(
+      record, p, [&](uint32_t i) { return open[record.events[i].element] != 0; },
+      [&](uint32_t j) { return open[record.conditions[j]] != 0; });
 }
 
 }  // namespace fenestra

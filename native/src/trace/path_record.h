@@ -10,28 +10,40 @@
 namespace fenestra {
 
 // An event counts when every element of its `open` list is open and every element of its
-// `closed` list is closed (the lists live in SensorRecord::conditions, open ones first).
+// `closed` list is closed (the lists live in SensorRecord::conditions, open ones first, event after
+// event in path order; light that needs one element open, the commonest event, keeps that element
+// in the event itself, kOwnCondition).
 struct PathEvent {
   float value;             // luminance-weighted contribution (sky units x sr; lux for a sky in cd/m^2)
-  int32_t element;         // >= 0: an escape: the path reaches this element; if it is open the path
-                           //       leaves through it, gathers this event's value (and that of the
-                           //       escape parts right after it whose conditions hold) and nothing
-                           //       later counts. Parts are light found beyond the element that met
-                           //       other elements: through them (open) or off them (closed).
-                           // -1:   light (sky hit or next-event estimate).
-  uint32_t conditions_begin;
-  uint16_t open_count;     // elements that must be open (e.g. crossed by a shadow ray)
+  int32_t element;         // An escape (no kLight): the path reaches this element; if it is open the
+                           //   path leaves through it, gathers this event's value (and that of the
+                           //   escape parts right after it whose conditions hold) and nothing later
+                           //   counts. Parts (kEscapePart) are light found beyond the element that
+                           //   met other elements: through them (open) or off them (closed).
+                           // Light (kLight; sky hit or next-event estimate): with kOwnCondition, the
+                           //   one element it needs open (its point is the event's point); else -1.
+  uint8_t open_count;      // elements that must be open (e.g. crossed by a shadow ray)
   uint8_t closed_count;    // elements that must be closed (reflected off outside)
-  uint8_t flags;           // kEscapePart
+  uint8_t flags;
 
-  static constexpr uint8_t kEscapePart = 1;
-  bool is_escape() const { return element >= 0 && !(flags & kEscapePart); }
-  bool is_escape_part() const { return element >= 0 && (flags & kEscapePart); }
-  bool is_light() const { return element < 0; }
+  static constexpr uint8_t kEscapePart = 1, kLight = 2, kOwnCondition = 4;
+  bool is_escape() const { return !(flags & (kEscapePart | kLight)); }
+  bool is_escape_part() const { return flags & kEscapePart; }
+  bool is_light() const { return flags & kLight; }
+  bool own_condition() const { return flags & kOwnCondition; }
+  // Entries it takes in SensorRecord::conditions.
+  uint32_t stored_conditions() const { return own_condition() ? 0u : uint32_t(open_count) + closed_count; }
+};
+
+// An element a path met, and where: an escape's element, or a condition of an event.
+struct MetElement {
+  int32_t element = -1;
+  CellPoint point;
 };
 
 struct SensorRecord {
   std::vector<uint32_t> path_begin{0};  // events of path p: [path_begin[p], path_begin[p + 1])
+  std::vector<uint32_t> path_conditions_begin{0};  // its conditions from here, event after event
   std::vector<PathEvent> events;
   std::vector<int32_t> conditions;
   // Parallel to `events` (escapes and their parts: where the path met the element) and to
@@ -47,17 +59,43 @@ struct SensorRecord {
   std::vector<float> event_coefficients;
 
   size_t path_count() const { return path_begin.size() - 1; }
-  void end_path() { path_begin.push_back(static_cast<uint32_t>(events.size())); }
+  void end_path() {
+    path_begin.push_back(static_cast<uint32_t>(events.size()));
+    path_conditions_begin.push_back(static_cast<uint32_t>(conditions.size()));
+  }
+  // Appends light that needs the `open` elements open and the `closed` ones closed.
+  void add_light(float value, const MetElement* open, size_t open_count, const MetElement* closed, size_t closed_count);
+  // Appends an escape through `at` (or, `part`, light beyond it under the given conditions).
+  void add_escape(float value, const MetElement& at, bool part, const MetElement* open, size_t open_count,
+                  const MetElement* closed, size_t closed_count);
+  // Calls visit(i, event, c) for the events i of path p in order, c the index in `conditions` where
+  // the event's own start (when it stores any); stops when visit returns false.
+  template <typename Visit>
+  void walk(size_t p, Visit visit) const {
+    uint32_t c = path_conditions_begin[p];
+    for (uint32_t i = path_begin[p], end = path_begin[p + 1]; i < end; ++i) {
+      const PathEvent& e = events[i];
+      if (!visit(i, e, c)) return;
+      c += e.stored_conditions();
+    }
+  }
+  // The elements of the conditions of `e`, open ones first; c as walk() gives it.
+  const int32_t* condition_elements(const PathEvent& e, uint32_t c) const {
+    return e.own_condition() ? &e.element : conditions.data() + c;
+  }
   void append(const SensorRecord& other);
   // Reserves exactly what appending parts[0 .. count) will need.
   void reserve_for(const SensorRecord* parts, size_t count);
-  // Whether event e's conditions hold for the open mask.
-  bool holds(const PathEvent& e, const std::vector<uint8_t>& open) const;
+  // Whether event e's conditions hold for the open mask; c as walk() gives it.
+  bool holds(const PathEvent& e, uint32_t c, const std::vector<uint8_t>& open) const;
   size_t memory_bytes() const {
-    return path_begin.capacity() * sizeof(uint32_t) + events.capacity() * (sizeof(PathEvent) + sizeof(CellPoint)) +
+    return (path_begin.capacity() + path_conditions_begin.capacity()) * sizeof(uint32_t) + events.capacity() * (sizeof(PathEvent) + sizeof(CellPoint)) +
            conditions.capacity() * (sizeof(int32_t) + sizeof(CellPoint)) +
            event_sources.capacity() * sizeof(uint16_t) + event_coefficients.capacity() * sizeof(float);
   }
+
+ private:
+  void add_conditions(const MetElement* met, size_t count);
 };
 
 // Elements path p's value can depend on (its escapes' and its conditions'), sorted, without repeats.
@@ -67,30 +105,34 @@ void path_elements(const SensorRecord& record, size_t p, std::vector<int32_t>* o
 double path_value(const SensorRecord& record, size_t p, const std::vector<uint8_t>& open);
 
 // Calls count(i) for every event i of path p whose light reaches the sensor, given which of its
-// points are open: event_open(i) for the escape that is event i, condition_open(j) for entry j of
-// the conditions.
+// points are open: event_open(i) for the escape that is event i (or the one condition light event i
+// keeps itself, kOwnCondition), condition_open(j) for entry j of the conditions.
 template <typename EventOpen, typename ConditionOpen, typename Count>
 void for_each_counting_event(const SensorRecord& r, size_t p, EventOpen event_open, ConditionOpen condition_open,
                              Count count) {
-  auto holds = [&](const PathEvent& e) {
-    for (uint32_t i = e.conditions_begin; i < e.conditions_begin + e.open_count; ++i)
-      if (!condition_open(i)) return false;
-    for (uint32_t i = e.conditions_begin + e.open_count; i < e.conditions_begin + e.open_count + e.closed_count; ++i)
-      if (condition_open(i)) return false;
+  auto holds = [&](uint32_t i, const PathEvent& e, uint32_t c) {
+    if (e.own_condition()) return static_cast<bool>(event_open(i));
+    for (uint32_t j = c; j < c + e.open_count; ++j)
+      if (!condition_open(j)) return false;
+    for (uint32_t j = c + e.open_count; j < c + e.open_count + e.closed_count; ++j)
+      if (condition_open(j)) return false;
     return true;
   };
-  const uint32_t end = r.path_begin[p + 1];
-  for (uint32_t i = r.path_begin[p]; i < end; ++i) {
-    const PathEvent& e = r.events[i];
+  bool gathering = false;  // the parts of the escape the path left through
+  r.walk(p, [&](uint32_t i, const PathEvent& e, uint32_t c) {
+    if (gathering) {
+      if (!e.is_escape_part()) return false;
+      if (holds(i, e, c)) count(i);
+      return true;
+    }
     if (e.is_light()) {
-      if (holds(e)) count(i);
+      if (holds(i, e, c)) count(i);
     } else if (e.is_escape() && event_open(i)) {
       count(i);
-      for (uint32_t j = i + 1; j < end && r.events[j].is_escape_part(); ++j)
-        if (holds(r.events[j])) count(j);
-      return;
+      gathering = true;
     }
-  }
+    return true;
+  });
 }
 
 // Value of path p from which of its points are open (see for_each_counting_event).

@@ -234,19 +234,18 @@ class PathTracer::Sink {
   static float finite(double v) { return std::isfinite(v) ? static_cast<float>(v) : 0.0f; }
   void push(float v, int element, const PanelPoint& at, uint8_t flags, const Crossing* open, size_t open_count,
             const Crossing* closed, size_t closed_count, uint16_t source) {
-    record_->events.push_back({v, element, static_cast<uint32_t>(record_->conditions.size()),
-                               static_cast<uint16_t>(open_count), static_cast<uint8_t>(closed_count), flags});
-    record_->event_points.push_back(element >= 0 ? CellPoint::of((*cells_)[element], at) : CellPoint());
+    static_assert(kMaxCrossed <= kMaxConditions + 1, "a shadow ray's crossings must fit an event's conditions");
+    std::array<MetElement, kMaxConditions + 1> met;
+    for (size_t i = 0; i < open_count; ++i) met[i] = this->met(open[i]);
+    for (size_t i = 0; i < closed_count; ++i) met[open_count + i] = this->met(closed[i]);
+    if (element < 0)
+      record_->add_light(v, met.data(), open_count, met.data() + open_count, closed_count);
+    else
+      record_->add_escape(v, this->met({element, at}), flags & PathEvent::kEscapePart, met.data(), open_count,
+                          met.data() + open_count, closed_count);
     if (record_->sourced) record_->event_sources.push_back(source);
-    append_conditions(open, open_count);
-    append_conditions(closed, closed_count);
   }
-  void append_conditions(const Crossing* c, size_t count) {
-    for (size_t i = 0; i < count; ++i) {
-      record_->conditions.push_back(c[i].element);
-      record_->condition_points.push_back(CellPoint::of((*cells_)[c[i].element], c[i].point));
-    }
-  }
+  MetElement met(const Crossing& c) const { return {c.element, CellPoint::of((*cells_)[c.element], c.point)}; }
 
   SensorRecord* record_;
   const std::vector<Element>* cells_ = nullptr;
