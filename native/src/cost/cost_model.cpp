@@ -27,7 +27,7 @@ namespace {
 // the sensor (portal samples, the first sky and element samples) and 1-2 per further vertex
 // (next-event estimates, escapes through elements and their parts). Expected vertices:
 // 1 + sum_{k=1..B} rho^k.
-constexpr double kBytesPerEvent = 24.0, kBytesPerPath = 8.0;
+constexpr double kBytesPerEvent = 20.0, kBytesPerPath = 8.0;
 // Thick walls: paths branch where they meet the elements' tubes (reveals or open neighbours); on
 // thick_walls_study (0.3 m walls, 0.25 m elements) records were 4.9x (2.1x the events, each with
 // more conditions) and tracing 5.7x the zero-thickness wall's for the same paths.
