@@ -116,10 +116,10 @@ TEST(PathRecord, LightThroughOneElementKeepsItsConditionInTheEvent) {
   b.add(8.0f, -1, {3}, {4});
   b.end_path();
   EXPECT_TRUE(b.record.events[0].own_condition());
-  EXPECT_EQ(b.record.events[0].element, 3);
+  EXPECT_EQ(b.record.events[0].element(), 3);
   EXPECT_FALSE(b.record.events[1].own_condition());
   EXPECT_FALSE(b.record.events[2].own_condition());
-  EXPECT_EQ(b.record.conditions, (std::vector<int32_t>{3, 4, 3, 4}));
+  EXPECT_EQ(b.record.conditions, (std::vector<int32_t>{2, 3, 4, 1 | 1 << 8, 3, 4}));  // each list after its counts
   EXPECT_EQ(b.record.condition_points.size(), b.record.conditions.size());
   EXPECT_EQ(b.record.event_points.size(), b.record.events.size());
   EXPECT_EQ(path_value(b.record, 0, {0, 0, 0, 1, 0}), 10.0);

@@ -19,19 +19,21 @@
 namespace fenestra {
 namespace {
 
-// Path records (trace/path_record.h): a PathEvent is 12 bytes and its point (CellPoint) 4, a path
-// adds two 4-byte offsets, and events carry element conditions of 4 bytes and a point of 4 (light
-// through one element, the commonest event, keeps its condition in the event); the records are
-// assembled with exactly the room they need, and 17-21 bytes per event were measured on the
-// example scenes (reference room, room study, paper scale). Events per path: a few at
+// Path records (trace/path_record.h): a PathEvent is 8 bytes and its point (CellPoint) 4, a path
+// adds two 4-byte offsets; light through one element, the commonest event, names it in the event,
+// other events store their conditions (4 bytes and a point of 4 each) after a header of the same
+// size; the records are assembled with exactly the room they need, and 13-15 bytes per event
+// (with the matrices) were measured on the example scenes (reference room, room study, paper
+// scale). Events per path: a few at
 // the sensor (portal samples, the first sky and element samples) and 1-2 per further vertex
 // (next-event estimates, escapes through elements and their parts). Expected vertices:
 // 1 + sum_{k=1..B} rho^k.
-constexpr double kBytesPerEvent = 20.0, kBytesPerPath = 8.0;
+constexpr double kBytesPerEvent = 15.0, kBytesPerPath = 8.0;
 // Thick walls: paths branch where they meet the elements' tubes (reveals or open neighbours); on
-// thick_walls_study (0.3 m walls, 0.25 m elements) records were 4.9x (2.1x the events, each with
-// more conditions) and tracing 5.7x the zero-thickness wall's for the same paths.
-constexpr double kThickWallRecordFactor = 5.0, kThickWallTraceFactor = 6.0;
+// thick_walls_study (0.3 m walls, 0.25 m elements) records were 7.6x (2.1x the events, each with
+// several stored conditions, where the thin wall's light mostly names its one element) and
+// tracing 5.7x the zero-thickness wall's for the same paths.
+constexpr double kThickWallRecordFactor = 7.5, kThickWallTraceFactor = 6.0;
 // Passes over the refined grids of thick walls' openings in a solve (at most; usually one).
 constexpr double kThickWallEdgeRounds = 2.0;
 constexpr double kEventsAtSensor = 3.0, kEventsPerVertex = 1.75;
@@ -40,8 +42,8 @@ constexpr double kEventsAtSensor = 3.0, kEventsPerVertex = 1.75;
 constexpr double kRecordAssembly = 2.0;
 // The edge search's index (solve/region_search.h): 17 bytes per point where a path met the domain
 // (its place, path and event, and an open flag) and 8 per path, against 8 bytes per point in the
-// records (a condition and its point; an event and its point, 16), and 12 per event on average;
-// below 1.5x the records where measured (open_region_test).
+// records (a condition and its point), 12 for an event and its point; below 1.5x the records
+// where measured (open_region_test).
 constexpr double kEdgeSearchIndexShare = 1.5;
 // The exact values' index (solve/exact_values.h): 4 bytes per element a path met (at most one
 // per point, against at least 8 in the records) and 8 per path for the reference's values.

@@ -86,10 +86,11 @@ RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, 
     auto for_each_point = [&](auto visit) {
       for (size_t p = 0; p < r.path_count(); ++p) {
         if (progress && p % kPollPaths == 0 && progress->cancelled()) return;
-        r.walk(p, [&](uint32_t e, const PathEvent& ev, uint32_t c) {
-          if (ev.is_escape() || ev.own_condition()) visit(ev.element, r.event_points[e], p, e, true);
-          for (uint32_t k = c; k < c + ev.stored_conditions(); ++k)
-            visit(r.conditions[k], r.condition_points[k], p, k, false);
+        r.walk(p, [&](uint32_t e, const PathEvent& ev, const EventConditions& c) {
+          if (ev.is_escape() || ev.own_condition()) visit(ev.element(), r.event_points[e], p, e, true);
+          if (c.stored)
+            for (uint32_t k = c.first; k < c.first + c.count(); ++k)
+              visit(r.conditions[k], r.condition_points[k], p, k, false);
           return true;
         });
       }

@@ -43,7 +43,7 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
     all_suffix.assign(m + 1, 0.0);
     for (size_t j = m; j-- > 0;) {
       const PathEvent& ev = rec.events[b + j];
-      base_suffix[j] = base_suffix[j + 1] + (ev.is_light() && ev.open_count == 0 && ev.closed_count == 0 ? ev.value : 0.0);
+      base_suffix[j] = base_suffix[j + 1] + (ev.is_light() && !ev.own_condition() && !ev.stored_conditions() ? ev.value : 0.0);
       all_suffix[j] = all_suffix[j + 1] + ev.value;
     }
     closed.add(p, base_suffix[0]);
@@ -55,32 +55,29 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
       touched.push_back(Touched{k});
       return touched.back();
     };
-    uint32_t next_conditions = rec.path_conditions_begin[p];
-    for (size_t j = 0; j < m; ++j) {
-      const PathEvent& ev = rec.events[b + j];
-      const uint32_t conditions = next_conditions;
-      next_conditions += ev.stored_conditions();
-      if (ev.is_escape_part()) continue;  // taken with its escape
+    rec.walk(p, [&](uint32_t i, const PathEvent& ev, const EventConditions& c) {
+      const size_t j = i - b;
+      if (ev.is_escape_part()) return true;  // taken with its escape
       if (ev.is_escape()) {
-        Touched& t = entry(ev.element);
+        Touched& t = entry(ev.element());
         if (t.escape_event < 0) {
           t.escape_event = static_cast<int>(j);
-          a_sum[ev.element] += all_suffix[j + 1];
+          a_sum[ev.element()] += all_suffix[j + 1];
         }
-        continue;
+        return true;
       }
-      if (ev.open_count == 0) continue;
+      if (c.open == 0) return true;
       // Light that needs only element k open (k alone open closes all others: closed conditions hold).
-      const int32_t* c = rec.condition_elements(ev, conditions);
       const int k = c[0];
       bool single = true;
-      for (uint8_t i = 1; i < ev.open_count; ++i) single = single && c[i] == k;
-      for (uint8_t i = 0; i < ev.closed_count; ++i) single = single && c[ev.open_count + i] != k;
+      for (int n = 1; n < c.open; ++n) single = single && c[n] == k;
+      for (int n = c.open; n < c.count(); ++n) single = single && c[n] != k;
       if (single) {
         Touched& t = entry(k);
         if (t.escape_event < 0) t.light_alone += ev.value;
       }
-    }
+      return true;
+    });
     open.add(p, path_value(rec, p, all_open_mask));
     for (const Touched& t : touched) {
       double c = t.light_alone;
@@ -88,10 +85,13 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
         // Alone open, k's escape gathers the parts that need other elements closed, not open.
         size_t j = t.escape_event;
         double through = rec.events[b + j].value;
-        while (j + 1 < m && rec.events[b + j + 1].is_escape_part()) {
-          const PathEvent& part = rec.events[b + ++j];
-          if (part.open_count == 0) through += part.value;
-        }
+        rec.walk(p, [&](uint32_t i, const PathEvent& part, const EventConditions& conditions) {
+          if (i - b <= j) return true;
+          if (!part.is_escape_part()) return false;
+          if (conditions.open == 0) through += part.value;
+          j = i - b;
+          return true;
+        });
         c += through - base_suffix[j + 1];
       }
       e_sum[t.element * kReplicates + replicate_of(p)] += c;

@@ -23,14 +23,20 @@ struct FlipChange {
   double delta;
 };
 
+// Whether condition i names an element no earlier condition does.
+bool first_occurrence(const EventConditions& c, int i) {
+  for (int j = 0; j < i; ++j)
+    if (c[j] == c[i]) return false;
+  return true;
+}
+
 // Changes of event e (value v) under single flips, appended to out: when its conditions hold,
 // flipping any of their elements breaks them; when they fail only on one element, every
 // occurrence of it failing, flipping that element makes them hold.
-void event_changes(const SensorRecord& r, const PathEvent& e, uint32_t conditions, const std::vector<uint8_t>& open,
-                   uint32_t at, bool part, std::vector<FlipChange>* out) {
-  const int32_t* c = r.condition_elements(e, conditions);
-  const int n = e.open_count + e.closed_count;
-  auto satisfied = [&](int i) { return (open[c[i]] != 0) == (i < e.open_count); };
+void event_changes(const PathEvent& e, const EventConditions& c, const std::vector<uint8_t>& open, uint32_t at,
+                   bool part, std::vector<FlipChange>* out) {
+  const int n = c.count();
+  auto satisfied = [&](int i) { return (open[c[i]] != 0) == (i < c.open); };
   int32_t failing = -1;
   bool other_failing = false;
   for (int i = 0; i < n && !other_failing; ++i)
@@ -40,7 +46,7 @@ void event_changes(const SensorRecord& r, const PathEvent& e, uint32_t condition
     }
   if (failing < 0) {  // holds: lost when any of its elements flips
     for (int i = 0; i < n; ++i)
-      if (std::find(c, c + i, c[i]) == c + i) out->push_back({c[i], at, part, -static_cast<double>(e.value)});
+      if (first_occurrence(c, i)) out->push_back({c[i], at, part, -static_cast<double>(e.value)});
     return;
   }
   if (other_failing) return;
@@ -94,22 +100,22 @@ class PathFlips {
     const uint32_t b = r.path_begin[p];
     double light = 0.0;
     uint32_t escape = kNone;  // the escape the parts that follow belong to
-    r.walk(p, [&](uint32_t i, const PathEvent& e, uint32_t c) {
+    r.walk(p, [&](uint32_t i, const PathEvent& e, const EventConditions& c) {
       const uint32_t at = i - b;
       if (e.is_light()) {
         escape = kNone;
-        if (r.holds(e, c, open)) light += e.value;
-        event_changes(r, e, c, open, at, false, &changes_);
+        if (SensorRecord::holds(c, open)) light += e.value;
+        event_changes(e, c, open, at, false, &changes_);
       } else if (e.is_escape()) {
         escape = at;
-        escapes_.push_back({e.element, at});
-        order_.push_back({e.element, at});
+        escapes_.push_back({e.element(), at});
+        order_.push_back({e.element(), at});
         light_before_.push_back(light);
         escape_value_.push_back(e.value);
-        if (first_open_ == kNone && open[e.element]) first_open_ = at, first_open_element_ = e.element;
+        if (first_open_ == kNone && open[e.element()]) first_open_ = at, first_open_element_ = e.element();
       } else if (escape != kNone) {  // a part of the escape before it
-        if (r.holds(e, c, open)) escape_value_.back() += e.value;
-        event_changes(r, e, c, open, escape, true, &changes_);
+        if (SensorRecord::holds(c, open)) escape_value_.back() += e.value;
+        event_changes(e, c, open, escape, true, &changes_);
       }
       return true;
     });

@@ -1,6 +1,8 @@
 #include "trace/path_record.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <utility>
 
 namespace fenestra {
 
@@ -43,47 +45,51 @@ void SensorRecord::reserve_for(const SensorRecord* parts, size_t count) {
 void SensorRecord::add_light(float value, const MetElement* open, size_t open_count, const MetElement* closed,
                              size_t closed_count) {
   if (open_count == 1 && closed_count == 0) {  // the commonest: kept in the event itself
-    events.push_back({value, open[0].element, 1, 0, PathEvent::kLight | PathEvent::kOwnCondition});
+    events.push_back(PathEvent::make(value, open[0].element, PathEvent::kLight | PathEvent::kOwnCondition));
     event_points.push_back(open[0].point);
     return;
   }
-  events.push_back({value, -1, static_cast<uint8_t>(open_count), static_cast<uint8_t>(closed_count), PathEvent::kLight});
+  add_event(value, -1, PathEvent::kLight, open, open_count, closed, closed_count);
   event_points.push_back({});
-  add_conditions(open, open_count);
-  add_conditions(closed, closed_count);
 }
 
 void SensorRecord::add_escape(float value, const MetElement& at, bool part, const MetElement* open, size_t open_count,
                               const MetElement* closed, size_t closed_count) {
-  events.push_back({value, at.element, static_cast<uint8_t>(open_count), static_cast<uint8_t>(closed_count),
-                    part ? PathEvent::kEscapePart : uint8_t(0)});
+  add_event(value, at.element, part ? PathEvent::kEscapePart : uint8_t(0), open, open_count, closed, closed_count);
   event_points.push_back(at.point);
-  add_conditions(open, open_count);
-  add_conditions(closed, closed_count);
 }
 
-void SensorRecord::add_conditions(const MetElement* met, size_t count) {
-  for (size_t i = 0; i < count; ++i) {
-    conditions.push_back(met[i].element);
-    condition_points.push_back(met[i].point);
+void SensorRecord::add_event(float value, int32_t element, uint8_t flags, const MetElement* open, size_t open_count,
+                             const MetElement* closed, size_t closed_count) {
+  if (open_count > 0xFF || closed_count > 0xFF) throw std::logic_error("SensorRecord: more than 255 conditions of a kind");
+  if (element >= PathEvent::kMaxElements) throw std::logic_error("SensorRecord: element id beyond 24 bits");
+  if (open_count + closed_count == 0) {
+    events.push_back(PathEvent::make(value, element, flags));
+    return;
   }
+  events.push_back(PathEvent::make(value, element, flags | PathEvent::kStoredConditions));
+  conditions.push_back(static_cast<int32_t>(open_count | closed_count << 8));  // the header
+  condition_points.push_back({});
+  for (const auto& [list, count] : {std::pair{open, open_count}, std::pair{closed, closed_count}})
+    for (size_t i = 0; i < count; ++i) {
+      conditions.push_back(list[i].element);
+      condition_points.push_back(list[i].point);
+    }
 }
 
-bool SensorRecord::holds(const PathEvent& e, uint32_t c, const std::vector<uint8_t>& open) const {
-  const int32_t* k = condition_elements(e, c);
-  for (uint8_t i = 0; i < e.open_count; ++i)
-    if (!open[k[i]]) return false;
-  for (uint8_t i = 0; i < e.closed_count; ++i)
-    if (open[k[e.open_count + i]]) return false;
+bool SensorRecord::holds(const EventConditions& c, const std::vector<uint8_t>& open) {
+  for (int i = 0; i < c.open; ++i)
+    if (!open[c[i]]) return false;
+  for (int i = c.open; i < c.count(); ++i)
+    if (open[c[i]]) return false;
   return true;
 }
 
 void path_elements(const SensorRecord& r, size_t p, std::vector<int32_t>* out) {
   out->clear();
-  r.walk(p, [&](uint32_t, const PathEvent& e, uint32_t c) {
-    if (!e.is_light()) out->push_back(e.element);
-    const int32_t* k = r.condition_elements(e, c);
-    out->insert(out->end(), k, k + e.open_count + e.closed_count);
+  r.walk(p, [&](uint32_t, const PathEvent& e, const EventConditions& c) {
+    if (!e.is_light()) out->push_back(e.element());
+    for (int i = 0; i < c.count(); ++i) out->push_back(c[i]);
     return true;
   });
   std::sort(out->begin(), out->end());
@@ -92,7 +98,7 @@ void path_elements(const SensorRecord& r, size_t p, std::vector<int32_t>* out) {
 
 double path_value(const SensorRecord& record, size_t p, const std::vector<uint8_t>& open) {
   return path_value_by_point(
-      record, p, [&](uint32_t i) { return open[record.events[i].element] != 0; },
+      record, p, [&](uint32_t i) { return open[record.events[i].element()] != 0; },
       [&](uint32_t j) { return open[record.conditions[j]] != 0; });
 }
 

@@ -10,29 +10,50 @@
 namespace fenestra {
 
 // An event counts when every element of its `open` list is open and every element of its
-// `closed` list is closed (the lists live in SensorRecord::conditions, open ones first, event after
-// event in path order; light that needs one element open, the commonest event, keeps that element
-// in the event itself, kOwnCondition).
+// `closed` list is closed. Light that needs one element open, the commonest event, names that
+// element itself (kOwnCondition); other lists live in SensorRecord::conditions, event after event
+// in path order, each after a header entry holding its counts (kStoredConditions).
+// Eight bytes: the value, and the element (24 bits) with the flags (8).
 struct PathEvent {
-  float value;             // luminance-weighted contribution (sky units x sr; lux for a sky in cd/m^2)
-  int32_t element;         // An escape (no kLight): the path reaches this element; if it is open the
-                           //   path leaves through it, gathers this event's value (and that of the
-                           //   escape parts right after it whose conditions hold) and nothing later
-                           //   counts. Parts (kEscapePart) are light found beyond the element that
-                           //   met other elements: through them (open) or off them (closed).
-                           // Light (kLight; sky hit or next-event estimate): with kOwnCondition, the
-                           //   one element it needs open (its point is the event's point); else -1.
-  uint8_t open_count;      // elements that must be open (e.g. crossed by a shadow ray)
-  uint8_t closed_count;    // elements that must be closed (reflected off outside)
-  uint8_t flags;
+  float value;  // luminance-weighted contribution (sky units x sr; lux for a sky in cd/m^2)
+  uint32_t bits;
 
-  static constexpr uint8_t kEscapePart = 1, kLight = 2, kOwnCondition = 4;
-  bool is_escape() const { return !(flags & (kEscapePart | kLight)); }
-  bool is_escape_part() const { return flags & kEscapePart; }
-  bool is_light() const { return flags & kLight; }
-  bool own_condition() const { return flags & kOwnCondition; }
-  // Entries it takes in SensorRecord::conditions.
-  uint32_t stored_conditions() const { return own_condition() ? 0u : uint32_t(open_count) + closed_count; }
+  // An escape (no flag of kind): the path reaches element(); if it is open the path leaves through
+  //   it, gathers this event's value (and that of the escape parts right after it whose conditions
+  //   hold) and nothing later counts.
+  // A part (kEscapePart) of the escape before it, element() the same: light found beyond that
+  //   element after meeting other elements, through them (open) or off them (closed).
+  // Light (kLight; a sky hit or a next-event estimate): element() is the one element it needs
+  //   open with kOwnCondition (its point is the event's point), else -1.
+  static constexpr uint8_t kEscapePart = 1, kLight = 2, kOwnCondition = 4, kStoredConditions = 8;
+  static constexpr uint32_t kNoElement = 0xFFFFFFu;  // 24 bits
+  static constexpr int32_t kMaxElements = static_cast<int32_t>(kNoElement);  // element ids below this
+
+  static PathEvent make(float value, int32_t element, uint8_t flags) {
+    const uint32_t e = element < 0 ? kNoElement : static_cast<uint32_t>(element);
+    return {value, e | static_cast<uint32_t>(flags) << 24};
+  }
+  int32_t element() const {
+    const uint32_t e = bits & kNoElement;
+    return e == kNoElement ? -1 : static_cast<int32_t>(e);
+  }
+  uint8_t flags() const { return static_cast<uint8_t>(bits >> 24); }
+  bool is_escape() const { return !(flags() & (kEscapePart | kLight)); }
+  bool is_escape_part() const { return flags() & kEscapePart; }
+  bool is_light() const { return flags() & kLight; }
+  bool own_condition() const { return flags() & kOwnCondition; }
+  bool stored_conditions() const { return flags() & kStoredConditions; }
+};
+
+// The conditions of one event: `open` elements then `closed` ones, entries first .. first + count()
+// of SensorRecord::conditions (and condition_points), or the event's own element.
+struct EventConditions {
+  const int32_t* stored = nullptr;
+  int32_t own = -1;
+  uint32_t first = 0;
+  uint8_t open = 0, closed = 0;
+  int count() const { return open + closed; }
+  int32_t operator[](int i) const { return stored ? stored[i] : own; }
 };
 
 // An element a path met, and where: an escape's element, or a condition of an event.
@@ -68,26 +89,31 @@ struct SensorRecord {
   // Appends an escape through `at` (or, `part`, light beyond it under the given conditions).
   void add_escape(float value, const MetElement& at, bool part, const MetElement* open, size_t open_count,
                   const MetElement* closed, size_t closed_count);
-  // Calls visit(i, event, c) for the events i of path p in order, c the index in `conditions` where
-  // the event's own start (when it stores any); stops when visit returns false.
+  // Calls visit(i, event, conditions) for the events i of path p in order (EventConditions);
+  // stops when visit returns false.
   template <typename Visit>
   void walk(size_t p, Visit visit) const {
     uint32_t c = path_conditions_begin[p];
     for (uint32_t i = path_begin[p], end = path_begin[p + 1]; i < end; ++i) {
       const PathEvent& e = events[i];
-      if (!visit(i, e, c)) return;
-      c += e.stored_conditions();
+      EventConditions ec;
+      if (e.own_condition()) {
+        ec.own = e.element(), ec.open = 1;
+      } else if (e.stored_conditions()) {
+        const uint32_t header = static_cast<uint32_t>(conditions[c]);
+        ec.open = static_cast<uint8_t>(header & 0xFF), ec.closed = static_cast<uint8_t>(header >> 8);
+        ec.first = c + 1;
+        ec.stored = conditions.data() + ec.first;
+        c = ec.first + ec.count();
+      }
+      if (!visit(i, e, ec)) return;
     }
-  }
-  // The elements of the conditions of `e`, open ones first; c as walk() gives it.
-  const int32_t* condition_elements(const PathEvent& e, uint32_t c) const {
-    return e.own_condition() ? &e.element : conditions.data() + c;
   }
   void append(const SensorRecord& other);
   // Reserves exactly what appending parts[0 .. count) will need.
   void reserve_for(const SensorRecord* parts, size_t count);
-  // Whether event e's conditions hold for the open mask; c as walk() gives it.
-  bool holds(const PathEvent& e, uint32_t c, const std::vector<uint8_t>& open) const;
+  // Whether conditions (as walk() gives them) hold for the open mask.
+  static bool holds(const EventConditions& c, const std::vector<uint8_t>& open);
   size_t memory_bytes() const {
     return (path_begin.capacity() + path_conditions_begin.capacity()) * sizeof(uint32_t) + events.capacity() * (sizeof(PathEvent) + sizeof(CellPoint)) +
            conditions.capacity() * (sizeof(int32_t) + sizeof(CellPoint)) +
@@ -95,7 +121,8 @@ struct SensorRecord {
   }
 
  private:
-  void add_conditions(const MetElement* met, size_t count);
+  void add_event(float value, int32_t element, uint8_t flags, const MetElement* open, size_t open_count,
+                 const MetElement* closed, size_t closed_count);
 };
 
 // Elements path p's value can depend on (its escapes' and its conditions'), sorted, without repeats.
@@ -110,23 +137,23 @@ double path_value(const SensorRecord& record, size_t p, const std::vector<uint8_
 template <typename EventOpen, typename ConditionOpen, typename Count>
 void for_each_counting_event(const SensorRecord& r, size_t p, EventOpen event_open, ConditionOpen condition_open,
                              Count count) {
-  auto holds = [&](uint32_t i, const PathEvent& e, uint32_t c) {
-    if (e.own_condition()) return static_cast<bool>(event_open(i));
-    for (uint32_t j = c; j < c + e.open_count; ++j)
+  auto holds = [&](uint32_t i, const EventConditions& c) {
+    if (!c.stored) return c.open == 0 || static_cast<bool>(event_open(i));  // none, or its own element
+    for (uint32_t j = c.first; j < c.first + c.open; ++j)
       if (!condition_open(j)) return false;
-    for (uint32_t j = c + e.open_count; j < c + e.open_count + e.closed_count; ++j)
+    for (uint32_t j = c.first + c.open; j < c.first + c.count(); ++j)
       if (condition_open(j)) return false;
     return true;
   };
   bool gathering = false;  // the parts of the escape the path left through
-  r.walk(p, [&](uint32_t i, const PathEvent& e, uint32_t c) {
+  r.walk(p, [&](uint32_t i, const PathEvent& e, const EventConditions& c) {
     if (gathering) {
       if (!e.is_escape_part()) return false;
-      if (holds(i, e, c)) count(i);
+      if (holds(i, c)) count(i);
       return true;
     }
     if (e.is_light()) {
-      if (holds(i, e, c)) count(i);
+      if (holds(i, c)) count(i);
     } else if (e.is_escape() && event_open(i)) {
       count(i);
       gathering = true;
@@ -148,7 +175,7 @@ double path_value_by_point(const SensorRecord& r, size_t p, EventOpen event_open
 template <typename IsOpen, typename Count>
 void for_each_counting_event_in_region(const SensorRecord& r, size_t p, IsOpen is_open, Count count) {
   for_each_counting_event(
-      r, p, [&](uint32_t i) { return is_open(r.events[i].element, r.event_points[i]); },
+      r, p, [&](uint32_t i) { return is_open(r.events[i].element(), r.event_points[i]); },
       [&](uint32_t i) { return is_open(r.conditions[i], r.condition_points[i]); }, count);
 }
 
@@ -157,7 +184,7 @@ void for_each_counting_event_in_region(const SensorRecord& r, size_t p, IsOpen i
 template <typename IsOpen>
 double path_value_in_region(const SensorRecord& r, size_t p, IsOpen is_open) {
   return path_value_by_point(
-      r, p, [&](uint32_t i) { return is_open(r.events[i].element, r.event_points[i]); },
+      r, p, [&](uint32_t i) { return is_open(r.events[i].element(), r.event_points[i]); },
       [&](uint32_t i) { return is_open(r.conditions[i], r.condition_points[i]); });
 }
 

@@ -26,8 +26,8 @@ void accumulate(const SensorRecord& rec, Eigen::MatrixXd* transport, const Progr
       if (!first.is_escape()) continue;  // escapes, not their parts, start a transport
       for (uint32_t l = j + 1; l < e; ++l) {
         const PathEvent& later = rec.events[l];
-        if (!later.is_light() && later.element != first.element)
-          (*transport)(first.element, later.element) += later.value;
+        if (!later.is_light() && later.element() != first.element())
+          (*transport)(first.element(), later.element()) += later.value;
       }
     }
   }
