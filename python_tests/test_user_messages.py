@@ -151,8 +151,12 @@ def test_setting_out_of_range(tmp_path):
 
 
 def test_cost_model_refusals(tmp_path):
-    memory = core_message(tmp_path, lambda s: s["solver"].update(paths=2 ** 24),
-                          then=lambda scene: fenestra.check_cost(scene, "solve"))
+    def too_many_paths(scene):  # 64 sensors at the most paths a scene takes: far past any machine's memory
+        scene["solver"].update(paths=2 ** 24)
+        scene["sensors"] = {"points": [[1 + 0.1 * (i % 8), 1 + 0.1 * (i // 8), 0.8] for i in range(64)],
+                            "normals": [[0, 0, 1]] * 64}
+
+    memory = core_message(tmp_path, too_many_paths, then=lambda scene: fenestra.check_cost(scene, "solve"))
     assert "--max-memory" in memory
     translated(memory, "fewer paths", "Quality", absent=["max-memory", "MemAvailable"])
     time = core_message(tmp_path, lambda s: s["solver"].update(generations=10 ** 7),
