@@ -45,6 +45,8 @@ struct PathEvent {
   bool stored_conditions() const { return flags() & kStoredConditions; }
 };
 
+static_assert(sizeof(PathEvent) == 8, "a path event is a value and one word");
+
 // The conditions of one event: `open` elements then `closed` ones, entries first .. first + count()
 // of SensorRecord::conditions (and condition_points), or the event's own element.
 struct EventConditions {
