@@ -93,10 +93,11 @@ void record_direct_sun(const Scene& scene, const PathTracer& tracer, AnnualRecor
   annual->direct.assign(scene.sensors.size(), SensorRecord());
   parallel_tasks(scene.sensors.size(), threads, nullptr, [&](size_t i) {
     SensorRecord& r = annual->direct[i];
+    std::vector<MetElement> crossed;
     for (const int h : annual->sun_hours) {
       const PathTracer::DirectSun sun = tracer.direct_sun(i, sky.sun_direction[h]);
       if (sun.visible) {
-        std::vector<MetElement> crossed;
+        crossed.clear();
         for (const PathTracer::Crossing& c : sun.crossed)
           crossed.push_back({c.element, CellPoint::of(scene.domain.elements()[c.element], c.point)});
         r.add_light(sun.cosine * sun.attenuation, crossed.data(), crossed.size(), nullptr, 0);

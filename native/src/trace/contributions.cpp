@@ -24,6 +24,8 @@ struct Touched {
   int element;
   double light_alone = 0.0;  // light whose shadow rays cross only this element (before it escapes)
   int escape_event = -1;     // first escape event through this element
+  int escape_end = -1;       // the event after its last part
+  double through = 0.0;      // its value and its parts' that need no other element open
 };
 
 // Per-path analysis: E's row, A, T and the closed / all-open values from the event list.
@@ -55,14 +57,25 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
       touched.push_back(Touched{k});
       return touched.back();
     };
+    int gathering = -1;  // the entry whose first escape the parts now read belong to
     rec.walk(p, [&](uint32_t i, const PathEvent& ev, const EventConditions& c) {
-      const size_t j = i - b;
-      if (ev.is_escape_part()) return true;  // taken with its escape
+      const int j = static_cast<int>(i - b);
+      if (ev.is_escape_part()) {  // taken with its escape
+        if (gathering >= 0) {
+          Touched& t = touched[gathering];
+          if (c.open == 0) t.through += ev.value;
+          t.escape_end = j + 1;
+        }
+        return true;
+      }
+      gathering = -1;
       if (ev.is_escape()) {
         Touched& t = entry(ev.element());
         if (t.escape_event < 0) {
-          t.escape_event = static_cast<int>(j);
+          t.escape_event = j, t.escape_end = j + 1;
+          t.through = ev.value;
           a_sum[ev.element()] += all_suffix[j + 1];
+          gathering = static_cast<int>(&t - touched.data());
         }
         return true;
       }
@@ -81,19 +94,8 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
     open.add(p, path_value(rec, p, all_open_mask));
     for (const Touched& t : touched) {
       double c = t.light_alone;
-      if (t.escape_event >= 0) {
-        // Alone open, k's escape gathers the parts that need other elements closed, not open.
-        size_t j = t.escape_event;
-        double through = rec.events[b + j].value;
-        rec.walk(p, [&](uint32_t i, const PathEvent& part, const EventConditions& conditions) {
-          if (i - b <= j) return true;
-          if (!part.is_escape_part()) return false;
-          if (conditions.open == 0) through += part.value;
-          j = i - b;
-          return true;
-        });
-        c += through - base_suffix[j + 1];
-      }
+      // Alone open, k's escape gathers the parts that need other elements closed, not open.
+      if (t.escape_event >= 0) c += t.through - base_suffix[t.escape_end];
       e_sum[t.element * kReplicates + replicate_of(p)] += c;
     }
   }
