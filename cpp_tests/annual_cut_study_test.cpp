@@ -52,7 +52,7 @@ std::vector<double> records_stderr_without_direct(const Contributions& c, const 
       double v = 0.0;
       for_each_counting_event_in_region(r, p, [&](int32_t k, const CellPoint& at) { return region.is_open(k, at); },
                                         [&](uint32_t e) {
-                                          if (!(r.event_sources[e] & AnnualSources::kDirect)) v += r.events[e].value;
+                                          if (!(r.event_sources[e] & AnnualSources::kDirect)) v += r.events[e].value();
                                         });
       sums.add(p, v);
     }

@@ -42,7 +42,7 @@ Eigen::MatrixXd transport_as_before(const Contributions& c) {
         if (!rec.events[j].is_escape()) continue;
         for (uint32_t l = j + 1; l < rec.path_begin[p + 1]; ++l)
           if (!rec.events[l].is_light() && rec.events[l].element() != rec.events[j].element())
-            S(rec.events[j].element(), rec.events[l].element()) += rec.events[l].value;
+            S(rec.events[j].element(), rec.events[l].element()) += rec.events[l].value();
       }
   return (S + S.transpose()).eval() / static_cast<double>(static_cast<size_t>(c.paths_per_sensor) * c.records.size());
 }

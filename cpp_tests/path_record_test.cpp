@@ -10,7 +10,8 @@ namespace fenestra {
 namespace {
 
 // Builds a record through SensorRecord's own appenders, and keeps the same events plainly for a
-// reference evaluation written straight from PathEvent's definition.
+// reference evaluation written straight from PathEvent's definition (with the values as stored,
+// rounded to 16 bits: event_value_test checks the rounding).
 struct RecordBuilder {
   struct Plain {
     float value;
@@ -32,7 +33,7 @@ struct RecordBuilder {
       record.add_light(value, o.data(), o.size(), c.data(), c.size());
     else
       record.add_escape(value, {element, CellPoint{}}, part, o.data(), o.size(), c.data(), c.size());
-    paths.back().push_back({value, element, open, closed, part});
+    paths.back().push_back({record.events.back().value(), element, open, closed, part});
   }
   void end_path() {
     record.end_path();

@@ -261,12 +261,12 @@ def test_solve_estimate_counts_the_thick_walls_refined_grids(tmp_path):
 
 
 def test_solve_estimate_counts_the_edge_search_index(tmp_path):
-    """The edge search indexes where the paths met the domain (docs/cost.md): 1.5 x the path
+    """The edge search indexes where the paths met the domain (docs/cost.md): 2 x the path
     records while solving, unless refine_edges is off; the contributions alone have none."""
     path = write_room(tmp_path)
     scene = fenestra.load_scene(str(path))
     e = fenestra.estimate_cost(scene, "solve")
-    assert e["memory"]["edge_search_index"] == pytest.approx(1.5 * e["memory"]["path_records"])
+    assert e["memory"]["edge_search_index"] == pytest.approx(2.0 * e["memory"]["path_records"])
     assert "edge_search_index" not in fenestra.estimate_cost(scene, "contributions")["memory"]
     d = json.loads(path.read_text())
     d["solver"] = {"refine_edges": False}

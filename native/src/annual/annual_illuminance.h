@@ -47,7 +47,7 @@ AnnualCoefficients annual_coefficients(const std::vector<SensorRecord>& records,
     c.sources.row(i) = row.transpose() / static_cast<double>(std::max<size_t>(1, r.path_count()));
     const SensorRecord& d = annual.direct[i];
     for (size_t j = 0; j < d.path_count(); ++j)
-      c.direct(i, j) = static_cast<float>(path_value_in_region(d, j, is_open));
+      c.direct(i, j) = static_cast<float>(path_value_in_region(d, j, is_open)) * annual.direct_factor[i][j];
   });
   if (progress) progress->throw_if_cancelled();
   return c;

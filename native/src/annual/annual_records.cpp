@@ -20,6 +20,7 @@ bool occupied(const HourStamp& hour, const ClimateSettings& settings) {
 size_t AnnualRecords::memory_bytes() const {
   size_t bytes = sizeof(float) * day_sky.size() + sizeof(double) * (design_strength.size() + unit_scale.size());
   for (const SensorRecord& r : direct) bytes += r.memory_bytes();
+  for (const std::vector<float>& f : direct_factor) bytes += sizeof(float) * f.capacity();
   return bytes;
 }
 
@@ -82,25 +83,30 @@ void convert_to_design_values(const AnnualRecords& annual, SensorRecord* record)
   record->event_coefficients.resize(record->events.size());
   for (size_t e = 0; e < record->events.size(); ++e) {
     const int source = record->event_sources[e] & ~AnnualSources::kDirect;
-    const double coefficient = record->events[e].value * annual.unit_scale[source];
+    PathEvent& event = record->events[e];
+    const double coefficient = event.value() * annual.unit_scale[source];
     record->event_coefficients[e] = static_cast<float>(coefficient);
-    record->events[e].value = static_cast<float>(coefficient * annual.design_strength[source]);
+    const float design = static_cast<float>(coefficient * annual.design_strength[source]);
+    event.set_value(design, event_dither(design, e));
   }
 }
 
 void record_direct_sun(const Scene& scene, const PathTracer& tracer, AnnualRecords* annual, int threads) {
   const SkyMatrix& sky = *annual->climate->sky;
   annual->direct.assign(scene.sensors.size(), SensorRecord());
+  annual->direct_factor.assign(scene.sensors.size(), std::vector<float>(annual->sun_hours.size(), 0.0f));
   parallel_tasks(scene.sensors.size(), threads, nullptr, [&](size_t i) {
     SensorRecord& r = annual->direct[i];
+    std::vector<float>& factor = annual->direct_factor[i];
     std::vector<MetElement> crossed;
-    for (const int h : annual->sun_hours) {
-      const PathTracer::DirectSun sun = tracer.direct_sun(i, sky.sun_direction[h]);
+    for (size_t j = 0; j < annual->sun_hours.size(); ++j) {
+      const PathTracer::DirectSun sun = tracer.direct_sun(i, sky.sun_direction[annual->sun_hours[j]]);
       if (sun.visible) {
         crossed.clear();
         for (const PathTracer::Crossing& c : sun.crossed)
           crossed.push_back({c.element, CellPoint::of(scene.domain.elements()[c.element], c.point)});
-        r.add_light(sun.cosine * sun.attenuation, crossed.data(), crossed.size(), nullptr, 0);
+        r.add_light(1.0f, crossed.data(), crossed.size(), nullptr, 0);
+        factor[j] = sun.cosine * sun.attenuation;
       }
       r.end_path();
     }

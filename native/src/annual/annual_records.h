@@ -30,9 +30,11 @@ struct AnnualRecords {
   // Columns of the sky matrix with any light (day), and, of those, the hours with sun.
   std::vector<int> day_hours, sun_hours;
   Eigen::MatrixXf day_sky;  // sky-patch rows x day_hours: the sky matrix's day columns, cd/m^2
-  // Per sensor, one "path" per sun hour (sun_hours[j]): a light event worth cos x attenuation,
-  // with the elements the sun's ray crosses as conditions (all must be open).
+  // Per sensor, one "path" per sun hour (sun_hours[j]): a light event worth 1, with the elements
+  // the sun's ray crosses as conditions (all must be open); direct_factor[sensor][j], cos x
+  // attenuation, is its value (kept at full precision: it is exact, not a Monte Carlo sample).
   std::vector<SensorRecord> direct;
+  std::vector<std::vector<float>> direct_factor;
   size_t memory_bytes() const;
 };
 

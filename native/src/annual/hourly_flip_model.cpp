@@ -219,9 +219,10 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
       const int column = column_of_hour[hour];
       if (column < 0) continue;
       const float sun = annual.climate->sky->sun_normal_illuminance[hour];
+      const float factor = annual.direct_factor[rows[r]][j];
       auto value = [&](int32_t flip) {
-        return static_cast<float>(
-            path_value_in_region(d, j, [&](int32_t k, const CellPoint&) { return (about[k] != 0) != (k == flip); }));
+        return factor * static_cast<float>(path_value_in_region(
+                            d, j, [&](int32_t k, const CellPoint&) { return (about[k] != 0) != (k == flip); }));
       };
       const float base = value(-1) * sun;
       m.direct(row, column) = base;

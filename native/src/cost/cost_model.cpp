@@ -42,9 +42,9 @@ constexpr double kEventsAtSensor = 3.0, kEventsPerVertex = 1.75;
 constexpr double kRecordAssembly = 2.0;
 // The edge search's index (solve/region_search.h): 17 bytes per point where a path met the domain
 // (its place, path and event, and an open flag) and 8 per path, against 8 bytes per point in the
-// records (a condition and its point), 12 for an event and its point; below 1.5x the records
-// where measured (open_region_test).
-constexpr double kEdgeSearchIndexShare = 1.5;
+// records (a condition and its point), 10 for an event and its point; 1.6x the records where
+// measured (open_region_test).
+constexpr double kEdgeSearchIndexShare = 2.0;
 // The exact values' index (solve/exact_values.h): 4 bytes per element a path met (at most one
 // per point, against at least 8 in the records) and 8 per path for the reference's values.
 constexpr double kExactValuesIndexShare = 0.5;

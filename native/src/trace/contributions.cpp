@@ -45,8 +45,8 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
     all_suffix.assign(m + 1, 0.0);
     for (size_t j = m; j-- > 0;) {
       const PathEvent& ev = rec.events[b + j];
-      base_suffix[j] = base_suffix[j + 1] + (ev.is_light() && !ev.own_condition() && !ev.stored_conditions() ? ev.value : 0.0);
-      all_suffix[j] = all_suffix[j + 1] + ev.value;
+      base_suffix[j] = base_suffix[j + 1] + (ev.is_light() && !ev.own_condition() && !ev.stored_conditions() ? ev.value() : 0.0);
+      all_suffix[j] = all_suffix[j + 1] + ev.value();
     }
     closed.add(p, base_suffix[0]);
 
@@ -63,7 +63,7 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
       if (ev.is_escape_part()) {  // taken with its escape
         if (gathering >= 0) {
           Touched& t = touched[gathering];
-          if (c.open == 0) t.through += ev.value;
+          if (c.open == 0) t.through += ev.value();
           t.escape_end = j + 1;
         }
         return true;
@@ -73,7 +73,7 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
         Touched& t = entry(ev.element());
         if (t.escape_event < 0) {
           t.escape_event = j, t.escape_end = j + 1;
-          t.through = ev.value;
+          t.through = ev.value();
           a_sum[ev.element()] += all_suffix[j + 1];
           gathering = static_cast<int>(&t - touched.data());
         }
@@ -87,7 +87,7 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
       for (int n = c.open; n < c.count(); ++n) single = single && c[n] != k;
       if (single) {
         Touched& t = entry(k);
-        if (t.escape_event < 0) t.light_alone += ev.value;
+        if (t.escape_event < 0) t.light_alone += ev.value();
       }
       return true;
     });

@@ -46,13 +46,13 @@ void event_changes(const PathEvent& e, const EventConditions& c, const std::vect
     }
   if (failing < 0) {  // holds: lost when any of its elements flips
     for (int i = 0; i < n; ++i)
-      if (first_occurrence(c, i)) out->push_back({c[i], at, part, -static_cast<double>(e.value)});
+      if (first_occurrence(c, i)) out->push_back({c[i], at, part, -static_cast<double>(e.value())});
     return;
   }
   if (other_failing) return;
   for (int i = 0; i < n; ++i)
     if (c[i] == failing && satisfied(i)) return;  // flipping it would break this occurrence
-  out->push_back({failing, at, part, static_cast<double>(e.value)});
+  out->push_back({failing, at, part, static_cast<double>(e.value())});
 }
 
 // One path's flip effects, added to `row` (indexed by element): value with k flipped minus value.
@@ -104,17 +104,17 @@ class PathFlips {
       const uint32_t at = i - b;
       if (e.is_light()) {
         escape = kNone;
-        if (SensorRecord::holds(c, open)) light += e.value;
+        if (SensorRecord::holds(c, open)) light += e.value();
         event_changes(e, c, open, at, false, &changes_);
       } else if (e.is_escape()) {
         escape = at;
         escapes_.push_back({e.element(), at});
         order_.push_back({e.element(), at});
         light_before_.push_back(light);
-        escape_value_.push_back(e.value);
+        escape_value_.push_back(e.value());
         if (first_open_ == kNone && open[e.element()]) first_open_ = at, first_open_element_ = e.element();
       } else if (escape != kNone) {  // a part of the escape before it
-        if (SensorRecord::holds(c, open)) escape_value_.back() += e.value;
+        if (SensorRecord::holds(c, open)) escape_value_.back() += e.value();
         event_changes(e, c, open, escape, true, &changes_);
       }
       return true;

@@ -45,7 +45,8 @@ void SensorRecord::reserve_for(const SensorRecord* parts, size_t count) {
 void SensorRecord::add_light(float value, const MetElement* open, size_t open_count, const MetElement* closed,
                              size_t closed_count) {
   if (open_count == 1 && closed_count == 0) {  // the commonest: kept in the event itself
-    events.push_back(PathEvent::make(value, open[0].element, PathEvent::kLight | PathEvent::kOwnCondition));
+    const uint8_t flags = PathEvent::kLight | PathEvent::kOwnCondition;
+    events.push_back(PathEvent::make(value, open[0].element, flags, dither_of_next(value, open[0].element, flags)));
     event_points.push_back(open[0].point);
     return;
   }
@@ -64,10 +65,11 @@ void SensorRecord::add_event(float value, int32_t element, uint8_t flags, const 
   if (open_count > 0xFF || closed_count > 0xFF) throw std::logic_error("SensorRecord: more than 255 conditions of a kind");
   if (element >= PathEvent::kMaxElements) throw std::logic_error("SensorRecord: element id beyond 24 bits");
   if (open_count + closed_count == 0) {
-    events.push_back(PathEvent::make(value, element, flags));
+    events.push_back(PathEvent::make(value, element, flags, dither_of_next(value, element, flags)));
     return;
   }
-  events.push_back(PathEvent::make(value, element, flags | PathEvent::kStoredConditions));
+  flags |= PathEvent::kStoredConditions;
+  events.push_back(PathEvent::make(value, element, flags, dither_of_next(value, element, flags)));
   conditions.push_back(static_cast<int32_t>(open_count | closed_count << 8));  // the header
   condition_points.push_back({});
   for (const auto& [list, count] : {std::pair{open, open_count}, std::pair{closed, closed_count}})
@@ -75,6 +77,13 @@ void SensorRecord::add_event(float value, int32_t element, uint8_t flags, const 
       conditions.push_back(list[i].element);
       condition_points.push_back(list[i].point);
     }
+}
+
+uint32_t SensorRecord::dither_of_next(float value, int32_t element, uint8_t flags) const {
+  // The path and the event's place in it, not in the record: records built in pieces round alike.
+  const uint64_t place = events.size() - path_begin.back();
+  const uint64_t event = place << 40 | static_cast<uint64_t>(flags) << 32 | static_cast<uint32_t>(element);
+  return event_dither(value, event ^ (path_key * 0x9E3779B97F4A7C15ULL));
 }
 
 bool SensorRecord::holds(const EventConditions& c, const std::vector<uint8_t>& open) {

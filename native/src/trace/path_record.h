@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "trace/cell_point.h"
+#include "trace/event_value.h"
 
 namespace fenestra {
 
@@ -13,10 +14,10 @@ namespace fenestra {
 // `closed` list is closed. Light that needs one element open, the commonest event, names that
 // element itself (kOwnCondition); other lists live in SensorRecord::conditions, event after event
 // in path order, each after a header entry holding its counts (kStoredConditions).
-// Eight bytes: the value, and the element (24 bits) with the flags (8).
+// Six bytes: the value (16 bits, EventValue), and the element (24 bits) with the flags (8).
 struct PathEvent {
-  float value;  // luminance-weighted contribution (sky units x sr; lux for a sky in cd/m^2)
-  uint32_t bits;
+  EventValue stored;  // luminance-weighted contribution (sky units x sr; lux for a sky in cd/m^2)
+  uint16_t low = 0, high = 0;  // element | flags << 24, in two halves (keeps the event 2-aligned)
 
   // An escape (no flag of kind): the path reaches element(); if it is open the path leaves through
   //   it, gathers this event's value (and that of the escape parts right after it whose conditions
@@ -29,15 +30,24 @@ struct PathEvent {
   static constexpr uint32_t kNoElement = 0xFFFFFFu;  // 24 bits
   static constexpr int32_t kMaxElements = static_cast<int32_t>(kNoElement);  // element ids below this
 
-  static PathEvent make(float value, int32_t element, uint8_t flags) {
+  // `dither`: the rounding fraction of the value (event_dither).
+  static PathEvent make(float value, int32_t element, uint8_t flags, uint32_t dither) {
     const uint32_t e = element < 0 ? kNoElement : static_cast<uint32_t>(element);
-    return {value, e | static_cast<uint32_t>(flags) << 24};
+    const uint32_t word = e | static_cast<uint32_t>(flags) << 24;
+    PathEvent event;
+    event.stored = EventValue::round(value, dither);
+    event.low = static_cast<uint16_t>(word), event.high = static_cast<uint16_t>(word >> 16);
+    return event;
   }
+  float value() const { return stored.get(); }
+  void set_value(float value, uint32_t dither) { stored = EventValue::round(value, dither); }
+  uint32_t word() const { return static_cast<uint32_t>(low) | static_cast<uint32_t>(high) << 16; }
   int32_t element() const {
+    const uint32_t bits = word();
     const uint32_t e = bits & kNoElement;
     return e == kNoElement ? -1 : static_cast<int32_t>(e);
   }
-  uint8_t flags() const { return static_cast<uint8_t>(bits >> 24); }
+  uint8_t flags() const { return static_cast<uint8_t>(high >> 8); }
   bool is_escape() const { return !(flags() & (kEscapePart | kLight)); }
   bool is_escape_part() const { return flags() & kEscapePart; }
   bool is_light() const { return flags() & kLight; }
@@ -45,7 +55,7 @@ struct PathEvent {
   bool stored_conditions() const { return flags() & kStoredConditions; }
 };
 
-static_assert(sizeof(PathEvent) == 8, "a path event is a value and one word");
+static_assert(sizeof(PathEvent) == 6, "a path event is a 16-bit value and one word");
 
 // The conditions of one event: `open` elements then `closed` ones, entries first .. first + count()
 // of SensorRecord::conditions (and condition_points), or the event's own element.
@@ -80,6 +90,10 @@ struct SensorRecord {
   bool sourced = false;
   std::vector<uint16_t> event_sources;
   std::vector<float> event_coefficients;
+
+  // Identifies the path being appended (its sensor and index), so that equal values in different
+  // paths round independently (EventValue); not stored.
+  uint64_t path_key = 0;
 
   size_t path_count() const { return path_begin.size() - 1; }
   void end_path() {
@@ -125,6 +139,8 @@ struct SensorRecord {
  private:
   void add_event(float value, int32_t element, uint8_t flags, const MetElement* open, size_t open_count,
                  const MetElement* closed, size_t closed_count);
+  // The rounding fraction of the event about to be appended (EventValue).
+  uint32_t dither_of_next(float value, int32_t element, uint8_t flags) const;
 };
 
 // Elements path p's value can depend on (its escapes' and its conditions'), sorted, without repeats.
@@ -168,7 +184,7 @@ void for_each_counting_event(const SensorRecord& r, size_t p, EventOpen event_op
 template <typename EventOpen, typename ConditionOpen>
 double path_value_by_point(const SensorRecord& r, size_t p, EventOpen event_open, ConditionOpen condition_open) {
   double sum = 0.0;
-  for_each_counting_event(r, p, event_open, condition_open, [&](uint32_t i) { sum += r.events[i].value; });
+  for_each_counting_event(r, p, event_open, condition_open, [&](uint32_t i) { sum += r.events[i].value(); });
   return sum;
 }
 

@@ -913,6 +913,7 @@ void PathTracer::sensor_sample_by_source(size_t sensor, const PathSamples* sampl
 
 void PathTracer::record_sensor_path(size_t sensor, size_t path, const PathSamples* samples, Rng& rng,
                                     SensorRecord* record) const {
+  record->path_key = sensor << 32 ^ path;
   Sink sink = Sink::record(record, &scene_.domain.elements());
   trace_sensor(sensor, path, samples, rng, nullptr, sink);
   record->end_path();

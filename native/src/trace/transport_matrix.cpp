@@ -27,7 +27,7 @@ void accumulate(const SensorRecord& rec, Eigen::MatrixXd* transport, const Progr
       for (uint32_t l = j + 1; l < e; ++l) {
         const PathEvent& later = rec.events[l];
         if (!later.is_light() && later.element() != first.element())
-          (*transport)(first.element(), later.element()) += later.value;
+          (*transport)(first.element(), later.element()) += later.value();
       }
     }
   }
