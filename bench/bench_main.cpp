@@ -197,7 +197,7 @@ struct OnePassRun {
 
 // Contributions::memory_bytes() had the same records been laid out as before they were compacted:
 // a 16-byte event and an 8-byte panel point each, every condition (light through one element's
-// too) 4 bytes and an 8-byte point, one 4-byte offset per path. The baseline for memory.
+// too) 4 bytes and an 8-byte point, one 4-byte offset per path. The baseline of the memory target.
 size_t bytes_in_previous_layout(const fenestra::Contributions& c) {
   size_t bytes = c.memory_bytes();
   for (const fenestra::SensorRecord& r : c.records) {
@@ -681,7 +681,7 @@ json estimator_comparison(const Scene& scene, int top, const Reference& ref, con
   const double ray_ratio = before.seconds / now.seconds;
   const double path_ratio = before.paths / now.paths;
   const double memory_ratio = now.memory_bytes / before.memory_bytes;
-  // The baseline: the independent estimator with the records as they were laid out.
+  // The baseline of the memory target: the independent estimator with the records as they were laid out.
   const double baseline_memory_ratio = now.memory_bytes / before.previous_layout_bytes;
   std::printf("    to ||dE||_F <= %.0f%% and every all-open value within %.0f%%:\n"
               "      independent: %8.0f paths, %7.2f s = %6.1f M raw-Embree rays, %7.1f MiB of records%s\n"

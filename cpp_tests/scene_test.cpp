@@ -188,7 +188,7 @@ TEST(SceneErrors, OpeningsOffTheDomainOrNotRectangles) {
   EXPECT_THROW(read_openings(dir.file("openings.json")), std::invalid_argument);
 }
 
-// ---- Every number validated after its conversion (issue 12, items 2 and 6) ----
+// ---- Every number validated after its conversion ----
 
 // Expects load_scene on `json` (with room_obj()) to fail naming scene.json and every fragment.
 void expect_scene_error(const std::string& json, const std::vector<std::string>& fragments) {

@@ -1,4 +1,4 @@
-"""Bad input through the command line and Python (issue 12, items 2 and 6): every number is
+"""Bad input through the command line and Python: every number is
 checked after its conversion, and every error names the file and the key or line in words. The
 command line exits with status 1 (2 for usage errors), never on a signal, and writes nothing;
 Python raises ValueError with the same text."""

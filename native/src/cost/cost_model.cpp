@@ -19,18 +19,17 @@
 namespace fenestra {
 namespace {
 
-// Path records (trace/path_record.h): a PathEvent is 8 bytes and its point (CellPoint) 4, a path
-// adds two 4-byte offsets; light through one element, the commonest event, names it in the event,
-// other events store their conditions (4 bytes and a point of 4 each) after a header of the same
-// size; the records are assembled with exactly the room they need, and 13-15 bytes per event
-// (with the matrices) were measured on the example scenes (reference room, room study, paper
-// scale). Events per path: a few at
-// the sensor (portal samples, the first sky and element samples) and 1-2 per further vertex
-// (next-event estimates, escapes through elements and their parts). Expected vertices:
-// 1 + sum_{k=1..B} rho^k.
-constexpr double kBytesPerEvent = 15.0, kBytesPerPath = 8.0;
+// Path records (trace/path_record.h): a PathEvent is 6 bytes (a 16-bit value and one word) and its
+// point (CellPoint) 4, a path adds two 4-byte offsets; light through one element, the commonest
+// event, names it in the event, other events store their conditions (4 bytes and a point of 4
+// each) after a header of the same size; the records are assembled with exactly the room they
+// need, and 12.6-13.0 bytes per event (with the matrices) were measured on the example scenes
+// (reference room, room study, paper scale). Events per path: a few at the sensor (portal
+// samples, the first sky and element samples) and 1-2 per further vertex (next-event estimates,
+// escapes through elements and their parts). Expected vertices: 1 + sum_{k=1..B} rho^k.
+constexpr double kBytesPerEvent = 13.0, kBytesPerPath = 8.0;
 // Thick walls: paths branch where they meet the elements' tubes (reveals or open neighbours); on
-// thick_walls_study (0.3 m walls, 0.25 m elements) records were 7.6x (2.1x the events, each with
+// thick_walls_study (0.3 m walls, 0.25 m elements) records were 7.0x (2.1x the events, each with
 // several stored conditions, where the thin wall's light mostly names its one element) and
 // tracing 5.7x the zero-thickness wall's for the same paths.
 constexpr double kThickWallRecordFactor = 7.5, kThickWallTraceFactor = 6.0;
@@ -94,9 +93,10 @@ std::string element_size_text(const Scene& scene) {
   return s.str();
 }
 
-// A climate sky's annual pass: each event's source and coefficient (6 of its kBytesPerEvent), the
-// sun straight to each sensor at each sunny hour (an event, its point and a condition or two: 48
-// bytes), and a study's hourly illuminance (total and direct sun, floats) with the file's copy.
+// A climate sky's annual pass: each event's source and coefficient (6 bytes), the sun straight to
+// each sensor at each sunny hour (an event, its point, its exact factor and a condition or two:
+// under 48 bytes), and a study's hourly illuminance (total and direct sun, floats) with the file's
+// copy.
 void add_annual(const Scene& scene, double records, CostEstimate* e) {
   const double S = static_cast<double>(e->sensors);
   const SkyMatrix& sky = *scene.climate->sky;
