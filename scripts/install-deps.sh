@@ -8,6 +8,7 @@ packages=(
   nlohmann-json3-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
   libhowardhinnant-date-dev
   python3-dev python3-numpy python3-scipy python3-pytest python3-astropy python3-matplotlib
+  python3-distributed
   blender xvfb xdotool
 )
 

@@ -27,6 +27,7 @@
 #include "trace/evaluate.h"
 #include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
+#include "cluster_handoff.h"
 
 namespace {
 
@@ -65,6 +66,12 @@ options:
   --cutters     (annual) trace the paths with the openings really cut
   --quiet       no progress on stderr
   -h, --help    this text
+
+on a Dask cluster (contributions and evaluate; docs/distributed.md), sharded by sensors, with
+results equal bit for bit to a single process's:
+  --workers N          start a local cluster of N worker processes
+  --scheduler ADDRESS  use a running Dask scheduler, e.g. tcp://host:8786
+  --shards N           blocks of sensors (default: one per worker)
 
 Values are luminance-weighted irradiance: lux when the sky is given in cd/m^2.
 Outputs are checked before the run (never an input, a symbolic link or a device) and written whole
@@ -377,6 +384,7 @@ static const char* signal_name(int sig) {
 }
 
 int main(int argc, char** argv) {
+  if (fenestra::wants_cluster(argc, argv)) return fenestra::hand_to_cluster(argc, argv);
   const Args args = parse_args(argc, argv);
   install_signal_handlers();
   try {

@@ -34,6 +34,7 @@ using namespace fenestra;
 void bind_daylight(py::module_& m);  // bind_daylight.cpp
 void bind_solver(py::module_& m);    // bind_solver.cpp
 void bind_cost(py::module_& m);      // bind_cost.cpp
+void bind_shards(py::module_& m);    // bind_shards.cpp
 
 namespace {
 
@@ -87,6 +88,18 @@ py::array view(const Eigen::VectorXd& v, py::handle owner) {
   py::array a(py::dtype::of<double>(), {v.size()}, {static_cast<py::ssize_t>(sizeof(double))}, v.data(), owner);
   py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return a;
+}
+
+// None: every sensor; else (begin, end), a block of the scene's sensors.
+SensorRange sensor_range_from(const py::object& sensors, const Scene& scene) {
+  if (sensors.is_none()) return {};
+  const auto pair = sensors.cast<std::pair<py::ssize_t, py::ssize_t>>();
+  const size_t count = scene.sensors.size();
+  if (pair.first < 0 || pair.second <= pair.first || static_cast<size_t>(pair.second) > count)
+    throw std::invalid_argument("sensors (" + std::to_string(pair.first) + ", " + std::to_string(pair.second) +
+                                "): expected (begin, end) with 0 <= begin < end <= " + std::to_string(count) +
+                                ", the scene's sensor count");
+  return {static_cast<size_t>(pair.first), static_cast<size_t>(pair.second)};
 }
 
 py::tuple values_tuple(SensorValues v) {
@@ -174,6 +187,7 @@ PYBIND11_MODULE(_core, m) {
   bind_daylight(m);
   bind_solver(m);
   bind_cost(m);
+  bind_shards(m);
   static py::exception<Cancelled> cancelled(m, "Cancelled");
   // Every native exception reaches Python with its text, decoded with replacement (pybind11's
   // default translation gives an empty message when the text is not UTF-8, e.g. a file name).
@@ -355,8 +369,19 @@ PYBIND11_MODULE(_core, m) {
           "Exact (value, stderr) per sensor with the elements where open is true open, from the recorded paths.")
       .def(
           "evaluate_openings",
-          [](const Contributions& c, const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress) {
-            check_contributions_match(scene, c, "evaluate_openings");
+          [](const Contributions& c, const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress,
+             const py::object& sensors) {
+            if (sensors.is_none()) {
+              check_contributions_match(scene, c, "evaluate_openings");
+            } else {  // a shard's contributions: its block of the scene's sensors
+              const SensorRange range = sensor_range_from(sensors, scene);
+              if (range.size() != c.sensor_count() || c.element_count() != scene.domain.element_count())
+                throw std::invalid_argument("evaluate_openings: the shard's contributions (" +
+                                            std::to_string(c.sensor_count()) + " sensors x " +
+                                            std::to_string(c.element_count()) + " elements) are not sensors " +
+                                            std::to_string(range.begin) + ".." + std::to_string(range.end) +
+                                            " of this scene");
+            }
             std::vector<PanelRectangle> rects;
             const auto given = openings_from(openings);
             for (size_t i = 0; i < given.size(); ++i) {
@@ -376,7 +401,7 @@ PYBIND11_MODULE(_core, m) {
             }
             return values_tuple(std::move(v));
           },
-          py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
+          py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr, py::arg("sensors") = py::none(),
           "Exact (value, stderr) per sensor with the openings open (an (n, 4, 3) array of corners, or the JSON "
           "text of an openings file), their edges anywhere on their panels (in thick walls on the element grid's "
           "lines), from the recorded paths.")
@@ -428,30 +453,37 @@ PYBIND11_MODULE(_core, m) {
 
   m.def(
       "compute_contributions",
-      [](const Scene& scene, std::shared_ptr<Progress> progress) {
+      [](const Scene& scene, std::shared_ptr<Progress> progress, const py::object& sensors) {
+        const SensorRange range = sensor_range_from(sensors, scene);
+        const bool whole = sensors.is_none();
         py::gil_scoped_release release;
         auto c = while_doing("computing the contributions of scene '" + scene.source + "'", [&] {
-          return std::make_shared<Contributions>(compute_contributions(scene, progress.get()));
+          // A shard leaves T to the client (transport_entries): elements^2 doubles per worker otherwise.
+          return std::make_shared<Contributions>(compute_contributions(scene, progress.get(), whole, range));
         });
         c->origin = contributions_origin(scene);  // solve() and save() refuse it for another scene
         return c;
       },
-      py::arg("scene"), py::arg("progress") = nullptr, "One pass of paths per sensor (see Contributions).");
+      py::arg("scene"), py::arg("progress") = nullptr, py::arg("sensors") = py::none(),
+      "One pass of paths per sensor (see Contributions). `sensors`: (begin, end), only those of the "
+      "scene's sensors (a shard; their rows equal the whole pass's bit for bit, and T is left empty: "
+      "see transport_entries).");
   m.def(
       "evaluate",
-      [](const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress) {
+      [](const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress, const py::object& sensors) {
         const auto rects = openings_from(openings);
+        const SensorRange range = sensor_range_from(sensors, scene);
         SensorValues v;
         {
           py::gil_scoped_release release;
           v = while_doing("evaluating scene '" + scene.source + "'",
-                          [&] { return evaluate_openings(scene, rects, progress.get()); });
+                          [&] { return evaluate_openings(scene, rects, progress.get(), 0, range); });
         }
         return values_tuple(std::move(v));
       },
-      py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
+      py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr, py::arg("sensors") = py::none(),
       "Path-traces the scene with the openings cut (an (n, 4, 3) array of corners, or the JSON text of an "
-      "openings file); returns (value, stderr) per sensor.");
+      "openings file); returns (value, stderr) per sensor (with `sensors` = (begin, end), of those only).");
   m.def(
       "annual_with_cutters",
       [](const Scene& scene, const py::object& openings, int paths, std::shared_ptr<Progress> progress,

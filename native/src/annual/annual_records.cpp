@@ -91,13 +91,16 @@ void convert_to_design_values(const AnnualRecords& annual, SensorRecord* record)
   }
 }
 
-void record_direct_sun(const Scene& scene, const PathTracer& tracer, AnnualRecords* annual, int threads) {
+void record_direct_sun(const Scene& scene, const PathTracer& tracer, AnnualRecords* annual, int threads,
+                       SensorRange sensors) {
   const SkyMatrix& sky = *annual->climate->sky;
-  annual->direct.assign(scene.sensors.size(), SensorRecord());
-  annual->direct_factor.assign(scene.sensors.size(), std::vector<float>(annual->sun_hours.size(), 0.0f));
-  parallel_tasks(scene.sensors.size(), threads, nullptr, [&](size_t i) {
-    SensorRecord& r = annual->direct[i];
-    std::vector<float>& factor = annual->direct_factor[i];
+  sensors = sensors.within(scene.sensors.size());
+  annual->direct.assign(sensors.size(), SensorRecord());
+  annual->direct_factor.assign(sensors.size(), std::vector<float>(annual->sun_hours.size(), 0.0f));
+  parallel_tasks(sensors.size(), threads, nullptr, [&](size_t local) {
+    const size_t i = sensors.begin + local;
+    SensorRecord& r = annual->direct[local];
+    std::vector<float>& factor = annual->direct_factor[local];
     std::vector<MetElement> crossed;
     for (size_t j = 0; j < annual->sun_hours.size(); ++j) {
       const PathTracer::DirectSun sun = tracer.direct_sun(i, sky.sun_direction[annual->sun_hours[j]]);

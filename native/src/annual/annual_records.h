@@ -10,6 +10,7 @@
 #include "daylight/annual_metrics.h"
 #include "daylight/sky_matrix.h"
 #include "trace/path_record.h"
+#include "trace/sensor_range.h"
 
 namespace fenestra {
 
@@ -49,7 +50,9 @@ std::shared_ptr<AnnualRecords> prepare_annual(const Scene& scene);
 // design sky (record.sourced must be set and event_sources filled).
 void convert_to_design_values(const AnnualRecords& annual, SensorRecord* record);
 
-// The direct-sun records of every sensor (parallel over sensors).
-void record_direct_sun(const Scene& scene, const PathTracer& tracer, AnnualRecords* annual, int threads);
+// The direct-sun records of the sensors in `sensors` (parallel over sensors), indexed from its
+// first.
+void record_direct_sun(const Scene& scene, const PathTracer& tracer, AnnualRecords* annual, int threads,
+                       SensorRange sensors);
 
 }  // namespace fenestra

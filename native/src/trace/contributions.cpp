@@ -152,17 +152,18 @@ size_t Contributions::memory_bytes() const {
   return bytes;
 }
 
-Contributions compute_contributions(const Scene& scene, Progress* progress, bool transport) {
+Contributions compute_contributions(const Scene& scene, Progress* progress, bool transport, SensorRange range) {
+  range = range.within(scene.sensors.size());
   const auto start = std::chrono::steady_clock::now();
   // A climate sky is traced as unit sources (sky patches, sun clusters): the records then hold
   // daylight coefficients beside their values under the mean sky of the occupied hours.
   std::shared_ptr<AnnualRecords> annual = scene.climate ? prepare_annual(scene) : nullptr;
   const Scene traced = annual ? annual_tracing_scene(scene, annual->sources) : Scene();
   PathTracer tracer(annual ? traced : scene, {}, Mesh{}, annual ? &scene.climate->sky->patches : nullptr);
-  tracer.check_sensors();
-  if (scene.render.sampler == RenderSettings::Sampler::kSobol) tracer.prepare_portal_selection(scene.render.threads);
+  tracer.check_sensors(range);
+  if (scene.render.sampler == RenderSettings::Sampler::kSobol) tracer.prepare_portal_selection(scene.render.threads, range);
 
-  const size_t sensors = scene.sensors.size();
+  const size_t sensors = range.size();
   const size_t elements = scene.domain.element_count();
   const int paths = scene.render.paths_per_sensor;
   const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
@@ -171,7 +172,7 @@ Contributions compute_contributions(const Scene& scene, Progress* progress, bool
   try {
     if (progress) progress->start("tracing contribution paths", chunks.size());
     parallel_tasks(chunks.size(), scene.render.threads, progress, [&](size_t task) {
-      const size_t sensor = task / tasks_per_sensor;
+      const size_t sensor = range.begin + task / tasks_per_sensor;  // the scene's index: it seeds the paths
       const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
       const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
       SensorRecord& rec = chunks[task];
@@ -204,7 +205,7 @@ Contributions compute_contributions(const Scene& scene, Progress* progress, bool
     });
     if (transport) c.T = transport_matrix(c.records, elements, paths, scene.render.threads, progress);
     if (annual) {
-      record_direct_sun(scene, tracer, annual.get(), scene.render.threads);
+      record_direct_sun(scene, tracer, annual.get(), scene.render.threads, range);
       c.annual = annual;
     }
   } catch (const Cancelled&) {

@@ -8,6 +8,7 @@
 #include "trace/contributions_origin.h"
 #include "trace/open_region.h"
 #include "trace/path_record.h"
+#include "trace/sensor_range.h"
 #include "util/progress.h"
 
 namespace fenestra {
@@ -51,6 +52,9 @@ struct Contributions {
 };
 
 // With `transport` false, T is left empty (a records-only pass: the edges of thick walls).
-Contributions compute_contributions(const Scene& scene, Progress* progress = nullptr, bool transport = true);
+// `sensors`: only that block of the scene's sensors (a shard); the rows and records are theirs, in
+// order, and equal those of the whole scene's pass bit for bit.
+Contributions compute_contributions(const Scene& scene, Progress* progress = nullptr, bool transport = true,
+                                    SensorRange sensors = {});
 
 }  // namespace fenestra

@@ -104,12 +104,13 @@ OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInp
 }
 
 SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings, Progress* progress,
-                               int paths_per_sensor) {
+                               int paths_per_sensor, SensorRange range) {
+  range = range.within(scene.sensors.size());
   OpeningsGeometry g = build_openings(scene, openings);
   const PathTracer tracer(scene, std::move(g.cutters), std::move(g.reveals));
-  tracer.check_sensors();
+  tracer.check_sensors(range);
 
-  const size_t sensors = scene.sensors.size();
+  const size_t sensors = range.size();
   const int paths = paths_per_sensor > 0 ? paths_per_sensor : scene.render.paths_per_sensor;
   const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
   // Per task, its paths' sums by replicate group: stratified paths are not independent, the
@@ -118,7 +119,7 @@ SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInpu
   const uint64_t seed = scene.render.seed ^ kEvaluateStream;
   if (progress) progress->start("tracing the scene with its openings", sums.size());
   parallel_tasks(sums.size(), scene.render.threads, progress, [&](size_t task) {
-    const size_t sensor = task / tasks_per_sensor;
+    const size_t sensor = range.begin + task / tasks_per_sensor;  // the scene's index: it seeds the paths
     const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
     const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
     for (size_t p = first; p < last; ++p) {

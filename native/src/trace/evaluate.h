@@ -8,6 +8,7 @@
 #include "trace/contributions.h"
 #include "trace/open_region.h"
 #include "util/progress.h"
+#include "trace/sensor_range.h"
 
 namespace fenestra {
 
@@ -38,7 +39,9 @@ struct OpeningsGeometry {
 OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInput>& openings);
 
 // Paths per sensor: `paths_per_sensor`, or the scene's render.paths_per_sensor when 0.
+// `sensors`: only that block of the scene's sensors (a shard), equal bit for bit to their values
+// in the whole scene's run.
 SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings,
-                               Progress* progress = nullptr, int paths_per_sensor = 0);
+                               Progress* progress = nullptr, int paths_per_sensor = 0, SensorRange sensors = {});
 
 }  // namespace fenestra

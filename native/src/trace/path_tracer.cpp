@@ -919,8 +919,11 @@ void PathTracer::record_sensor_path(size_t sensor, size_t path, const PathSample
   record->end_path();
 }
 
-void PathTracer::prepare_portal_selection(int threads) {
-  if (portals_.empty() || portal_selection_.size() == scene_.sensors.size()) return;
+void PathTracer::prepare_portal_selection(int threads, SensorRange range) {
+  range = range.within(scene_.sensors.size());
+  if (portals_.empty() || (portal_selection_.size() == scene_.sensors.size() && prepared_.begin <= range.begin &&
+                           range.end <= prepared_.end))
+    return;
   std::vector<PortalShape> shapes(portals_.size());
   for (size_t k = 0; k < portals_.size(); ++k) {
     const Portal& p = portals_[k];
@@ -933,8 +936,10 @@ void PathTracer::prepare_portal_selection(int threads) {
       shape.area = p.size.x() * p.size.y() * middle.area_ratio;
     }
   }
-  portal_selection_.resize(scene_.sensors.size());
-  parallel_tasks(scene_.sensors.size(), threads, nullptr, [&](size_t i) {
+  portal_selection_.assign(scene_.sensors.size(), PortalSelection());  // the others' stay empty
+  prepared_ = range;
+  parallel_tasks(range.size(), threads, nullptr, [&](size_t local) {
+    const size_t i = range.begin + local;
     const Vec3& n = scene_.sensors.normals[i];
     const Vec3 p = scene_.sensors.points[i] + kRayEpsilon * n;
     std::vector<double> weights(shapes.size());
@@ -949,10 +954,11 @@ size_t PathTracer::portal_selection_bytes() const {
   return bytes;
 }
 
-void PathTracer::check_sensors() const {
+void PathTracer::check_sensors(SensorRange range) const {
   // A sensor inside a closed solid sees only the back of faces and no opening domain in any direction.
   constexpr int kProbes = 64;
-  for (size_t i = 0; i < scene_.sensors.size(); ++i) {
+  range = range.within(scene_.sensors.size());
+  for (size_t i = range.begin; i < range.end; ++i) {
     const Vec3& p = scene_.sensors.points[i];
     bool inside = true;
     for (int k = 0; k < kProbes && inside; ++k) {

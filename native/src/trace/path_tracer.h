@@ -19,6 +19,7 @@
 #include "trace/path_samples.h"
 #include "trace/portal_selection.h"
 #include "trace/ray_scene.h"
+#include "trace/sensor_range.h"
 #include "util/rng.h"
 
 namespace fenestra {
@@ -60,12 +61,13 @@ class PathTracer {
                           SensorRecord* record) const;
 
   // Recording with stratified samples aims each sensor's portal samples by its view of the
-  // elements (portal_selection.h): builds that table, once, before record_sensor_path.
-  void prepare_portal_selection(int threads);
+  // elements (portal_selection.h): builds that table, once, before record_sensor_path, for the
+  // sensors of `range` (only they may then be recorded).
+  void prepare_portal_selection(int threads, SensorRange range = {});
   size_t portal_selection_bytes() const;
 
-  // Throws std::invalid_argument naming the first sensor that sits inside a closed solid.
-  void check_sensors() const;
+  // Throws std::invalid_argument naming the first sensor of `range` that sits inside a closed solid.
+  void check_sensors(SensorRange range = {}) const;
 
   // The sun seen straight from a sensor along `direction` (a point source): its cosine at the
   // sensor, and, when nothing opaque is in the way with the domain closed except for elements,
@@ -186,6 +188,7 @@ class PathTracer {
   std::unique_ptr<RayScene> rays_;
   std::vector<Portal> portals_;
   std::vector<PortalSelection> portal_selection_;  // per sensor (prepare_portal_selection)
+  SensorRange prepared_{0, 0};                     // the sensors whose selection is built
   // The panels holding portals, for aim_from_vertex: the rectangle (panel coordinates' bounding box
   // of its portals) as corner + s u + t v, its portals, its share of them and the running total.
   struct PortalPanel {

@@ -17,4 +17,18 @@ namespace fenestra {
 Eigen::MatrixXd transport_matrix(const std::vector<SensorRecord>& records, size_t elements, int paths_per_sensor,
                                  int threads, Progress* progress);
 
+// What records add to S, entry by entry in the order transport_matrix adds them: a shard of a
+// study hands these on instead of its part of T (elements^2 doubles).
+struct TransportEntries {
+  std::vector<int32_t> from, to;  // m, n
+  std::vector<float> value;
+  size_t sensors = 0;  // whose records they came from
+};
+TransportEntries transport_entries(const std::vector<SensorRecord>& records, const Progress* progress = nullptr);
+
+// T from the entries of consecutive shards of one study, in sensor order: the same sums in the
+// same order, so bit for bit transport_matrix of the whole study's records.
+Eigen::MatrixXd transport_matrix_from_entries(const std::vector<const TransportEntries*>& shards, size_t elements,
+                                              int paths_per_sensor, int threads, Progress* progress);
+
 }  // namespace fenestra

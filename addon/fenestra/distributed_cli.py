@@ -1,0 +1,145 @@
+"""`fenestra contributions|evaluate ... --workers N | --scheduler ADDRESS`: the command line's
+studies sharded over a Dask cluster (fenestra.distributed). The `fenestra` program hands such runs
+to this module (python3 -m fenestra.distributed_cli, the same arguments); outputs are the same
+files, written whole or not at all, after every shard has finished."""
+
+import signal
+import sys
+import time
+
+USAGE = """usage:
+  fenestra contributions SCENE.json -o OUT[.npz] (--workers N | --scheduler ADDRESS) [options]
+  fenestra evaluate SCENE.json --openings OPENINGS.json -o OUT.json (--workers N | --scheduler ADDRESS) [options]
+
+cluster options (docs/distributed.md):
+  --workers N          start a local Dask cluster of N worker processes (1 to 1024)
+  --scheduler ADDRESS  use a running Dask scheduler, e.g. tcp://host:8786
+  --shards N           blocks of sensors (default: one per worker)
+  --threads N          threads per local worker (default: the cores shared out)
+other options as for a single process: --paths N, --seed N, --quiet, --max-memory SIZE
+(a local worker's memory limit)
+"""
+
+
+class UsageError(Exception):
+    pass
+
+
+def parse(argv):
+    a = {"positional": [], "quiet": False}
+    flags = {"-o": "output", "--output": "output", "--openings": "openings", "--workers": "workers",
+             "--scheduler": "scheduler", "--shards": "shards", "--threads": "threads", "--paths": "paths",
+             "--seed": "seed", "--max-memory": "max_memory"}
+    integers = {"workers": (1, 1024), "shards": (1, 1 << 20), "threads": (0, 4096), "paths": (1, 1 << 30),
+                "seed": (0, 1 << 53)}
+    i = 0
+    while i < len(argv):
+        arg = argv[i]
+        if arg in ("-h", "--help"):
+            print(USAGE)
+            sys.exit(0)
+        if arg == "--quiet":
+            a["quiet"] = True
+        elif arg in flags:
+            if i + 1 >= len(argv):
+                raise UsageError("%s needs a value" % arg)
+            i += 1
+            name, text = flags[arg], argv[i]
+            if name in integers:
+                lo, hi = integers[name]
+                if not text.isdigit() or not lo <= int(text) <= hi:
+                    raise UsageError("%s expects an integer from %d to %d, got '%s'" % (arg, lo, hi, text))
+                a[name] = int(text)
+            else:
+                a[name] = text
+        elif arg.startswith("-"):
+            raise UsageError("unknown option '%s'" % arg)
+        else:
+            a["positional"].append(arg)
+        i += 1
+    if len(a["positional"]) != 2 or a["positional"][0] not in ("contributions", "evaluate"):
+        raise UsageError("expected 'contributions' or 'evaluate' and one scene file")
+    a["command"], a["scene"] = a["positional"]
+    if "output" not in a:
+        raise UsageError("%s needs -o OUT" % a["command"])
+    if a["command"] == "evaluate" and "openings" not in a:
+        raise UsageError("evaluate needs --openings OPENINGS.json")
+    if ("workers" in a) == ("scheduler" in a):
+        raise UsageError("give --workers N (a local cluster) or --scheduler ADDRESS (a running one)")
+    if "scheduler" in a and "threads" in a:
+        raise UsageError("--threads sets a local cluster's workers; a running cluster's are set where they start")
+    return a
+
+
+def output_paths(a):
+    if a["command"] == "contributions":
+        out = a["output"]
+        stem = out[:-4] if out.endswith(".npz") else out
+        return [stem + ".npz", stem + ".json"]
+    return [a["output"]]
+
+
+def run(a):
+    import fenestra
+    from fenestra import _core, distributed
+
+    inputs = [a["scene"]] + ([a["openings"]] if "openings" in a else [])
+    _core.check_output_paths(output_paths(a), inputs)
+    scene = fenestra.load_scene(a["scene"])
+    _core.check_output_paths(output_paths(a), inputs)
+    if "paths" in a:
+        scene.render.paths_per_sensor = a["paths"]
+    if "seed" in a:
+        scene.render.seed = a["seed"]
+    memory = "auto"
+    if "max_memory" in a:
+        memory = _core.parse_memory_size(a["max_memory"])
+    say = (lambda text: None) if a["quiet"] else (lambda text: print(text, file=sys.stderr, flush=True))
+    progress = lambda fraction, status: say("  %s: %3.0f%%" % (status, 100 * fraction))
+    start = time.monotonic()
+    with distributed.Cluster(scheduler=a.get("scheduler"), workers=a.get("workers"),
+                             threads_per_worker=a.get("threads") or None, memory_limit=memory) as cluster:
+        say("cluster: %d workers at %s" % (len(cluster.workers()), cluster.address))
+        if a["command"] == "contributions":
+            with distributed.contributions(scene, cluster, shards=a.get("shards"), callback=progress) as c:
+                written = c.save(a["output"])
+                seconds = time.monotonic() - start
+                print("contributions: %d sensors x %d elements, %d paths per sensor, %d shards, %.2f s"
+                      % (c.E.shape[0], c.E.shape[1], c.paths_per_sensor, len(c.shards), seconds))
+                print("wrote %s\nwrote %s" % tuple(written))
+        else:
+            openings = fenestra.read_openings(a["openings"])
+            value, stderr = distributed.evaluate(scene, openings, cluster, shards=a.get("shards"), callback=progress)
+            _core.write_evaluation(scene, value, stderr, len(openings), a["output"])  # a list or an (n, 4, 3) array
+            print("evaluate: %d sensors, %d shards, %.2f s\nwrote %s"
+                  % (len(value), len(distributed._blocks(len(value), a.get("shards") or len(cluster.workers()))),
+                     time.monotonic() - start, a["output"]))
+    return 0
+
+
+def main(argv):
+    try:
+        a = parse(argv)
+    except UsageError as exc:
+        print("fenestra: %s\n\n%s" % (exc, USAGE), file=sys.stderr)
+        return 2
+    received = {}
+
+    def on_signal(sig, frame):
+        received["signal"] = sig
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, on_signal)
+    try:
+        return run(a)
+    except KeyboardInterrupt:
+        sig = received.get("signal", signal.SIGINT)
+        print("fenestra: interrupted by %s; no output written" % signal.Signals(sig).name, file=sys.stderr)
+        return 128 + sig
+    except Exception as exc:  # a clear message, not a traceback
+        print("fenestra: error: %s" % exc, file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

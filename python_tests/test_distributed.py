@@ -1,0 +1,258 @@
+"""Studies sharded by sensors over a Dask cluster (fenestra.distributed, docs/distributed.md): a
+local cluster of 2 worker processes over TCP on localhost. Results must equal a single process's
+bit for bit; a killed worker's shard is recomputed; a worker holds only its shards' records; a
+cluster that cannot run Fenestra is named within seconds."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+from conftest import CLI, ROOT, box_obj
+
+distributed_module = pytest.importorskip("distributed")
+import fenestra  # noqa: E402
+from fenestra import distributed  # noqa: E402
+
+
+def write_floor(tmp_path, sensors=24, paths=512, element_size=0.5):
+    """Two rooms side by side, 8 x 4 x 2.6 m, their south walls the opening domain (32 elements);
+    sensors on a line through both."""
+    (tmp_path / "floor.obj").write_text(
+        box_obj((0, 0, 0), (8, 4, 2.6), lambda f: "facade" if f == "south" else "grey"))
+    scene = {
+        "fenestra": 1, "geometry": "floor.obj",
+        "materials": {"grey": {"reflectance": 0.5}, "facade": {"reflectance": 0.5}},
+        "opening_domain": {"materials": ["facade"], "element_size": element_size},
+        "sensors": {"points": [[0.3 + i * 7.4 / (sensors - 1), 0.5 + 3.0 * (i % 3) / 2, 0.8] for i in range(sensors)]},
+        "sky": {"type": "preetham", "turbidity": 3, "latitude": 45, "longitude": 0, "date": "2024-06-21",
+                "time": "12:00", "timezone": "UTC"},
+        "render": {"paths_per_sensor": paths, "seed": 7},
+    }
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    return path
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    with distributed.Cluster(workers=2, threads_per_worker=1, timeout=30) as c:
+        assert all(a.startswith("tcp://127.0.0.1:") for a in c.workers())
+        yield c
+
+
+def assert_same(a, b, names=("E", "E_stderr", "A", "T", "closed", "closed_stderr", "all_open", "all_open_stderr")):
+    for name in names:
+        x, y = np.asarray(getattr(a, name)), np.asarray(getattr(b, name))
+        assert x.shape == y.shape, name
+        assert np.array_equal(x, y), "%s differs: max |diff| %g" % (name, np.max(np.abs(x - y)))
+
+
+def test_contributions_equal_one_process_bit_for_bit(tmp_path, cluster):
+    path = write_floor(tmp_path)
+    one = fenestra.contributions(fenestra.load_scene(str(path)))
+    with distributed.contributions(str(path), cluster, shards=5) as many:  # uneven blocks: 24 = 5+5+5+4+5
+        assert [e - b for b, e, _ in many.shards] == [5, 5, 4, 5, 5]
+        assert_same(many, one)
+        assert many.T.any() and many.E.any()
+        rng = np.random.default_rng(4)
+        masks = rng.random((6, one.E.shape[1])) < 0.4
+        values, errors = many.evaluate_batch(masks)
+        for m, v, e in zip(masks, values, errors):
+            expected = one.evaluate(m)
+            assert np.array_equal(v, expected[0]) and np.array_equal(e, expected[1])
+        v, e = many.evaluate(masks[0])
+        assert np.array_equal(v, values[0])
+        window = [[[2.0, 0.0, 0.9], [3.5, 0.0, 0.9], [3.5, 0.0, 2.1], [2.0, 0.0, 2.1]]]
+        assert np.array_equal(many.evaluate_openings(window)[0],
+                              one.evaluate_openings(fenestra.load_scene(str(path)), window)[0])
+        # The arrays saved as one process saves them.
+        many.save(str(tmp_path / "many"))
+        one.save(fenestra.load_scene(str(path)), str(tmp_path / "one"))
+        a, b = np.load(tmp_path / "many.npz"), np.load(tmp_path / "one.npz")
+        assert sorted(a.files) == sorted(b.files)
+        for name in a.files:
+            assert np.array_equal(a[name], b[name]), name
+
+
+def test_the_shard_count_does_not_change_the_answer(tmp_path, cluster):
+    path = write_floor(tmp_path, sensors=7, paths=256)
+    with distributed.contributions(str(path), cluster, shards=1) as one_shard, \
+            distributed.contributions(str(path), cluster, shards=7) as seven:
+        assert_same(one_shard, seven)
+
+
+def test_evaluate_with_real_cutters_equals_one_process(tmp_path, cluster):
+    path = write_floor(tmp_path, paths=256)
+    scene = fenestra.load_scene(str(path))
+    window = [[[1.0, 0.0, 0.9], [2.5, 0.0, 0.9], [2.5, 0.0, 2.1], [1.0, 0.0, 2.1]]]
+    single = fenestra.evaluate(scene, window)
+    sharded = distributed.evaluate(str(path), window, cluster, shards=3)
+    assert np.array_equal(single[0], sharded[0]) and np.array_equal(single[1], sharded[1])
+
+
+def worker_pids(cluster):
+    return cluster.client.run(os.getpid)
+
+
+def test_a_worker_killed_mid_run_is_recomputed_and_the_result_is_unchanged(tmp_path, cluster):
+    path = write_floor(tmp_path, sensors=16, paths=8192)
+    one = fenestra.contributions(fenestra.load_scene(str(path)))
+    result = {}
+    run = threading.Thread(target=lambda: result.setdefault("c", distributed.contributions(str(path), cluster, shards=4)))
+    run.start()
+    deadline = time.monotonic() + 60
+    while not any(cluster.client.processing().values()):  # the shards are being traced
+        assert time.monotonic() < deadline
+        time.sleep(0.05)
+    victim, pid = sorted(worker_pids(cluster).items())[0]
+    os.kill(pid, signal.SIGKILL)
+    run.join(timeout=300)
+    assert "c" in result
+    assert victim not in cluster.workers()  # it died (its nanny starts a new one, at a new address)
+    with result["c"] as many:
+        assert_same(many, one)
+        # Evaluations after a loss: kill the worker holding shard 0; it is recomputed elsewhere.
+        cluster.client.wait_for_workers(2, timeout=60)
+        holder = many.shards[0][2]
+        os.kill(worker_pids(cluster)[holder], signal.SIGKILL)
+        mask = np.ones(one.E.shape[1], dtype=bool)
+        v, e = many.evaluate(mask)
+        assert many.recomputed_shards >= 1
+        assert np.array_equal(v, one.evaluate(mask)[0]) and np.array_equal(e, one.evaluate(mask)[1])
+    cluster.client.wait_for_workers(2, timeout=60)
+
+
+def test_a_worker_holds_only_its_shards_records(tmp_path, cluster):
+    path = write_floor(tmp_path, sensors=20, paths=2048)
+    one = fenestra.contributions(fenestra.load_scene(str(path)))
+    records = one.memory_bytes - 8 * (3 * one.E.size + one.T.size)
+    with distributed.contributions(str(path), cluster, shards=2) as many:
+        held = distributed.worker_memory(cluster)
+        by_worker = {}
+        for (b, e, worker), size in zip(many.shards, many.shard_memory_bytes):
+            by_worker[worker] = by_worker.get(worker, 0) + size
+        assert held == {w: by_worker.get(w, 0) for w in held}
+        # Each shard holds its sensors' records (and its rows): about half of one process's.
+        for size in many.shard_memory_bytes:
+            assert 0.3 * records < size < 0.7 * records + 8 * 3 * one.E.size
+        assert sum(many.shard_memory_bytes) < one.memory_bytes
+    assert sum(distributed.worker_memory(cluster).values()) == 0  # closed: the records are freed
+
+
+def test_an_unreachable_scheduler_is_named_within_seconds():
+    start = time.monotonic()
+    with pytest.raises(distributed.ClusterError, match="cannot reach the Dask scheduler at tcp://127.0.0.1:9"):
+        distributed.Cluster(scheduler="tcp://127.0.0.1:9", timeout=3)
+    assert time.monotonic() - start < 15
+
+
+def test_a_version_mismatch_is_named(cluster, monkeypatch):
+    monkeypatch.setattr(distributed, "PROTOCOL", distributed.PROTOCOL + 1)
+    with pytest.raises(distributed.ClusterError, match="runs Fenestra .* this client Fenestra .* same Fenestra build"):
+        distributed.Cluster._check_workers(cluster, timeout=5)
+
+
+def test_a_worker_without_fenestra_is_named(tmp_path):
+    """A scheduler and a worker started by hand, the worker's Python unable to import Fenestra."""
+    env = dict(os.environ, PYTHONPATH="")
+    port = 18700 + os.getpid() % 500
+    scheduler = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1",
+                                  "--port", str(port), "--no-dashboard"], env=env, cwd=tmp_path,
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    worker = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", "tcp://127.0.0.1:%d" % port,
+                               "--nthreads", "1", "--no-dashboard", "--no-nanny"], env=env, cwd=tmp_path,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        start = time.monotonic()
+        with pytest.raises(distributed.ClusterError, match="cannot run Fenestra.*PYTHONPATH"):
+            distributed.Cluster(scheduler="tcp://127.0.0.1:%d" % port, timeout=30)
+        assert time.monotonic() - start < 40
+    finally:
+        for p in (worker, scheduler):
+            p.terminate()
+            p.wait(timeout=30)
+
+
+def test_bad_arguments_are_named(tmp_path, cluster):
+    path = write_floor(tmp_path, sensors=4, paths=64)
+    with pytest.raises(ValueError, match="shards must be a positive integer"):
+        distributed.contributions(str(path), cluster, shards=0)
+    with pytest.raises(TypeError, match="scene must be a scene file's path"):
+        distributed.contributions(3.5, cluster)
+    with pytest.raises(ValueError, match="was not read from a file"):
+        distributed.contributions(fenestra.scene_from_dict(json.loads(path.read_text()), tmp_path), cluster)
+    with pytest.raises(ValueError, match="give either scheduler"):
+        distributed.Cluster(scheduler="tcp://127.0.0.1:9", workers=2)
+    with distributed.contributions(str(path), cluster) as c:
+        with pytest.raises(ValueError, match="masks must have shape"):
+            c.evaluate_batch(np.ones((2, 3)))
+
+
+# ---- the command line ----------------------------------------------------------------------------
+
+
+def cli(*args, timeout=300):
+    return subprocess.run([CLI] + [str(a) for a in args], capture_output=True, text=True, timeout=timeout)
+
+
+def test_cli_contributions_and_evaluate_on_a_local_cluster_equal_one_process(tmp_path):
+    path = write_floor(tmp_path, sensors=6, paths=256)
+    r = cli("contributions", path, "-o", tmp_path / "many.npz", "--workers", 2, "--threads", 1, "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert "2 shards" in r.stdout and "wrote" in r.stdout
+    r = cli("contributions", path, "-o", tmp_path / "one.npz", "--quiet")
+    assert r.returncode == 0, r.stderr
+    a, b = np.load(tmp_path / "many.npz"), np.load(tmp_path / "one.npz")
+    for name in b.files:
+        assert np.array_equal(a[name], b[name]), name
+    openings = tmp_path / "openings.json"
+    openings.write_text(json.dumps({"openings": [{"corners": [[1, 0, 0.9], [2.5, 0, 0.9], [2.5, 0, 2.1], [1, 0, 2.1]]}]}))
+    for out, extra in (("many.json", ["--workers", 2, "--shards", 3]), ("one.json", [])):
+        r = cli("evaluate", path, "--openings", openings, "-o", tmp_path / out, "--quiet", *extra)
+        assert r.returncode == 0, r.stderr
+    many, one = json.loads((tmp_path / "many.json").read_text()), json.loads((tmp_path / "one.json").read_text())
+    assert many["sensors"] == one["sensors"] if "sensors" in one else many == one
+
+
+def test_cli_unreachable_scheduler_fails_fast_and_writes_nothing(tmp_path):
+    path = write_floor(tmp_path, sensors=4, paths=64)
+    start = time.monotonic()
+    r = cli("contributions", path, "-o", tmp_path / "out.npz", "--scheduler", "tcp://127.0.0.1:9", timeout=60)
+    assert r.returncode == 1
+    assert "cannot reach the Dask scheduler at tcp://127.0.0.1:9" in r.stderr
+    assert time.monotonic() - start < 30
+    assert not (tmp_path / "out.npz").exists() and not (tmp_path / "out.json").exists()
+
+
+def test_cli_usage_errors(tmp_path):
+    path = write_floor(tmp_path, sensors=4, paths=64)
+    for args, message in ((["--workers", 0], "--workers expects an integer from 1 to 1024"),
+                          (["--workers", 2, "--scheduler", "tcp://127.0.0.1:9"], "give --workers N"),
+                          (["--shards", 2], "give --workers N")):
+        r = cli("contributions", path, "-o", tmp_path / "out.npz", *args)
+        assert r.returncode == 2 and message in r.stderr, r.stderr
+
+
+def test_cli_ctrl_c_cancels_the_cluster_and_writes_nothing(tmp_path):
+    path = write_floor(tmp_path, sensors=8, paths=1 << 16)
+    p = subprocess.Popen([CLI, "contributions", str(path), "-o", str(tmp_path / "out.npz"), "--workers", "2"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    line = ""
+    while "tracing contribution paths" not in line and "cluster:" not in line:  # the cluster is up
+        line = p.stderr.readline()
+        assert line or p.poll() is None, "exited early"
+        assert time.monotonic() < deadline
+    time.sleep(2.0)
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=120)
+    assert p.returncode == 130, err
+    assert "interrupted by SIGINT; no output written" in err
+    assert not (tmp_path / "out.npz").exists() and not (tmp_path / "out.json").exists()
