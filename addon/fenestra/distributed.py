@@ -201,14 +201,17 @@ def _compute_shard(spec, key, begin, end):
     c = _core.compute_contributions(scene, None, (begin, end))
     _HELD[key] = c
     frm, to, value, sensors = _core.transport_entries(c)
-    return {
+    part = {
         "worker": _worker_address(), "begin": begin, "end": end,
         "E": np.array(c.E), "E_stderr": np.array(c.E_stderr), "A": np.array(c.A),
         "closed": np.array(c.closed), "closed_stderr": np.array(c.closed_stderr),
         "all_open": np.array(c.all_open), "all_open_stderr": np.array(c.all_open_stderr),
         "transport": (frm, to, value, sensors), "seconds": c.seconds, "events": c.events,
-        "memory_bytes": c.memory_bytes, "paths_per_sensor": c.paths_per_sensor,
+        "paths_per_sensor": c.paths_per_sensor,
     }
+    _core.keep_records_only(c)  # the rows travel to the client; the worker keeps what evaluations read
+    part["memory_bytes"] = c.memory_bytes
+    return part
 
 
 def _held(key):

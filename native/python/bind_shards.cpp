@@ -116,6 +116,17 @@ void bind_shards(py::module_& m) {
       "Contributions of the scene from their arrays, without path records (a study whose records stay in its "
       "shards): save() writes them as a single process would.");
   m.def(
+      "keep_records_only",
+      [](Contributions& c) {
+        const Eigen::Index elements = c.E.cols();
+        for (Eigen::MatrixXd* m : {&c.E, &c.E_stderr, &c.A}) {
+          Eigen::MatrixXd empty(0, elements);  // keeps the element count evaluations check
+          m->swap(empty);
+        }
+      },
+      py::arg("contributions"),
+      "Frees a shard's E, E_stderr and A (the client keeps them), keeping the records that evaluations read.");
+  m.def(
       "check_output_paths",
       [](const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
         check_output_paths(outputs, inputs);

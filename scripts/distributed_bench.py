@@ -1,0 +1,134 @@
+"""Benchmark of a study sharded over a Dask cluster (docs/distributed.md), part of `make bench`.
+
+A generated building floor: 12 rooms of 6 x 5 x 3 m in a row, 0.2 m apart, each with its south
+wall the opening domain (0.2 m elements: 5 400 in all) and a grid of 9 x 10 sensors at desk height
+(1 080 in all), under a Preetham sky. The contributions are computed by one process and by a local
+cluster of 2 worker processes over TCP, then a generation of 64 random sets is evaluated exactly
+from the records both ways. Printed: wall times, the ratio, each worker's peak memory (resident
+set) and the records it holds, and whether the results agree bit for bit.
+
+    /usr/bin/python3 scripts/distributed_bench.py [--paths N] [--workers N] [--json OUT.json]
+"""
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "addon"))
+
+import fenestra  # noqa: E402
+from fenestra import distributed  # noqa: E402
+
+ROOMS, WIDTH, DEPTH, HEIGHT, GAP = 12, 6.0, 5.0, 3.0, 0.2
+
+
+def box_faces(x0, x1):
+    """The six inward-facing quads of a room spanning x0..x1, and which is the facade (south)."""
+    y0, y1, z0, z1 = 0.0, DEPTH, 0.0, HEIGHT
+    return {
+        "floor": [(x0, y0, z0), (x0, y1, z0), (x1, y1, z0), (x1, y0, z0)],
+        "ceiling": [(x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)],
+        "south": [(x0, y0, z0), (x1, y0, z0), (x1, y0, z1), (x0, y0, z1)],
+        "north": [(x0, y1, z0), (x0, y1, z1), (x1, y1, z1), (x1, y1, z0)],
+        "west": [(x0, y0, z0), (x0, y0, z1), (x0, y1, z1), (x0, y1, z0)],
+        "east": [(x1, y0, z0), (x1, y1, z0), (x1, y1, z1), (x1, y0, z1)],
+    }
+
+
+def write_floor(directory, paths):
+    lines, n, sensors = [], 0, []
+    for r in range(ROOMS):
+        x0 = r * (WIDTH + GAP)
+        for name, quad in box_faces(x0, x0 + WIDTH).items():
+            lines += ["o room%d_%s" % (r, name), "usemtl %s" % ("facade" if name == "south" else "interior")]
+            lines += ["v %g %g %g" % p for p in quad]
+            lines.append("f %d %d %d %d" % (n + 1, n + 2, n + 3, n + 4))
+            n += 4
+        sensors += [[x0 + 0.5 + i * (WIDTH - 1.0) / 8, 0.5 + j * (DEPTH - 1.0) / 9, 0.8] for i in range(9) for j in range(10)]
+    with open(os.path.join(directory, "floor.obj"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    scene = {
+        "fenestra": 1, "geometry": "floor.obj",
+        "materials": {"interior": {"reflectance": 0.5}, "facade": {"reflectance": 0.5}},
+        "opening_domain": {"materials": ["facade"], "element_size": 0.2},
+        "sensors": {"points": sensors},
+        "sky": {"type": "preetham", "turbidity": 3, "latitude": 48.85, "longitude": 2.35, "date": "2026-03-21",
+                "time": "11:00", "timezone": "Europe/Paris"},
+        "render": {"paths_per_sensor": paths, "seed": 1},
+    }
+    path = os.path.join(directory, "scene.json")
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    return path
+
+
+def peak_rss_bytes():
+    import resource as r  # here: the function also runs on the workers
+
+    return r.getrusage(r.RUSAGE_SELF).ru_maxrss * 1024
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--paths", type=int, default=1024)
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--json")
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        path = write_floor(tmp, args.paths)
+        scene = fenestra.load_scene(path)
+        print("Distributed benchmark: a generated floor of %d rooms, %d sensors x %d elements, %d paths per sensor; "
+              "%d cores" % (ROOMS, scene.sensor_count, scene.element_count, args.paths, os.cpu_count()))
+        masks = np.random.default_rng(2).random((64, scene.element_count)) < 0.3
+
+        start = time.monotonic()
+        one = fenestra.contributions(scene)
+        one_seconds = time.monotonic() - start
+        start = time.monotonic()
+        one_values = np.array([one.evaluate(m)[0] for m in masks])
+        one_eval_seconds = time.monotonic() - start
+        one_records = one.memory_bytes - 8 * (3 * one.E.size + one.T.size)
+        one_peak = peak_rss_bytes()
+        del one
+
+        with distributed.Cluster(workers=args.workers, threads_per_worker=max(1, os.cpu_count() // args.workers),
+                                 timeout=60) as cluster:
+            start = time.monotonic()
+            with distributed.contributions(path, cluster) as many:
+                many_seconds = time.monotonic() - start
+                start = time.monotonic()
+                many_values, _ = many.evaluate_batch(masks)
+                many_eval_seconds = time.monotonic() - start
+                held = distributed.worker_memory(cluster)
+                peaks = cluster.client.run(peak_rss_bytes)
+                same = bool(np.array_equal(many_values, one_values))
+                shards = many.shards
+        mib = 1 << 20
+        print("  one process:  contributions %.2f s, 64 exact evaluations %.2f s, records %.1f MiB, peak resident %.0f MiB"
+              % (one_seconds, one_eval_seconds, one_records / mib, one_peak / mib))
+        print("  %d workers:    contributions %.2f s, 64 exact evaluations %.2f s (one batch)"
+              % (args.workers, many_seconds, many_eval_seconds))
+        for worker in sorted(held):
+            print("    worker %s: records %.1f MiB (its shard of sensors %s), peak resident %.0f MiB"
+                  % (worker, held[worker] / mib, [(b, e) for b, e, w in shards if w == worker], peaks[worker] / mib))
+        print("  ratio (one process / cluster): contributions %.2f x, evaluations %.2f x; results equal bit for bit: %s"
+              % (one_seconds / many_seconds, one_eval_seconds / many_eval_seconds, same))
+        if args.json:
+            with open(args.json, "w") as f:
+                json.dump({"sensors": scene.sensor_count, "elements": scene.element_count, "paths": args.paths,
+                           "one_process_seconds": one_seconds, "cluster_seconds": many_seconds,
+                           "one_process_evaluation_seconds": one_eval_seconds,
+                           "cluster_evaluation_seconds": many_eval_seconds, "worker_records_bytes": held,
+                           "worker_peak_resident_bytes": peaks, "one_process_records_bytes": one_records,
+                           "bit_identical": same}, f, indent=2)
+        return 0 if same else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
