@@ -257,3 +257,24 @@ def test_cli_ctrl_c_cancels_the_cluster_and_writes_nothing(tmp_path):
     assert p.returncode == 130, err
     assert "interrupted by SIGINT; no output written" in err
     assert not (tmp_path / "out.npz").exists() and not (tmp_path / "out.json").exists()
+
+
+def test_progress_is_aggregated_and_a_cancel_stops_the_workers(tmp_path, cluster):
+    path = write_floor(tmp_path, sensors=8, paths=1 << 17)  # a minute or more of tracing
+    seen = []
+
+    def callback(fraction, status):
+        seen.append((fraction, status))
+        return not any(0.0 < f < 1.0 for f, _ in seen[:-1])  # cancel once a report showed work under way
+
+    start = time.monotonic()
+    with pytest.raises(fenestra.Cancelled):
+        distributed.contributions(str(path), cluster, shards=4, callback=callback)
+    assert time.monotonic() - start < 60
+    assert any(0.0 < f < 1.0 for f, _ in seen), seen
+    assert all(status == "tracing contribution paths" for _, status in seen)
+    # The native work stops on the workers (cancelling a Dask task alone would leave it running).
+    deadline = time.monotonic() + 15
+    while any(cluster.client.run(lambda: len(distributed._RUNNING)).values()):
+        assert time.monotonic() < deadline, "shards still running on the workers"
+        time.sleep(0.1)

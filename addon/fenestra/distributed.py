@@ -142,9 +142,11 @@ def _describe(identity):
 
 # ---- what the workers run ----------------------------------------------------------------------
 
-# On a worker process: scenes by their spec's key, and the shards' native contributions by key.
+# On a worker process: scenes by their spec's key, the shards' native contributions by key, and
+# the progress of the shards it is computing (read and cancelled by the client).
 _SCENES = {}
 _HELD = {}
+_RUNNING = {}
 
 
 class ShardLost(KeyError):
@@ -198,7 +200,7 @@ def _worker_address():
 def _compute_shard(spec, key, begin, end):
     """Runs on a worker: the shard's contributions, kept there; returns its rows and T's entries."""
     scene = _scene_of(spec)
-    c = _core.compute_contributions(scene, None, (begin, end))
+    c = _tracked(key, lambda progress: _core.compute_contributions(scene, progress, (begin, end)))
     _HELD[key] = c
     frm, to, value, sensors = _core.transport_entries(c)
     part = {
@@ -212,6 +214,27 @@ def _compute_shard(spec, key, begin, end):
     _core.keep_records_only(c)  # the rows travel to the client; the worker keeps what evaluations read
     part["memory_bytes"] = c.memory_bytes
     return part
+
+
+def _tracked(key, work):
+    """work(progress) with its progress readable (and cancellable) under `key` meanwhile."""
+    progress = _core.Progress()
+    _RUNNING[key] = progress
+    try:
+        return work(progress)
+    finally:
+        _RUNNING.pop(key, None)
+
+
+def _progress_of(keys):
+    """Fraction done of those of `keys` running here."""
+    return {key: _RUNNING[key].fraction for key in keys if key in _RUNNING}
+
+
+def _cancel(keys):
+    for key in keys:
+        if key in _RUNNING:
+            _RUNNING[key].cancel()
 
 
 def _held(key):
@@ -241,8 +264,9 @@ def _held_bytes():
     return sum(c.memory_bytes for c in _HELD.values())
 
 
-def _evaluate_cut_shard(spec, openings, begin, end):
-    return _core.evaluate(_scene_of(spec), openings, None, (begin, end))
+def _evaluate_cut_shard(spec, key, openings, begin, end):
+    scene = _scene_of(spec)
+    return _tracked(key, lambda progress: _core.evaluate(scene, openings, progress, (begin, end)))
 
 
 # ---- the client side ---------------------------------------------------------------------------
@@ -285,25 +309,33 @@ def _blocks(sensors, shards):
 _counter = itertools.count()
 
 
-def _gather(cluster, futures, callback, what):
-    """Results of `futures` in order; callback(fraction, what) as they finish (False cancels);
-    on any exception (Ctrl-C included) the futures are cancelled before it propagates."""
+def _gather(cluster, futures, keys, callback, what):
+    """Results of `futures` (the tasks of shards `keys`) in order. About once a second,
+    callback(fraction, what) with the fraction of the work done over all workers (returning False
+    cancels). On any exception (Ctrl-C included) the shards still running are cancelled on their
+    workers, and their tasks on the cluster, before it propagates."""
     try:
-        reported = 0
+        last = 0.0
         while True:
-            done = sum(f.done() for f in futures)
-            if any(f.status == "error" for f in futures):
-                break  # gather raises it
-            if done > reported and callback is not None:
-                reported = done
+            if any(f.status == "error" for f in futures) or all(f.done() for f in futures):
+                break  # gather returns the results or raises the shard's error
+            now = time.monotonic()
+            if callback is not None and now - last >= 1.0:
+                last = now
+                running = {}
+                for fractions in cluster.client.run(_progress_of, keys).values():
+                    running.update(fractions)
+                done = sum((1.0 if f.done() else running.get(k, 0.0)) for f, k in zip(futures, keys))
                 if callback(done / len(futures), what) is False:
                     raise api.Cancelled("cancelled while %s" % what)
-            if done == len(futures):
-                break
             time.sleep(0.02)
         return cluster.client.gather(futures)
     except BaseException:
         cluster.client.cancel(futures)
+        try:
+            cluster.client.run(_cancel, keys)  # a cancelled task's native work stops only so
+        except Exception:
+            pass
         raise
 
 
@@ -313,7 +345,8 @@ def contributions(scene, cluster, shards=None, base_dir=".", callback=None):
     A, T, closed and all-open values as fenestra.contributions, bit for bit; its path records stay
     on the workers. `scene`: a scene file's path, a dict in the scene-file format (relative paths
     against base_dir) or a fenestra.Scene read from a file (its render settings are used).
-    callback(fraction, status) is called as shards finish; returning False cancels."""
+    callback(fraction, status) is called about once a second with the fraction done over all
+    workers; returning False cancels (fenestra.Cancelled), stopping the shards on their workers."""
     spec, local = _spec(scene, base_dir)
     api._warn_if_dark(local)
     blocks = _blocks(local.sensor_count, shards if shards is not None else len(cluster.workers()))
@@ -321,7 +354,7 @@ def contributions(scene, cluster, shards=None, base_dir=".", callback=None):
     keys = ["%s-shard-%d" % (study, i) for i in range(len(blocks))]
     futures = [cluster.client.submit(_compute_shard, spec, key, b, e, pure=False, key=key)
                for key, (b, e) in zip(keys, blocks)]
-    parts = _gather(cluster, futures, callback, "tracing contribution paths")
+    parts = _gather(cluster, futures, keys, callback, "tracing contribution paths")
     del futures
     return DistributedContributions(cluster, spec, local, keys, parts)
 
@@ -471,8 +504,11 @@ def evaluate(scene, openings, cluster, shards=None, base_dir=".", callback=None)
     spec, local = _spec(scene, base_dir)
     openings = api.openings_argument(openings)
     blocks = _blocks(local.sensor_count, shards if shards is not None else len(cluster.workers()))
-    futures = [cluster.client.submit(_evaluate_cut_shard, spec, openings, b, e, pure=False) for b, e in blocks]
-    parts = _gather(cluster, futures, callback, "tracing the scene with its openings")
+    study = "fenestra-evaluate-%s-%d" % (spec["key"], next(_counter))
+    keys = ["%s-shard-%d" % (study, i) for i in range(len(blocks))]
+    futures = [cluster.client.submit(_evaluate_cut_shard, spec, key, openings, b, e, pure=False, key=key)
+               for key, (b, e) in zip(keys, blocks)]
+    parts = _gather(cluster, futures, keys, callback, "tracing the scene with its openings")
     return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
 
 
