@@ -239,6 +239,12 @@ def test_cli_usage_errors(tmp_path):
                           (["--shards", 2], "give --workers N")):
         r = cli("contributions", path, "-o", tmp_path / "out.npz", *args)
         assert r.returncode == 2 and message in r.stderr, r.stderr
+    for command in ("solve", "annual"):
+        r = cli(command, path, "-o", tmp_path / "out.json", "--workers", 2)
+        assert r.returncode == 2 and "does not run on a Dask cluster yet" in r.stderr, r.stderr
+    for args, message in ((["--workers", "two"], "--workers expects an integer"),):
+        r = cli("contributions", path, "-o", tmp_path / "out.npz", *args)
+        assert r.returncode == 2 and message in r.stderr, r.stderr
 
 
 def test_cli_ctrl_c_cancels_the_cluster_and_writes_nothing(tmp_path):

@@ -57,6 +57,9 @@ def parse(argv):
         else:
             a["positional"].append(arg)
         i += 1
+    if a["positional"] and a["positional"][0] in ("solve", "annual", "sky"):
+        raise UsageError("%s does not run on a Dask cluster yet: contributions and evaluate do; run %s on one "
+                         "machine (without --workers, --scheduler and --shards)" % ((a["positional"][0],) * 2))
     if len(a["positional"]) != 2 or a["positional"][0] not in ("contributions", "evaluate"):
         raise UsageError("expected 'contributions' or 'evaluate' and one scene file")
     a["command"], a["scene"] = a["positional"]
