@@ -284,3 +284,29 @@ def test_progress_is_aggregated_and_a_cancel_stops_the_workers(tmp_path, cluster
     while any(cluster.client.run(lambda: len(distributed._RUNNING)).values()):
         assert time.monotonic() < deadline, "shards still running on the workers"
         time.sleep(0.1)
+
+
+def test_a_shard_too_large_for_its_worker_is_refused_before_any_work(tmp_path):
+    path = write_floor(tmp_path, sensors=24, paths=1 << 16)
+    estimate = fenestra.estimate_cost(fenestra.load_scene(str(path)), "contributions")
+    blocks = distributed._blocks(24, 2)
+    need = distributed.check_shards_fit(estimate, blocks, {"tcp://a:1": 0})  # no limit: fits, says how much
+    assert need > estimate["memory"]["path_records"] / 2
+    with pytest.raises(distributed.ClusterError, match=r"a shard of 12 sensors needs about .* MiB .* worker tcp://b:2's "
+                                                       r"memory limit of .* use at least \d+ shards"):
+        distributed.check_shards_fit(estimate, blocks, {"tcp://a:1": 10 * need, "tcp://b:2": need / 3})
+    # The suggested shard count fits.
+    message = str(pytest.raises(distributed.ClusterError, distributed.check_shards_fit, estimate, blocks,
+                                {"tcp://b:2": need / 3}).value)
+    shards = int(message.split("use at least ")[1].split()[0])
+    distributed.check_shards_fit(estimate, distributed._blocks(24, shards), {"tcp://b:2": need / 3})
+
+
+def test_cli_refuses_shards_larger_than_a_workers_memory(tmp_path):
+    path = write_floor(tmp_path, sensors=24, paths=1 << 18)
+    r = cli("contributions", path, "-o", tmp_path / "out.npz", "--workers", 2, "--max-memory", "600M", "--quiet",
+            timeout=120)
+    assert r.returncode == 1, r.stderr
+    assert "a shard of 12 sensors needs about" in r.stderr and "memory limit of 572 MiB" in r.stderr, r.stderr
+    assert "use at least" in r.stderr
+    assert not (tmp_path / "out.npz").exists()

@@ -339,6 +339,35 @@ def _gather(cluster, futures, keys, callback, what):
         raise
 
 
+def _mib(n):
+    return "%.0f MiB" % (n / 2**20) if n < 2**30 else "%.1f GiB" % (n / 2**30)
+
+
+def check_shards_fit(estimate, blocks, worker_limits):
+    """Raises ClusterError when the largest shard would not fit in the smallest worker's memory
+    limit (bytes; 0 or None: no limit): its records while they are assembled, its rows of E,
+    E_stderr and A, and the ray-tracing scene and tables every shard builds (docs/distributed.md).
+    `estimate`: fenestra.estimate_cost(scene, "contributions") of the whole study."""
+    memory, sensors = estimate["memory"], estimate["sensors"]
+    per_sensor = (memory["path_records"] + memory["path_records_assembly"] + memory["portal_selection"]
+                  + memory["E"] + memory["E_stderr"] + memory["A"]) / sensors
+    fixed = memory["ray_scene"] + memory["analysis"]
+    largest = max(e - b for b, e in blocks)
+    need = fixed + per_sensor * largest
+    limits = {w: m for w, m in worker_limits.items() if m}
+    if limits and need > min(limits.values()):
+        worker = min(limits, key=limits.get)
+        most = int((limits[worker] - fixed) // per_sensor)  # sensors a shard may hold there
+        what = ("a shard of %d sensors needs about %s (path records while they are assembled, its rows of E, E_stderr "
+                "and A), more than worker %s's memory limit of %s" % (largest, _mib(need), worker, _mib(limits[worker])))
+        if most < 1:
+            raise ClusterError(what + ": even one sensor per shard does not fit; use fewer paths or workers with more "
+                               "memory")
+        raise ClusterError(what + ": use at least %d shards (shards=, --shards), more workers, or fewer paths"
+                           % -(-sensors // most))
+    return need
+
+
 def contributions(scene, cluster, shards=None, base_dir=".", callback=None):
     """One pass of paths per sensor, sharded over `cluster` (a Cluster) in `shards` blocks of
     sensors (default: one per worker). Returns a DistributedContributions: the same E, E_stderr,
@@ -350,6 +379,9 @@ def contributions(scene, cluster, shards=None, base_dir=".", callback=None):
     spec, local = _spec(scene, base_dir)
     api._warn_if_dark(local)
     blocks = _blocks(local.sensor_count, shards if shards is not None else len(cluster.workers()))
+    workers = cluster.client.scheduler_info()["workers"]
+    check_shards_fit(api.estimate_cost(local, "contributions"), blocks,
+                     {w: info.get("memory_limit", 0) for w, info in workers.items()})
     study = "fenestra-%s-%d" % (spec["key"], next(_counter))
     keys = ["%s-shard-%d" % (study, i) for i in range(len(blocks))]
     futures = [cluster.client.submit(_compute_shard, spec, key, b, e, pure=False, key=key)
