@@ -310,3 +310,33 @@ def test_cli_refuses_shards_larger_than_a_workers_memory(tmp_path):
     assert "a shard of 12 sensors needs about" in r.stderr and "memory limit of 572 MiB" in r.stderr, r.stderr
     assert "use at least" in r.stderr
     assert not (tmp_path / "out.npz").exists()
+
+
+def test_fuzzed_scheduler_addresses_are_refused_or_tried_never_crash():
+    """Seeded mutations of an address: each is either refused at once (ValueError naming it) or a
+    well-formed address; Dask itself never sees a malformed one."""
+    rng = np.random.default_rng(19)
+    base = "tcp://127.0.0.1:8786"
+    alphabet = "tcp:/[]1.9:x -\x00é"
+    for _ in range(300):
+        text = list(base)
+        for _ in range(rng.integers(1, 4)):
+            i = int(rng.integers(0, len(text) + 1))
+            op = rng.integers(0, 3)
+            if op == 0 and text:
+                del text[min(i, len(text) - 1)]
+            elif op == 1:
+                text.insert(i, alphabet[rng.integers(0, len(alphabet))])
+            elif text:
+                text[min(i, len(text) - 1)] = alphabet[rng.integers(0, len(alphabet))]
+        address = "".join(text)
+        try:
+            distributed._check_address(address)
+        except ValueError as exc:
+            assert repr(address) in str(exc)
+            continue
+        scheme, rest = address.split("://", 1)
+        assert scheme in ("tcp", "tls", "ws", "wss", "ucx") and 1 <= int(rest.rsplit(":", 1)[1]) <= 65535, address
+    for bad in (None, 8786, b"tcp://127.0.0.1:8786"):
+        with pytest.raises(ValueError):
+            distributed._check_address(bad)

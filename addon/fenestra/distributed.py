@@ -21,6 +21,7 @@ import itertools
 import json
 import logging
 import os
+import re
 import sys
 import time
 
@@ -72,8 +73,7 @@ class Cluster:
             raise ValueError("give either scheduler (an existing cluster) or workers (a local one), not both")
         self._local = None
         if scheduler is not None:
-            if not isinstance(scheduler, str) or not scheduler:
-                raise ValueError("scheduler must be an address such as 'tcp://host:8786', got %r" % (scheduler,))
+            _check_address(scheduler)
             try:
                 self.client = distributed.Client(scheduler, timeout=timeout, set_as_default=False)
             except (OSError, TimeoutError) as exc:
@@ -134,6 +134,18 @@ class Cluster:
 
     def __exit__(self, *exc):
         self.close()
+
+
+_ADDRESS = re.compile(r"^(tcp|tls|ws|wss|ucx)://(\[[0-9A-Fa-f:.]+\]|[^:/\s\[\]]+):(\d{1,5})$")
+
+
+def _check_address(scheduler):
+    """A Dask address, SCHEME://HOST:PORT (checked here: Dask's own errors leave a client behind
+    that hangs the interpreter's exit)."""
+    match = _ADDRESS.match(scheduler) if isinstance(scheduler, str) else None
+    if not match or not 1 <= int(match.group(3)) <= 65535:
+        raise ValueError("scheduler address %r: expected SCHEME://HOST:PORT with SCHEME tcp, tls, ws, wss or ucx and "
+                         "PORT 1 to 65535, e.g. 'tcp://host:8786'" % (scheduler,))
 
 
 def _describe(identity):
