@@ -340,3 +340,11 @@ def test_fuzzed_scheduler_addresses_are_refused_or_tried_never_crash():
     for bad in (None, 8786, b"tcp://127.0.0.1:8786"):
         with pytest.raises(ValueError):
             distributed._check_address(bad)
+
+
+def test_a_local_cluster_has_the_workers_asked_for():
+    with distributed.Cluster(workers=1, threads_per_worker=1, timeout=30) as one:
+        assert len(one.workers()) == 1
+    for bad in (0, 1025, 2.0, True, "2"):
+        with pytest.raises(ValueError, match="workers must be an integer from 1 to 1024"):
+            distributed.Cluster(workers=bad)

@@ -79,7 +79,7 @@ class Cluster:
             except (OSError, TimeoutError) as exc:
                 raise ClusterError("cannot reach the Dask scheduler at %s within %g s: %s" % (scheduler, timeout, exc)) from None
         else:
-            workers = os.cpu_count() or 1 if workers is None else workers
+            workers = (os.cpu_count() or 1) if workers is None else workers
             if not isinstance(workers, int) or isinstance(workers, bool) or not 1 <= workers <= 1024:
                 raise ValueError("workers must be an integer from 1 to 1024, got %r" % (workers,))
             threads = threads_per_worker or max(1, (os.cpu_count() or 1) // workers)
