@@ -236,7 +236,9 @@ def test_cli_usage_errors(tmp_path):
     path = write_floor(tmp_path, sensors=4, paths=64)
     for args, message in ((["--workers", 0], "--workers expects an integer from 1 to 1024"),
                           (["--workers", 2, "--scheduler", "tcp://127.0.0.1:9"], "give --workers N"),
-                          (["--shards", 2], "give --workers N")):
+                          (["--shards", 2], "give --workers N"),
+                          (["--scheduler", "tcp://127.0.0.1:9", "--max-memory", "1G"], "--max-memory sets a local"),
+                          (["--workers", 2, "--shards", "-1"], "--shards expects an integer from 1")):
         r = cli("contributions", path, "-o", tmp_path / "out.npz", *args)
         assert r.returncode == 2 and message in r.stderr, r.stderr
     for command in ("solve", "annual"):

@@ -69,8 +69,9 @@ def parse(argv):
         raise UsageError("evaluate needs --openings OPENINGS.json")
     if ("workers" in a) == ("scheduler" in a):
         raise UsageError("give --workers N (a local cluster) or --scheduler ADDRESS (a running one)")
-    if "scheduler" in a and "threads" in a:
-        raise UsageError("--threads sets a local cluster's workers; a running cluster's are set where they start")
+    for flag, name in (("--threads", "threads"), ("--max-memory", "max_memory")):
+        if "scheduler" in a and name in a:
+            raise UsageError("%s sets a local cluster's workers; a running cluster's are set where they start" % flag)
     return a
 
 
