@@ -65,7 +65,8 @@ class Contributions:
     events: int
     memory_bytes: int
     def evaluate(self, open: npt.ArrayLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
-    def evaluate_openings(self, scene: Scene, openings: npt.ArrayLike, progress: Optional[Progress] = None
+    def evaluate_openings(self, scene: Scene, openings: npt.ArrayLike, progress: Optional[Progress] = None,
+                          sensors: Optional[Tuple[int, int]] = None  # a shard's block of the scene's sensors
                           ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
     @property
     def has_annual(self) -> bool: ...  # computed under a "climate" sky: annual studies are possible
@@ -75,9 +76,23 @@ class Contributions:
     def save_annual(self, scene: Scene, openings: npt.ArrayLike | str, path: str) -> Tuple[str, str]: ...
     def save(self, scene: Scene, path: str) -> Tuple[str, str]: ...
 
-def compute_contributions(scene: Scene, progress: Optional[Progress] = None) -> Contributions: ...
-def evaluate(scene: Scene, openings: npt.ArrayLike, progress: Optional[Progress] = None
-             ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+def compute_contributions(scene: Scene, progress: Optional[Progress] = None,
+                          sensors: Optional[Tuple[int, int]] = None  # (begin, end): a shard, T left empty
+                          ) -> Contributions: ...
+def evaluate(scene: Scene, openings: npt.ArrayLike, progress: Optional[Progress] = None,
+             sensors: Optional[Tuple[int, int]] = None) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+# Shards of a study (fenestra.distributed, docs/distributed.md).
+def transport_entries(contributions: Contributions) -> Tuple[npt.NDArray[np.int32], npt.NDArray[np.int32],
+                                                             npt.NDArray[np.float32], int]: ...  # from, to, value, sensors
+def transport_matrix_from_entries(shards: list[tuple], elements: int, paths_per_sensor: int
+                                  ) -> npt.NDArray[np.float64]: ...  # T, bit for bit one process's
+def contributions_from_arrays(scene: Scene, paths_per_sensor: int, E: npt.ArrayLike, E_stderr: npt.ArrayLike,
+                              A: npt.ArrayLike, T: npt.ArrayLike, closed: npt.ArrayLike, closed_stderr: npt.ArrayLike,
+                              all_open: npt.ArrayLike, all_open_stderr: npt.ArrayLike, seconds: float = 0.0,
+                              events: int = 0) -> Contributions: ...  # no path records
+def keep_records_only(contributions: Contributions) -> None: ...  # frees E, E_stderr and A
+def check_output_paths(outputs: list[str], inputs: list[str]) -> None: ...
+def write_evaluation(scene: Scene, value: npt.ArrayLike, stderr: npt.ArrayLike, openings: int, path: str) -> None: ...
 def annual_with_cutters(scene: Scene, openings: npt.ArrayLike | str, paths: int = 0,
                         progress: Optional[Progress] = None, output: str = "") -> dict: ...  # openings cut, no records
 def constraint_violations(scene: Scene, openings: npt.ArrayLike | str) -> list[str]: ...  # empty: every constraint met
