@@ -269,6 +269,8 @@ def _evaluate_openings_shard(key, sensors, spec, openings):
 def _release_shards(keys):
     for key in keys:
         _HELD.pop(key, None)
+    if not _HELD:
+        _SCENES.clear()  # no study left here: its scenes (meshes, skies) go too
     return len(_HELD)
 
 
