@@ -2,6 +2,9 @@
 // equal the whole study's bit for bit, and T assembled from the shards' entries equals its T.
 #include <gtest/gtest.h>
 
+#include <random>
+
+#include "solve/exact_values.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
@@ -45,6 +48,33 @@ TEST(SensorRange, ShardsEqualTheWholeStudyBitForBit) {
   const Eigen::MatrixXd T = transport_matrix_from_entries(in, whole.element_count(), whole.paths_per_sensor, 2, nullptr);
   EXPECT_TRUE(whole.T.any());
   EXPECT_TRUE(same(T, whole.T));
+}
+
+// The solver's exact values choose per sensor between a full evaluation and one from the
+// sensor's reference, so a shard's sensors get the whole study's numbers bit for bit over any
+// sequence of sets (near ones, far ones, repeats).
+TEST(SensorRange, ExactValuesOfAShardEqualTheWholeStudysBitForBit) {
+  TempDir dir;
+  const Scene scene = room_with_neighbour(dir, 1 << 9);
+  const Contributions whole = compute_contributions(scene);
+  const SensorRange block{1, 3};
+  const Contributions shard = compute_contributions(scene, nullptr, false, block);
+  ExactValues a(whole, nullptr), b(shard, nullptr);
+  std::mt19937 rng(23);
+  std::vector<uint8_t> open(whole.element_count(), 0);
+  for (int set = 0; set < 40; ++set) {
+    const size_t flips = set % 8 == 7 ? open.size() / 2 : 1 + rng() % 3;
+    for (size_t f = 0; f < flips; ++f) open[rng() % open.size()] ^= 1;
+    const SensorValues& x = a(open);
+    const SensorValues& y = b(open);
+    for (size_t i = 0; i < block.size(); ++i) {
+      const Eigen::Index w = static_cast<Eigen::Index>(block.begin + i), s = static_cast<Eigen::Index>(i);
+      ASSERT_EQ(x.value[w], y.value[s]) << "set " << set << " sensor " << w;
+      ASSERT_EQ(x.standard_error[w], y.standard_error[s]) << "set " << set << " sensor " << w;
+    }
+  }
+  EXPECT_GT(a.full_evaluations(), 0u);
+  EXPECT_LT(a.full_evaluations(), a.sensor_evaluations());  // some from the references
 }
 
 TEST(SensorRange, EmptyOrOutOfRangeBlocksAreRefused) {

@@ -14,24 +14,6 @@ namespace {
 // full (and becomes the reference): a search over scattered paths would cost about as much.
 constexpr double kMaxShareFromReference = 0.5;
 
-// Each sensor's value and standard error from its replicate sums (sums_of(i)), in parallel,
-// polling for a cancel.
-template <typename SumsOf>
-SensorValues from_sums(const Contributions& c, const Progress* progress, SumsOf sums_of) {
-  const size_t sensors = c.records.size();
-  SensorValues out;
-  out.value.resize(static_cast<Eigen::Index>(sensors));
-  out.standard_error.resize(static_cast<Eigen::Index>(sensors));
-  tbb::parallel_for(size_t(0), sensors, [&](size_t i) {
-    if (progress && progress->cancelled()) return;
-    const ReplicateSums sums = sums_of(i);
-    const auto e = static_cast<Eigen::Index>(i);
-    sums.estimate(c.records[i].path_count(), &out.value[e], &out.standard_error[e]);
-  });
-  if (progress) progress->throw_if_cancelled();
-  return out;
-}
-
 }  // namespace
 
 const SensorValues& ExactValues::operator()(const std::vector<uint8_t>& open) {
@@ -40,52 +22,85 @@ const SensorValues& ExactValues::operator()(const std::vector<uint8_t>& open) {
   return it->second;
 }
 
-SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
-  if (open.size() != c_.element_count() || reference_.empty()) return evaluate_in_full(open);
-  std::vector<int32_t> changed;
-  for (size_t k = 0; k < open.size(); ++k)
-    if ((open[k] != 0) != (reference_[k] != 0)) changed.push_back(static_cast<int32_t>(k));
-  if (element_begin_.empty()) build_index();
-  double met = 0.0, paths = 0.0;
-  for (size_t i = 0; i < c_.records.size(); ++i) {
-    paths += static_cast<double>(c_.records[i].path_count());
-    for (int32_t k : changed) met += element_begin_[i][k + 1] - element_begin_[i][k];
-  }
-  if (met > kMaxShareFromReference * paths) return evaluate_in_full(open);
-  return evaluate_from_reference(open, changed);
+int ExactValues::free_slot() {
+  for (size_t s = 0; s < reference_users_.size(); ++s)
+    if (reference_users_[s] == 0) return static_cast<int>(s);
+  reference_sets_.emplace_back();
+  reference_users_.push_back(0);
+  return static_cast<int>(reference_sets_.size() - 1);
 }
 
-// As Contributions::evaluate (the same sums in the same order), keeping each path's value.
-SensorValues ExactValues::evaluate_in_full(const std::vector<uint8_t>& open) {
+SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   if (open.size() != c_.element_count()) return c_.evaluate(open, progress_);  // which refuses it
   const size_t sensors = c_.records.size();
-  reference_.clear();  // until complete
-  reference_values_.resize(sensors);
-  reference_sums_.assign(sensors, ReplicateSums{});
-  SensorValues out = from_sums(c_, progress_, [&](size_t i) {
-    const SensorRecord& r = c_.records[i];
-    std::vector<double>& values = reference_values_[i];
-    values.resize(r.path_count());
-    for (size_t p = 0; p < r.path_count(); ++p) reference_sums_[i].add(p, values[p] = path_value(r, p, open));
-    return reference_sums_[i];
+  if (reference_of_.empty()) {
+    reference_of_.assign(sensors, -1);
+    reference_values_.resize(sensors);
+    reference_sums_.assign(sensors, ReplicateSums{});
+  } else if (element_begin_.empty()) {
+    build_index();
+  }
+  // The elements whose state differs from each reference in use.
+  std::vector<std::vector<int32_t>> changed(reference_sets_.size());
+  for (size_t s = 0; s < reference_sets_.size(); ++s)
+    if (reference_users_[s] > 0)
+      for (size_t k = 0; k < open.size(); ++k)
+        if ((open[k] != 0) != (reference_sets_[s][k] != 0)) changed[s].push_back(static_cast<int32_t>(k));
+  const int slot = free_slot();  // for the sensors evaluated in full
+  reference_sets_[slot] = open;
+  std::vector<uint8_t> in_full(sensors, 0);
+  SensorValues out;
+  out.value.resize(static_cast<Eigen::Index>(sensors));
+  out.standard_error.resize(static_cast<Eigen::Index>(sensors));
+  tbb::parallel_for(size_t(0), sensors, [&](size_t i) {
+    if (progress_ && progress_->cancelled()) return;
+    const int reference = reference_of_[i];
+    bool full = false;
+    const ReplicateSums sums = sensor_sums(i, open, reference >= 0 ? &changed[reference] : nullptr, slot, &full);
+    in_full[i] = full;
+    const auto e = static_cast<Eigen::Index>(i);
+    sums.estimate(c_.records[i].path_count(), &out.value[e], &out.standard_error[e]);
   });
-  reference_ = open;
-  ++full_evaluations_;
+  // The references' users, from the sensors' choices (a cancelled pass leaves some unchanged).
+  std::fill(reference_users_.begin(), reference_users_.end(), 0);
+  for (int reference : reference_of_)
+    if (reference >= 0) ++reference_users_[reference];
+  for (size_t s = 0; s < reference_sets_.size(); ++s)
+    if (reference_users_[s] == 0) std::vector<uint8_t>().swap(reference_sets_[s]);
+  if (progress_) progress_->throw_if_cancelled();
+  full_evaluations_ += static_cast<size_t>(std::count(in_full.begin(), in_full.end(), 1));
+  sensor_evaluations_ += sensors;
   return out;
 }
 
-SensorValues ExactValues::evaluate_from_reference(const std::vector<uint8_t>& open, const std::vector<int32_t>& changed) {
-  return from_sums(c_, progress_, [&](size_t i) {
+// In full: as Contributions::evaluate (the same sums in the same order), keeping each path's
+// value. From the reference: its sums, plus the change of every path that met a changed element.
+ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& open, const std::vector<int32_t>* changed,
+                                       int slot, bool* in_full) {
+  const SensorRecord& r = c_.records[i];
+  if (changed) {
     const std::vector<uint32_t>& begin = element_begin_[i];
-    std::vector<uint32_t> paths;
-    for (int32_t k : changed)
-      paths.insert(paths.end(), element_paths_[i].begin() + begin[k], element_paths_[i].begin() + begin[k + 1]);
-    std::sort(paths.begin(), paths.end());
-    paths.erase(std::unique(paths.begin(), paths.end()), paths.end());
-    ReplicateSums sums = reference_sums_[i];
-    for (uint32_t p : paths) sums.add(p, path_value(c_.records[i], p, open) - reference_values_[i][p]);
-    return sums;
-  });
+    double met = 0.0;
+    for (int32_t k : *changed) met += begin[k + 1] - begin[k];
+    if (!(met > kMaxShareFromReference * static_cast<double>(r.path_count()))) {
+      std::vector<uint32_t> paths;
+      for (int32_t k : *changed)
+        paths.insert(paths.end(), element_paths_[i].begin() + begin[k], element_paths_[i].begin() + begin[k + 1]);
+      std::sort(paths.begin(), paths.end());
+      paths.erase(std::unique(paths.begin(), paths.end()), paths.end());
+      ReplicateSums sums = reference_sums_[i];
+      for (uint32_t p : paths) sums.add(p, path_value(r, p, open) - reference_values_[i][p]);
+      return sums;
+    }
+  }
+  std::vector<double>& values = reference_values_[i];
+  values.resize(r.path_count());
+  ReplicateSums sums;
+  for (size_t p = 0; p < r.path_count(); ++p) sums.add(p, values[p] = path_value(r, p, open));
+  reference_sums_[i] = sums;
+  reference_of_[i] = slot;
+  *in_full = true;
+  return sums;
 }
 
 void ExactValues::build_index() {
@@ -113,7 +128,8 @@ void ExactValues::build_index() {
 }
 
 size_t ExactValues::memory_bytes() const {
-  size_t bytes = reference_.capacity() + reference_sums_.capacity() * sizeof(ReplicateSums);
+  size_t bytes = reference_sums_.capacity() * sizeof(ReplicateSums) + reference_of_.capacity() * sizeof(int);
+  for (const std::vector<uint8_t>& set : reference_sets_) bytes += set.capacity();
   for (size_t i = 0; i < reference_values_.size(); ++i) bytes += reference_values_[i].capacity() * sizeof(double);
   for (size_t i = 0; i < element_begin_.size(); ++i)
     bytes += (element_begin_[i].capacity() + element_paths_[i].capacity()) * sizeof(uint32_t);

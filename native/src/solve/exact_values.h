@@ -20,17 +20,23 @@ class ExactValues {
   ExactValues(const Contributions& c, const Progress* progress) : c_(c), progress_(progress) {}
 
   const SensorValues& operator()(const std::vector<uint8_t>& open);
-  // Sets evaluated in full so far (the others were evaluated from the reference).
+  // Sensor evaluations done in full so far, and all of them (the others were evaluated from the
+  // sensor's reference).
   size_t full_evaluations() const { return full_evaluations_; }
+  size_t sensor_evaluations() const { return sensor_evaluations_; }
   // Bytes of the index of paths per element and the reference's per-path values (the cost
   // model's exact_values_index).
   size_t memory_bytes() const;
 
  private:
   SensorValues evaluate(const std::vector<uint8_t>& open);
-  SensorValues evaluate_in_full(const std::vector<uint8_t>& open);
-  SensorValues evaluate_from_reference(const std::vector<uint8_t>& open, const std::vector<int32_t>& changed);
+  // Sensor i's replicate sums for `open`: in full (and `open` becomes its reference, slot
+  // `slot`), or from its reference when the paths that met an element of `changed` (those whose
+  // state differs from it) are at most kMaxShareFromReference of its paths.
+  ReplicateSums sensor_sums(size_t i, const std::vector<uint8_t>& open, const std::vector<int32_t>* changed, int slot,
+                            bool* in_full);
   void build_index();
+  int free_slot();
 
   const Contributions& c_;
   const Progress* progress_;
@@ -38,10 +44,16 @@ class ExactValues {
   // Per sensor: the paths that met each element, by any of their events or conditions (CSR:
   // element k's at paths[begin[k]] .. paths[begin[k + 1]]).
   std::vector<std::vector<uint32_t>> element_begin_, element_paths_;
-  std::vector<uint8_t> reference_;
+  // Each sensor's reference: the last set it was evaluated for in full (a slot of
+  // reference_sets_, -1 before any), its per-path values and their sums. Every choice is the
+  // sensor's own, so a sensor's values do not depend on the others (a study's shards give the
+  // same numbers as one process).
+  std::vector<std::vector<uint8_t>> reference_sets_;
+  std::vector<size_t> reference_users_;  // sensors per slot (an empty slot is reused)
+  std::vector<int> reference_of_;
   std::vector<std::vector<double>> reference_values_;  // [sensor][path]
   std::vector<ReplicateSums> reference_sums_;
-  size_t full_evaluations_ = 0;
+  size_t full_evaluations_ = 0, sensor_evaluations_ = 0;
 };
 
 }  // namespace fenestra
