@@ -184,23 +184,11 @@ def _scene_of(spec):
 
 
 def _worker_threads():
+    """Threads of the Dask worker this runs on (its share of the machine)."""
     from distributed import get_worker
 
-    if not _on_worker():
-        return 0
     worker = get_worker()
-    state = getattr(worker, "state", None)
-    return max(1, int(getattr(state, "nthreads", 0) or getattr(worker, "nthreads", 1)))
-
-
-def _on_worker():
-    from distributed import get_worker
-
-    try:
-        get_worker()
-        return True
-    except ValueError:
-        return False
+    return max(1, int(getattr(getattr(worker, "state", None), "nthreads", 0) or worker.nthreads))
 
 
 def _worker_address():
@@ -323,6 +311,12 @@ def _blocks(sensors, shards):
 _counter = itertools.count()
 
 
+def _shard_keys(kind, spec, count):
+    """Dask keys of one study's shards, unique in this client."""
+    study = "fenestra-%s-%s-%d" % (kind, spec["key"], next(_counter))
+    return ["%s-shard-%d" % (study, i) for i in range(count)]
+
+
 def _gather(cluster, futures, keys, callback, what):
     """Results of `futures` (the tasks of shards `keys`) in order. About once a second,
     callback(fraction, what) with the fraction of the work done over all workers (returning False
@@ -396,8 +390,7 @@ def contributions(scene, cluster, shards=None, base_dir=".", callback=None):
     workers = cluster.client.scheduler_info()["workers"]
     check_shards_fit(api.estimate_cost(local, "contributions"), blocks,
                      {w: info.get("memory_limit", 0) for w, info in workers.items()})
-    study = "fenestra-%s-%d" % (spec["key"], next(_counter))
-    keys = ["%s-shard-%d" % (study, i) for i in range(len(blocks))]
+    keys = _shard_keys("contributions", spec, len(blocks))
     futures = [cluster.client.submit(_compute_shard, spec, key, b, e, pure=False, key=key)
                for key, (b, e) in zip(keys, blocks)]
     parts = _gather(cluster, futures, keys, callback, "tracing contribution paths")
@@ -550,8 +543,7 @@ def evaluate(scene, openings, cluster, shards=None, base_dir=".", callback=None)
     spec, local = _spec(scene, base_dir)
     openings = api.openings_argument(openings)
     blocks = _blocks(local.sensor_count, shards if shards is not None else len(cluster.workers()))
-    study = "fenestra-evaluate-%s-%d" % (spec["key"], next(_counter))
-    keys = ["%s-shard-%d" % (study, i) for i in range(len(blocks))]
+    keys = _shard_keys("evaluate", spec, len(blocks))
     futures = [cluster.client.submit(_evaluate_cut_shard, spec, key, openings, b, e, pure=False, key=key)
                for key, (b, e) in zip(keys, blocks)]
     parts = _gather(cluster, futures, keys, callback, "tracing the scene with its openings")
