@@ -23,7 +23,9 @@ import logging
 import os
 import re
 import sys
+import threading
 import time
+import warnings
 
 import numpy as np
 
@@ -257,9 +259,79 @@ def _evaluate_openings_shard(key, sensors, spec, openings):
 def _release_shards(keys):
     for key in keys:
         _HELD.pop(key, None)
+        for held in [k for k in _SESSIONS if k[0] == key]:
+            del _SESSIONS[held]
     if not _HELD:
         _SCENES.clear()  # no study left here: its scenes (meshes, skies) go too
     return len(_HELD)
+
+
+# A solve's state on a worker, per shard: the shard's record queries (whose exact values keep each
+# sensor's reference) and its open region searches, with the count of state-changing calls applied.
+_SESSIONS = {}
+
+
+class SessionLost(ShardLost):
+    """The worker does not hold the solve's state for the shard as the client expects it."""
+
+
+def _session_state(key, spec, session, applied):
+    state = _SESSIONS.get((key, session))
+    if state is None:
+        if applied:  # calls were made that this worker has not seen: the shard moved here
+            raise SessionLost(key)
+        state = {"queries": _core.RecordQueries(_scene_of(spec), _held(key)), "searches": {}, "applied": 0}
+        _SESSIONS[(key, session)] = state
+    elif state["applied"] != applied:
+        raise SessionLost(key)
+    return state
+
+
+def _apply(state, op, args):
+    """One query of the solver on a shard's records (solve/record_queries.h)."""
+    queries, searches = state["queries"], state["searches"]
+    if op == "evaluate":
+        return queries.evaluate(args[0])
+    if op == "flip_effects":
+        return queries.flip_effects(args[0])
+    if op == "record_bytes":
+        return queries.record_bytes
+    if op == "try":
+        return searches[args[0]].try_region(args[1])
+    state["applied"] += 1  # the others change the state
+    if op == "exact":
+        return queries.exact(args[0])
+    if op == "search":
+        searches[args[0]] = queries.region_search(args[1])
+        return searches[args[0]].values
+    if op == "accept":
+        return searches[args[0]].accept()
+    if op == "close":
+        return searches.pop(args[0], None) and None
+    raise ValueError("unknown record query %r" % (op,))
+
+
+def _session_call(key, sensors, spec, session, applied, op, args):
+    return _apply(_session_state(key, spec, session, applied), op, args)
+
+
+def _session_replay(key, sensors, spec, session, log, pending):
+    """Brings a recomputed shard's solve state to where the client's log says: the same calls in the
+    same order (an accepted region as its try, then accept), then each open search's last try."""
+    _SESSIONS.pop((key, session), None)
+    state = _session_state(key, spec, session, 0)
+    for op, args in log:
+        if op == "accept":
+            state["searches"][args[0]].try_region(args[1])
+        _apply(state, op, args)
+    for search, rectangles in pending.items():
+        state["searches"][search].try_region(rectangles)
+    return state["applied"]
+
+
+def _end_session(session):
+    for held in [k for k in _SESSIONS if k[1] == session]:
+        del _SESSIONS[held]
 
 
 def _held_bytes():
@@ -292,11 +364,19 @@ def _spec(scene, base_dir):
     else:
         raise TypeError("scene must be a scene file's path, a dict in the scene-file format or a fenestra.Scene, "
                         "got %s" % type(scene).__name__)
+    _set_render(spec, local)
+    return spec, local
+
+
+def _set_render(spec, local, **settings):
+    """Sets the local scene's render `settings`, and the spec's render settings and key to match."""
+    for name, value in settings.items():
+        setattr(local.render, name, value)
     render = local.render
     spec["render"] = {"paths_per_sensor": render.paths_per_sensor, "seed": render.seed,
                       "max_bounces": render.max_bounces, "sampler": render.sampler}
+    spec.pop("key", None)
     spec["key"] = hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()[:16]
-    return spec, local
 
 
 def _blocks(sensors, shards):
@@ -385,6 +465,10 @@ def contributions(scene, cluster, shards=None, base_dir=".", callback=None):
     callback(fraction, status) is called about once a second with the fraction done over all
     workers; returning False cancels (fenestra.Cancelled), stopping the shards on their workers."""
     spec, local = _spec(scene, base_dir)
+    return _contributions(spec, local, cluster, shards, callback)
+
+
+def _contributions(spec, local, cluster, shards, callback):
     api._warn_if_dark(local)
     blocks = _blocks(local.sensor_count, shards if shards is not None else len(cluster.workers()))
     workers = cluster.client.scheduler_info()["workers"]
@@ -426,22 +510,29 @@ class DistributedContributions:
         """(begin, end, worker address) of every shard."""
         return [(s["begin"], s["end"], s["worker"]) for s in self._shards]
 
-    def _map(self, function, *args):
+    def _map(self, function, *args, on_recompute=None, cancelled=None):
         """function(key, (begin, end), *args) on every shard's worker, results in shard order. A
-        shard whose worker is gone (or restarted) is recomputed on another worker, then asked again."""
+        shard whose worker is gone (or restarted) is recomputed on another worker (then
+        on_recompute(i)), then asked again. cancelled(): polled while waiting; True raises Cancelled."""
         client = self._cluster.client
         pending = {i: None for i in range(len(self._shards))}
         results = [None] * len(self._shards)
+
+        def recompute(i):
+            self._recompute(i)
+            if on_recompute is not None:
+                on_recompute(i)
+
         for attempt in range(4):
             alive = set(self._cluster.workers())
             for i in list(pending):
                 if self._shards[i]["worker"] not in alive:
-                    self._recompute(i)
+                    recompute(i)
             futures = {i: client.submit(function, self._keys[i], (self._shards[i]["begin"], self._shards[i]["end"]),
                                         *args, workers=[self._shards[i]["worker"]], allow_other_workers=False,
                                         pure=False) for i in pending}
             try:
-                lost = self._wait(futures)
+                lost = self._wait(futures, cancelled)
             except BaseException:
                 client.cancel(list(futures.values()))
                 raise
@@ -453,14 +544,20 @@ class DistributedContributions:
             if not pending:
                 return results
             for i in pending:
-                self._recompute(i)
+                recompute(i)
         raise ClusterError("shards %s were lost four times in a row" % sorted(pending))
 
-    def _wait(self, futures):
+    def _wait(self, futures, cancelled=None):
         """Waits for the futures; returns the shards whose worker left or lost the shard."""
+        finished = threading.Event()
+        for future in futures.values():
+            future.add_done_callback(lambda _: finished.set())
         lost, waiting = set(), dict(futures)
         while waiting:
-            time.sleep(0.01)
+            finished.wait(0.25)
+            finished.clear()
+            if cancelled is not None and cancelled():
+                raise api.Cancelled("cancelled while asking the shards")
             alive = None
             for i, future in list(waiting.items()):
                 if future.done():
@@ -507,6 +604,25 @@ class DistributedContributions:
         parts = self._map(_evaluate_openings_shard, self._spec, openings)
         return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
 
+    def solve(self, progress=None, callback=None):
+        """The opening solver on these contributions (fenestra.solve's result dict, the same bit for
+        bit as one process gives). Its exact evaluations, flip effects and edge searches run on the
+        shards; the linear and genetic stages, and the thick walls' refined grid, in this process.
+        callback(fraction, status) as for fenestra.solve; returning False cancels."""
+        if self.scene.has_climate_goals:
+            _refuse_climate_goals(self.scene)
+        summary = self.as_contributions()
+        progress = progress if progress is not None else _core.Progress()
+        records = _ShardedRecords(self, progress)
+        try:
+            text = api._run(lambda p: _core.solve_with_records(self.scene, summary, records, p), progress, callback)
+        finally:
+            records.close()
+        result = json.loads(text)
+        for message in result.get("warnings", []):
+            warnings.warn(message, RuntimeWarning, stacklevel=2)
+        return result
+
     def as_contributions(self):
         """A fenestra.Contributions with these arrays and no path records (save(), solve's inputs)."""
         return _core.contributions_from_arrays(
@@ -535,6 +651,118 @@ class DistributedContributions:
     def __repr__(self):
         return "DistributedContributions(%d sensors x %d elements, %d paths per sensor, %d shards)" % (
             self.E.shape[0], self.E.shape[1], self.paths_per_sensor, len(self._shards))
+
+
+class _ShardedRecords:
+    """What the native solver asks of the path records (solve/record_queries.h), asked of every
+    shard for its sensors and concatenated. The calls that change a shard's state (exact values keep
+    each sensor's reference; region searches keep their region) are logged, so that a shard
+    recomputed on another worker is brought to the same state before it answers again: the answers
+    stay bit for bit those of one process."""
+
+    def __init__(self, study, progress):
+        self._study, self._progress = study, progress
+        self._session = "fenestra-solve-%d-%d" % (os.getpid(), next(_counter))
+        self._log = []        # (op, args) of every state-changing call, in order
+        self._pending = {}    # open search -> the rectangles of its last try
+        self._searches = itertools.count()
+        self.calls = 0
+
+    def _ask(self, op, *args):
+        self.calls += 1
+        changes = op not in ("evaluate", "flip_effects", "record_bytes", "try")
+        parts = self._study._map(_session_call, self._study._spec, self._session, len(self._log), op, args,
+                                 on_recompute=self._replay, cancelled=lambda: self._progress.cancelled)
+        if changes:
+            self._log.append((op, args))
+        return parts
+
+    def _replay(self, i):
+        s = self._study
+        s._cluster.client.submit(
+            _session_replay, s._keys[i], (s._shards[i]["begin"], s._shards[i]["end"]), s._spec, self._session,
+            self._log, dict(self._pending), workers=[s._shards[i]["worker"]], allow_other_workers=False,
+            pure=False).result()
+
+    @staticmethod
+    def _pairs(parts):
+        return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
+
+    def exact(self, open_mask):
+        return self._pairs(self._ask("exact", np.asarray(open_mask, dtype=np.uint8)))
+
+    def evaluate(self, rectangles):
+        return self._pairs(self._ask("evaluate", np.asarray(rectangles, dtype=np.float64)))
+
+    def flip_effects(self, about):
+        return np.concatenate(self._ask("flip_effects", np.asarray(about, dtype=np.uint8)), axis=0)
+
+    def region_search(self, rectangles):
+        search = next(self._searches)
+        values = np.concatenate(self._ask("search", search, np.asarray(rectangles, dtype=np.float64)))
+        return _ShardedSearch(self, search, values)
+
+    def cut(self, openings, paths):
+        s = self._study
+        return self._pairs(s._map(_evaluate_cut_session, s._spec, openings, paths,
+                                  cancelled=lambda: self._progress.cancelled))
+
+    def record_bytes(self):
+        return float(sum(self._ask("record_bytes")))
+
+    def close(self):
+        try:
+            self._study._cluster.client.run(_end_session, self._session)
+        except Exception:  # the cluster is gone: so is the state
+            pass
+
+
+class _ShardedSearch:
+    """A region search on every shard (RegionSearch), for the native solver's edge searches."""
+
+    def __init__(self, records, search, values):
+        self._records, self._search, self.values = records, search, values
+
+    def try_region(self, rectangles):
+        rectangles = np.asarray(rectangles, dtype=np.float64)
+        values = np.concatenate(self._records._ask("try", self._search, rectangles))
+        self._records._pending[self._search] = rectangles
+        return values
+
+    def accept(self):
+        self._records._ask("accept", self._search, self._records._pending.pop(self._search))
+
+    def close(self):
+        self._records._pending.pop(self._search, None)
+        self._records._ask("close", self._search)
+
+
+def _evaluate_cut_session(key, sensors, spec, openings, paths):
+    """The shard's sensors path-traced with the openings cut (the solver's checks with real cutters)."""
+    return _core.evaluate(_scene_of(spec), openings, None, sensors, paths)
+
+
+def solve(scene, cluster, shards=None, base_dir=".", callback=None):
+    """fenestra.solve on a cluster: the contributions sharded by sensors (as contributions()), then
+    the solver on them (DistributedContributions.solve); the shards' records are freed afterwards.
+    The result dict is the one fenestra.solve returns for the same scene and seed, bit for bit,
+    except its timings."""
+    spec, local = _spec(scene, base_dir)
+    if local.has_climate_goals:
+        _refuse_climate_goals(local)
+    if local.solver_paths > 0:  # as fenestra.solve traces them
+        if local is scene:  # the caller's Scene keeps its settings
+            local = api.load_scene(spec["path"])
+            for name in spec["render"]:
+                setattr(local.render, name, getattr(scene.render, name))
+        _set_render(spec, local, paths_per_sensor=local.solver_paths)
+    with _contributions(spec, local, cluster, shards, callback) as study:
+        return study.solve(callback=callback)
+
+
+def _refuse_climate_goals(scene):
+    raise ValueError("scene %r: climate goals (goals.climate) are not solved on a cluster yet: solve it in one "
+                     "process (fenestra solve without --workers or --scheduler)" % scene.source)
 
 
 def evaluate(scene, openings, cluster, shards=None, base_dir=".", callback=None):

@@ -35,6 +35,7 @@ void bind_daylight(py::module_& m);  // bind_daylight.cpp
 void bind_solver(py::module_& m);    // bind_solver.cpp
 void bind_cost(py::module_& m);      // bind_cost.cpp
 void bind_shards(py::module_& m);    // bind_shards.cpp
+void bind_record_queries(py::module_& m);  // bind_record_queries.cpp
 
 namespace {
 
@@ -188,6 +189,7 @@ PYBIND11_MODULE(_core, m) {
   bind_solver(m);
   bind_cost(m);
   bind_shards(m);
+  bind_record_queries(m);
   static py::exception<Cancelled> cancelled(m, "Cancelled");
   // Every native exception reaches Python with its text, decoded with replacement (pybind11's
   // default translation gives an empty message when the text is not UTF-8, e.g. a file name).
@@ -286,8 +288,12 @@ PYBIND11_MODULE(_core, m) {
       .def_property(
           "render", [](Scene& s) -> RenderSettings& { return s.render; },
           [](Scene& s, const RenderSettings& r) { s.render = r; }, py::return_value_policy::reference_internal)
+      .def_property_readonly("has_climate_goals", [](const Scene& s) { return !s.sensors.climate_goals.empty(); },
+                             "Whether the scene has goals.climate (sDA, ASE, EN 17037, UDI, annual mean).")
       .def_property_readonly("has_climate", [](const Scene& s) { return s.climate != nullptr; },
                              "Whether the sky is \"climate\" (a weather file): annual studies need it.")
+      .def_property_readonly("solver_paths", [](const Scene& s) { return s.solver.paths_per_sensor; },
+                             "solver.paths: paths per sensor of the solver's contributions (0: render.paths_per_sensor).")
       .def_property_readonly("sensor_count", [](const Scene& s) { return s.sensors.size(); })
       .def_property_readonly("element_count", [](const Scene& s) { return s.domain.element_count(); })
       .def_property_readonly("triangle_count", [](const Scene& s) { return s.mesh.triangle_count(); })
@@ -470,20 +476,26 @@ PYBIND11_MODULE(_core, m) {
       "see transport_entries).");
   m.def(
       "evaluate",
-      [](const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress, const py::object& sensors) {
+      [](const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress, const py::object& sensors,
+         int paths_per_sensor) {
         const auto rects = openings_from(openings);
         const SensorRange range = sensor_range_from(sensors, scene);
+        if (paths_per_sensor < 0 || paths_per_sensor > limits::kPathsPerSensor.hi)
+          throw std::invalid_argument("paths_per_sensor must be 0 (the scene's render.paths_per_sensor) or from 1 to " +
+                                      std::to_string(limits::kPathsPerSensor.hi) + ", got " + std::to_string(paths_per_sensor));
         SensorValues v;
         {
           py::gil_scoped_release release;
           v = while_doing("evaluating scene '" + scene.source + "'",
-                          [&] { return evaluate_openings(scene, rects, progress.get(), 0, range); });
+                          [&] { return evaluate_openings(scene, rects, progress.get(), paths_per_sensor, range); });
         }
         return values_tuple(std::move(v));
       },
       py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr, py::arg("sensors") = py::none(),
+      py::arg("paths_per_sensor") = 0,
       "Path-traces the scene with the openings cut (an (n, 4, 3) array of corners, or the JSON text of an "
-      "openings file); returns (value, stderr) per sensor (with `sensors` = (begin, end), of those only).");
+      "openings file); returns (value, stderr) per sensor (with `sensors` = (begin, end), of those only; "
+      "paths_per_sensor 0: the scene's render.paths_per_sensor).");
   m.def(
       "annual_with_cutters",
       [](const Scene& scene, const py::object& openings, int paths, std::shared_ptr<Progress> progress,

@@ -7,7 +7,6 @@
 #include <optional>
 
 #include "solve/edge_refinement.h"
-#include "solve/region_search.h"
 #include "util/progress.h"
 
 namespace fenestra {
@@ -37,7 +36,7 @@ std::vector<std::pair<double, double>> shifts(double a) {
 
 class Snapper {
  public:
-  Snapper(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
+  Snapper(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
           const OpeningConstraints& constraints, const Eigen::MatrixXd& opening_light,
           const std::vector<PanelRectangle>& start, Progress* progress)
       : domain_(domain),
@@ -45,12 +44,12 @@ class Snapper {
         constraints_(constraints),
         light_(opening_light),
         start_(start),
-        closed_(c.closed.value),
+        closed_(records.contributions().closed.value),
         progress_(progress),
         shifts_(shifts(domain.element_size())),
-        search_(c, domain, start, progress) {
+        search_(records.region_search(start)) {
     slots_.assign(start.begin(), start.end());
-    values_ = search_.values();
+    values_ = search_->values();
   }
 
   CatalogueSnap run() {
@@ -147,13 +146,13 @@ class Snapper {
     for (const auto& [screened, choice] : ranked) {
       std::vector<Slot> trial = slots_;
       trial[i] = choice;
-      const Eigen::VectorXd v = search_.try_region(evaluated(trial)) + thick_change(trial);
+      const Eigen::VectorXd v = search_->try_region(evaluated(trial)) + thick_change(trial);
       const double e = error_of(v);
       if (e < best * (1.0 - 1e-9) || (must_change && !kept && std::isinf(best))) {
         best = e;
         kept = trial;
         kept_values = v;
-        search_.accept();
+        search_->accept();
       }
     }
     if (!kept) return;
@@ -179,7 +178,7 @@ class Snapper {
   const Eigen::VectorXd closed_;
   Progress* progress_;
   const std::vector<std::pair<double, double>> shifts_;
-  RegionSearch search_;
+  std::unique_ptr<RegionQueries> search_;
   std::vector<Slot> slots_;
   Eigen::VectorXd values_;
   std::vector<std::string> notes_;
@@ -251,10 +250,10 @@ bool uses_catalogue(const OpeningDomain& domain, const OpeningConstraints& const
   return false;
 }
 
-CatalogueSnap snap_to_catalogue(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
+CatalogueSnap snap_to_catalogue(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
                                 const OpeningConstraints& constraints, const Eigen::MatrixXd& opening_light,
                                 const std::vector<PanelRectangle>& start, Progress* progress) {
-  return Snapper(domain, c, objective, constraints, opening_light, start, progress).run();
+  return Snapper(domain, records, objective, constraints, opening_light, start, progress).run();
 }
 
 }  // namespace fenestra

@@ -16,6 +16,7 @@
 
 #include "solve/constraints.h"
 #include "solve/genetic.h"
+#include "solve/record_queries.h"
 #include "trace/contributions.h"
 #include "trace/open_region.h"
 
@@ -45,7 +46,7 @@ bool uses_catalogue(const OpeningDomain& domain, const OpeningConstraints& const
 
 // `start`: the grid's openings (satisfies_all). `opening_light`: sensors x elements, the light each
 // element adds when opened about `start` (the solver's linearisation).
-CatalogueSnap snap_to_catalogue(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
+CatalogueSnap snap_to_catalogue(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
                                 const OpeningConstraints& constraints, const Eigen::MatrixXd& opening_light,
                                 const std::vector<PanelRectangle>& start, Progress* progress);
 

@@ -99,7 +99,7 @@ size_t nearest(const std::vector<float>& lines, double x) {
 // EdgeSearchScope::scan_span: pairs of lines near an opening's two edges along one axis, every
 // other line first, then the lines beside the best pair. Returns whether a pair was kept.
 bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& constraints, const LinearObjective& objective,
-                     const Eigen::VectorXd& closed, double span, RegionSearch* search, double* error,
+                     const Eigen::VectorXd& closed, double span, RegionQueries* search, double* error,
                      EdgeRefinement* out, Progress* progress) {
   bool kept = false;
   for (size_t i = 0; i < search->rectangles().size(); ++i) {
@@ -282,20 +282,20 @@ std::vector<std::string> constraint_violations(const OpeningDomain& domain, cons
   return out;
 }
 
-EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
+EdgeRefinement refine_edges(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
                             const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start,
                             Progress* progress, const EdgeSearchScope& scope) {
-  RegionSearch search(c, domain, start, progress);
-  return refine_edges(domain, c, objective, constraints, &search, progress, scope);
+  const std::unique_ptr<RegionQueries> search = records.region_search(start);
+  return refine_edges(domain, records.contributions().closed.value, objective, constraints, search.get(), progress,
+                      scope);
 }
 
-EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
-                            const OpeningConstraints& constraints, RegionSearch* searched_region, Progress* progress,
-                            const EdgeSearchScope& scope) {
+EdgeRefinement refine_edges(const OpeningDomain& domain, const Eigen::VectorXd& closed,
+                            const LinearObjective& objective, const OpeningConstraints& constraints,
+                            RegionQueries* searched_region, Progress* progress, const EdgeSearchScope& scope) {
   const double s = domain.element_size();
   EdgeRefinement out;
-  RegionSearch& search = *searched_region;
-  const Eigen::VectorXd closed = c.closed.value;
+  RegionQueries& search = *searched_region;
   double error = prediction_error(objective, search.values() - closed);
   const double module = constraints.module;
   // Width and height trade against each other (a valley of nearly equal light): the axes are

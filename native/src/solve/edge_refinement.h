@@ -10,13 +10,13 @@
 
 #include "solve/constraints.h"
 #include "solve/genetic.h"
+#include "solve/record_queries.h"
 #include "trace/contributions.h"
 #include "trace/open_region.h"
 
 namespace fenestra {
 
 class Progress;
-class RegionSearch;
 
 // Smallest step of continuous edges (solver.constraints.module 0), meters.
 constexpr double kContinuousEdgeStep = 0.01;
@@ -78,13 +78,14 @@ struct EdgeSearchScope {
   double coarsest_finest_step = 0.0;
 };
 
-EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
+EdgeRefinement refine_edges(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
                             const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start,
                             Progress* progress, const EdgeSearchScope& scope = {});
 // The same from the openings `search` holds, which it holds, moved, afterwards (so that one index
 // serves several searches).
-EdgeRefinement refine_edges(const OpeningDomain& domain, const Contributions& c, const LinearObjective& objective,
-                            const OpeningConstraints& constraints, RegionSearch* search, Progress* progress,
-                            const EdgeSearchScope& scope = {});
+// (`closed`: the all-closed values per sensor, which the objective's targets are net of.)
+EdgeRefinement refine_edges(const OpeningDomain& domain, const Eigen::VectorXd& closed,
+                            const LinearObjective& objective, const OpeningConstraints& constraints,
+                            RegionQueries* search, Progress* progress, const EdgeSearchScope& scope = {});
 
 }  // namespace fenestra

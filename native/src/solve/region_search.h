@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "solve/record_queries.h"
 #include "trace/contributions.h"
 #include "trace/open_region.h"
 
@@ -13,19 +14,19 @@ namespace fenestra {
 
 class Progress;
 
-class RegionSearch {
+class RegionSearch : public RegionQueries {
  public:
   // With `progress`, building the index polls cancellation (throws Cancelled): on records of a
   // hundred thousand paths per sensor it takes most of a second.
   RegionSearch(const Contributions& c, const OpeningDomain& domain, const std::vector<PanelRectangle>& start,
                const Progress* progress = nullptr);
 
-  const Eigen::VectorXd& values() const { return values_; }  // per sensor, mean over its paths
-  const std::vector<PanelRectangle>& rectangles() const { return rectangles_; }
+  const Eigen::VectorXd& values() const override { return values_; }  // per sensor, mean over its paths
+  const std::vector<PanelRectangle>& rectangles() const override { return rectangles_; }
   // Values with `candidate` instead of the current rectangles. Remembered until the next try, so
   // that accept() can take it.
-  const Eigen::VectorXd& try_region(const std::vector<PanelRectangle>& candidate);
-  void accept();
+  const Eigen::VectorXd& try_region(const std::vector<PanelRectangle>& candidate) override;
+  void accept() override;
   // Paths re-evaluated by tries so far (over all sensors).
   size_t paths_evaluated() const { return paths_evaluated_; }
   // Bytes of the index and the per-path values (the cost model's edge_search_index).

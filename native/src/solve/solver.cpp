@@ -24,7 +24,7 @@
 #include "trace/evaluate.h"
 #include "trace/flip_effects.h"
 #include "solve/edge_refinement.h"
-#include "solve/exact_values.h"
+#include "solve/record_queries.h"
 #include "solve/thick_wall_edges.h"
 #include "solve/tradeoffs.h"
 
@@ -71,12 +71,11 @@ LinearObjective linear_objective(const Contributions& c, const SolverGoals& goal
 }
 
 // Whether the openings `refined` meet the goals better than `start` when both are really cut.
-bool refined_edges_verified_better(const Scene& scene, const std::vector<PanelRectangle>& start,
-                                   const std::vector<PanelRectangle>& refined, const SolverGoals& goals,
-                                   Progress* progress) {
+bool refined_edges_verified_better(RecordQueries& records, const std::vector<PanelRectangle>& start,
+                                   const std::vector<PanelRectangle>& refined, const SolverGoals& goals) {
   auto verified_error = [&](const std::vector<PanelRectangle>& openings) {
     std::vector<OpeningInput> cutters(openings.begin(), openings.end());
-    return goal_error(goals, evaluate_openings(scene, cutters, progress).value).relative_rms;
+    return goal_error(goals, records.cut(cutters, 0).value).relative_rms;
   };
   return verified_error(refined) < verified_error(start);
 }
@@ -121,10 +120,10 @@ constexpr int kLinearisationRounds = 4;
 
 // The objective with the model V(o) = V(S) + sum over the elements o flips from S of their exact
 // flip effect D(., k): a constant base plus columns +D(., k) (k closed in S) or -D(., k) (k open).
-LinearObjective linearised_objective(const LinearObjective& objective, const Contributions& c,
-                                     const std::vector<uint8_t>& about, const Eigen::VectorXd& about_values,
-                                     const Progress* progress) {
-  const Eigen::MatrixXd D = flip_effects(c, about, progress);
+LinearObjective linearised_objective(const LinearObjective& objective, RecordQueries& records,
+                                     const std::vector<uint8_t>& about, const Eigen::VectorXd& about_values) {
+  const Contributions& c = records.contributions();
+  const Eigen::MatrixXd D = records.flip_effects(about);
   LinearObjective local = objective;
   Eigen::VectorXd base = about_values;
   for (size_t k = 0; k < about.size(); ++k) {
@@ -175,13 +174,13 @@ struct ElementChoice {
 // (half the generations) on the exact linear model about the free answer less those elements,
 // seeded with it and with the linear start without them; the exact evaluation picks among its best.
 ElementChoice search_within_bounds(const LinearObjective& objective, const Contributions& c, const ElementGrid& grid,
-                                   const ShapeWeights& shape, const GeneticSettings& ga, ExactValues& exact_values,
+                                   const ShapeWeights& shape, const GeneticSettings& ga, RecordQueries& records,
                                    const std::vector<uint8_t>& linear_start_open, const std::vector<uint8_t>& free_open,
                                    const std::vector<uint8_t>& excluded, Progress* progress) {
   const std::vector<uint8_t> clipped = without_elements(free_open, excluded);
-  const SensorValues clipped_values = exact_values(clipped);
+  const SensorValues clipped_values = records.exact(clipped);
   const LinearObjective local =
-      without_elements(linearised_objective(objective, c, clipped, clipped_values.value, progress), excluded);
+      without_elements(linearised_objective(objective, records, clipped, clipped_values.value), excluded);
   GeneticSettings within = ga;
   within.generations = std::max(1, ga.generations / 2);
   within.time_budget_s = ga.time_budget_s / 2.0;
@@ -194,7 +193,7 @@ ElementChoice search_within_bounds(const LinearObjective& objective, const Contr
   candidates.push_back(clipped);
   for (const std::vector<uint8_t>& candidate : candidates) {
     const std::vector<uint8_t> open = without_elements(candidate, excluded);
-    const SensorValues& exact = exact_values(open);
+    const SensorValues& exact = records.exact(open);
     const double f = exact_fitness(objective, grid, shape, open, exact.value - c.closed.value);
     if (f < best.fitness) best.open = open, best.values = exact, best.fitness = f;
   }
@@ -213,7 +212,7 @@ struct ElementStage {
 // algorithm, successive linearisation, and the exact choice among the best states.
 ElementStage linear_element_stage(const Scene& scene, const Contributions& c, const LinearObjective& objective,
                                   const ElementGrid& grid, const ShapeWeights& shape, const GeneticSettings& ga,
-                                  ExactValues& exact_values, SolveResult& out, Progress* progress) {
+                                  RecordQueries& records, SolveResult& out, Progress* progress) {
   const SolverSettings& settings = scene.solver;
   ElementStage stage;
   // Stage 1 on the fine grid, and coarse-to-fine starts (4a, then 2a) when the grid is large enough.
@@ -269,10 +268,10 @@ ElementStage linear_element_stage(const Scene& scene, const Contributions& c, co
   if (candidates.empty()) candidates.push_back(result.best);
   if (ga.generations > 0) {
     std::vector<uint8_t> about = result.best;
-    SensorValues about_values = exact_values(about);
+    SensorValues about_values = records.exact(about);
     double about_fitness = exact_fitness(objective, grid, shape, about, about_values.value - c.closed.value);
     for (int round = 0; round < kLinearisationRounds; ++round) {
-      const LinearObjective local = linearised_objective(objective, c, about, about_values.value, progress);
+      const LinearObjective local = linearised_objective(objective, records, about, about_values.value);
       GeneticSettings second = ga;
       second.generations = std::max(1, ga.generations / 4);
       second.seed = ga.seed + 1 + round;
@@ -283,7 +282,7 @@ ElementStage linear_element_stage(const Scene& scene, const Contributions& c, co
       candidates.insert(candidates.end(), refined.elite.begin(), refined.elite.end());
       bool improved = false;
       for (const auto& open : refined.elite) {
-        const SensorValues& exact = exact_values(open);
+        const SensorValues& exact = records.exact(open);
         const double f = exact_fitness(objective, grid, shape, open, exact.value - c.closed.value);
         if (f < about_fitness * (1.0 - 1e-6)) about = open, about_values = exact, about_fitness = f, improved = true;
       }
@@ -300,7 +299,7 @@ ElementStage linear_element_stage(const Scene& scene, const Contributions& c, co
   double& best = stage.fitness;
   SensorValues& chosen = stage.values;
   for (const auto& open : candidates) {
-    const SensorValues& exact = exact_values(open);
+    const SensorValues& exact = records.exact(open);
     const double f = exact_fitness(objective, grid, shape, open, exact.value - c.closed.value);
     if (f < best) {
       best = f;
@@ -308,7 +307,7 @@ ElementStage linear_element_stage(const Scene& scene, const Contributions& c, co
       chosen = exact;
     }
   }
-  out.start_error = goal_error(out.goals, exact_values(fine_start.open).value);
+  out.start_error = goal_error(out.goals, records.exact(fine_start.open).value);
   out.unconstrained_open = out.open;
   out.unconstrained_openings = merge_into_rectangles(scene.domain, out.open);
   out.unconstrained_error = goal_error(out.goals, chosen.value);
@@ -460,7 +459,7 @@ SolverGoals goals_following(SolverGoals goals, const std::vector<int>& rows, con
 // Stages 1 and 2 on climate goals (solve/climate_design.h), then the goals the constraints stage
 // follows (goals_following) and its objective.
 ElementStage climate_element_stage(const Scene& scene, const Contributions& c, const ElementGrid& grid,
-                                   const ShapeWeights& shape, const GeneticSettings& ga, ExactValues& exact_values,
+                                   const ShapeWeights& shape, const GeneticSettings& ga, RecordQueries& records,
                                    LinearObjective* objective, SolveResult& out,
                                    std::optional<ClimateProblem>* problem, Progress* progress) {
   // Elements no admissible opening can cover stay closed: the answer must survive the constraints.
@@ -482,7 +481,7 @@ ElementStage climate_element_stage(const Scene& scene, const Contributions& c, c
 
   ElementStage stage;
   stage.open = stage.start_open = design.open;
-  stage.values = exact_values(design.open);
+  stage.values = records.exact(design.open);
   out.goals = goals_following(out.goals, (*problem)->rows, stage.values);
   *objective = linear_objective(c, out.goals, scene.solver.bound_weight);
   stage.fitness = exact_fitness(*objective, grid, shape, stage.open, stage.values.value - c.closed.value);
@@ -529,6 +528,12 @@ std::string percent(double x) {
 }
 
 SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress* progress) {
+  LocalRecordQueries records(scene, c, scene.domain, progress);
+  return solve_openings(scene, records, progress);
+}
+
+SolveResult solve_openings(const Scene& scene, RecordQueries& records, Progress* progress) {
+  const Contributions& c = records.contributions();
   check_contributions_match(scene, c, "solve");
   refuse_dark_sky(scene);
   const auto start = Clock::now();
@@ -540,7 +545,6 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   if (climate && has_thick_panel(scene.domain)) settings.refine_edges = false;
   LinearObjective objective = linear_objective(c, out.goals, settings.bound_weight);
   std::optional<ClimateProblem> climate_problem_of;
-  ExactValues exact_values(c, progress);
   const ElementGrid grid = ElementGrid::from_domain(scene.domain);
   const ShapeWeights shape = shape_of(settings);
   GeneticSettings ga;
@@ -552,8 +556,8 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   ga.shape = shape;
 
   auto t = Clock::now();
-  const ElementStage stage = climate ? climate_element_stage(scene, c, grid, shape, ga, exact_values, &objective, out, &climate_problem_of, progress)
-                                     : linear_element_stage(scene, c, objective, grid, shape, ga, exact_values, out, progress);
+  const ElementStage stage = climate ? climate_element_stage(scene, c, grid, shape, ga, records, &objective, out, &climate_problem_of, progress)
+                                     : linear_element_stage(scene, c, objective, grid, shape, ga, records, out, progress);
   double best = stage.fitness;
   SensorValues chosen = stage.values;
 
@@ -564,7 +568,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   const OpeningConstraints constraints = measured_constraints(scene);
   auto exact_of = [&](const std::vector<GridRectangle>& rects, SensorValues* values) {
     const std::vector<uint8_t> open = rectangles_mask(scene.domain, rects);
-    *values = exact_values(open);
+    *values = records.exact(open);
     return exact_fitness(objective, grid, shape, open, values->value - c.closed.value);
   };
   // With a catalogue, the grid's openings keep near its sizes; they take them exactly below.
@@ -582,7 +586,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
                        const OpeningConstraints& grid_constraints) {
     Constrained k;
     // Rectangles are scored by the exact linear model about the state (the elements' joint light).
-    const LinearObjective about_open = linearised_objective(objective, c, open, open_values.value, progress);
+    const LinearObjective about_open = linearised_objective(objective, records, open, open_values.value);
     k.rects = refine_openings(scene.domain, open, about_open, grid_constraints, progress);
     k.fitness = exact_of(k.rects, &k.values);
     k.refined_error = goal_error(out.goals, k.values.value);
@@ -591,7 +595,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     // Each round searches the exact linear model about the current openings, and is kept only if
     // the exact evaluation agrees; the next round linearises about its answer.
     auto linearise = [&] {
-      k.about = linearised_objective(objective, c, rectangles_mask(scene.domain, k.rects), k.values.value, progress);
+      k.about = linearised_objective(objective, records, rectangles_mask(scene.domain, k.rects), k.values.value);
     };
     linearise();
     for (int round = 0; round < kLinearisationRounds; ++round) {
@@ -616,7 +620,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   const std::vector<uint8_t> out_of_bounds = elements_out_of_bounds(scene.domain, grid_constraints);
   if (opens_any(out.open, out_of_bounds)) {
     if (progress) progress->start("solving: elements within the constraints", 1);
-    const ElementChoice within = search_within_bounds(objective, c, grid, shape, ga, exact_values, stage.start_open,
+    const ElementChoice within = search_within_bounds(objective, c, grid, shape, ga, records, stage.start_open,
                                                       out.open, out_of_bounds, progress);
     Constrained second = constrain(within.open, within.values, grid_constraints);
     out.second_start = true;
@@ -672,7 +676,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   out.refined_error = kept.refined_error;
   std::optional<LinearObjective> about = std::move(kept.about);
   auto linearise_about_rects = [&] {
-    about = linearised_objective(objective, c, rectangles_mask(scene.domain, rects), chosen.value, progress);
+    about = linearised_objective(objective, records, rectangles_mask(scene.domain, rects), chosen.value);
   };
   out.open = rectangles_mask(scene.domain, rects);
   out.openings.clear();
@@ -687,11 +691,11 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     if (progress) progress->start("solving: catalogue sizes", 1);
     if (!about) linearise_about_rects();
     const CatalogueSnap snap =
-        snap_to_catalogue(scene.domain, c, objective, constraints, about->E, final_rects, progress);
+        snap_to_catalogue(scene.domain, records, objective, constraints, about->E, final_rects, progress);
     const double grid_error = prediction_error(objective, chosen.value - c.closed.value);
     final_rects = snap.openings;
     chosen_exact = snap.exact;
-    if (snap.exact) chosen = c.evaluate(OpenRegion(scene.domain, final_rects), progress);
+    if (snap.exact) chosen = records.evaluate(final_rects);
     else chosen.value = snap.values;
     out.fitness += prediction_error(objective, chosen.value - c.closed.value) - grid_error;
     out.warnings.insert(out.warnings.end(), snap.notes.begin(), snap.notes.end());
@@ -703,12 +707,12 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     if (!about) linearise_about_rects();
     EdgeSearchScope scope;
     scope.opening_light = &about->E;
-    const EdgeRefinement edges = refine_edges(scene.domain, c, objective, constraints, final_rects, progress, scope);
+    const EdgeRefinement edges = refine_edges(scene.domain, records, objective, constraints, final_rects, progress, scope);
     out.edge_moves = edges.moves;
     if (edges.moves > 0 && !chosen_exact) {
       final_rects = edges.openings;  // the prediction comes from the refined grid or real cutters below
     } else if (edges.moves > 0) {
-      const SensorValues v = c.evaluate(OpenRegion(scene.domain, edges.openings), progress);
+      const SensorValues v = records.evaluate(edges.openings);
       const double grid_error = prediction_error(objective, chosen.value - c.closed.value);
       const double error = prediction_error(objective, v.value - c.closed.value);
       if (error < grid_error) {
@@ -722,14 +726,14 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     std::string skipped;
     const auto thick_start = Clock::now();
     std::optional<ThickWallEdges> thick =
-        refine_thick_wall_edges(scene, c, objective, constraints, final_rects, progress, &skipped);
+        refine_thick_wall_edges(scene, records, objective, constraints, final_rects, progress, &skipped);
     if (!skipped.empty()) out.warnings.push_back(skipped);
     const bool traced_thick = thick.has_value();
     // The refined records are noisier than the element grid's (one way at each tube side), and a
     // search over many candidates picks their noise too: with verification on, real cutters
     // decide between the openings before and after (the same random numbers for both).
     if (thick && thick->edges.moves > 0 && settings.verify &&
-        !refined_edges_verified_better(scene, final_rects, thick->edges.openings, out.goals, progress))
+        !refined_edges_verified_better(records, final_rects, thick->edges.openings, out.goals))
       thick.reset();
     if (thick) {
       // Errors within one set of records: the first round's start is these openings.
@@ -745,7 +749,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
   if (!chosen_exact) {
     // Catalogue sizes in thick walls without their refined records: cut for real.
     std::vector<OpeningInput> cutters(final_rects.begin(), final_rects.end());
-    chosen = evaluate_openings(scene, cutters, progress);
+    chosen = records.cut(cutters, 0);
   }
   out.openings.clear();
   for (const PanelRectangle& r : final_rects) out.openings.push_back(to_world(scene.domain, r));
@@ -757,9 +761,9 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
         const bool thick = std::any_of(set.begin(), set.end(), [&](const PanelRectangle& r) {
           return scene.domain.panels()[static_cast<size_t>(r.panel)].thickness > 0.0f;
         });
-        if (!thick) return c.evaluate(OpenRegion(scene.domain, set), progress);
+        if (!thick) return records.evaluate(set);
         std::vector<OpeningInput> cutters(set.begin(), set.end());
-        return evaluate_openings(scene, cutters, progress, settings.verify_paths);
+        return records.cut(cutters, settings.verify_paths);
       };
   // (Outside the block below: the trade-offs call `compose`, which refers to it, after it.)
   const std::function<double(const std::vector<PanelRectangle>&)> error_of =
@@ -813,7 +817,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     answer.error = out.error;
     answer.answer = true;
     out.tradeoffs.push_back(answer);
-    for (const Tradeoff& f : fewer_openings(scene, c, objective, constraints, final_rects,
+    for (const Tradeoff& f : fewer_openings(scene, records, objective, constraints, final_rects,
                                             about ? &about->E : nullptr, settings.verify_paths, compose, progress)) {
       TradeoffResult entry;
       for (const PanelRectangle& r : f.openings) entry.openings.push_back(to_world(scene.domain, r));
@@ -829,7 +833,7 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
     t = Clock::now();
     std::vector<OpeningInput> cutters;
     for (const OpeningRectangle& o : out.openings) cutters.emplace_back(o.parameter);
-    const SensorValues v = evaluate_openings(scene, cutters, progress, settings.verify_paths);
+    const SensorValues v = records.cut(cutters, settings.verify_paths);
     out.verified = true;
     out.verified_value = v.value;
     out.verified_stderr = v.standard_error;

@@ -13,6 +13,7 @@
 #include "solve/genetic.h"
 #include "solve/composition.h"
 #include "solve/goals.h"
+#include "solve/record_queries.h"
 #include "solve/rectangles.h"
 #include "trace/contributions.h"
 #include "util/progress.h"
@@ -83,6 +84,9 @@ struct SolveResult {
 
 // Contributions already computed for this scene.
 SolveResult solve_openings(const Scene& scene, const Contributions& contributions, Progress* progress = nullptr);
+// The same reading the path records through `records` (e.g. a study's shards on a cluster); its
+// contributions() holds the dense arrays.
+SolveResult solve_openings(const Scene& scene, RecordQueries& records, Progress* progress = nullptr);
 // What openings break of the scene's constraints (constraint_violations, with sills and heads
 // measured from each panel's faces as the solver measures them).
 std::vector<std::string> solved_constraint_violations(const Scene& scene, const std::vector<PanelRectangle>& openings);

@@ -62,7 +62,7 @@ std::vector<RefinedRegion> thick_wall_edge_regions(const OpeningDomain& domain,
   return out;
 }
 
-std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, const Contributions& coarse,
+std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, RecordQueries& coarse_records,
                                                       const LinearObjective& objective,
                                                       const OpeningConstraints& constraints,
                                                       const std::vector<PanelRectangle>& start, Progress* progress,
@@ -71,8 +71,8 @@ std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, const 
   for (const PanelRectangle& r : start) any = any || on_thick_panel(scene.domain, r);
   if (!any || edge_steps(scene.domain.element_size(), constraints.module, true).size() < 2) return std::nullopt;
 
-  double record_bytes = 0.0;
-  for (const SensorRecord& r : coarse.records) record_bytes += static_cast<double>(r.memory_bytes());
+  const Contributions& coarse = coarse_records.contributions();
+  const double record_bytes = coarse_records.record_bytes();
   const MemoryLimit limit = memory_limit();
   if (kRefinedRecordShare * record_bytes > static_cast<double>(limit.bytes)) {
     std::ostringstream m;
@@ -98,7 +98,8 @@ std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, const 
     Contributions c = compute_contributions(refined, progress, false);
     const LinearObjective shifted = shifted_objective(objective, coarse, c);
     if (progress) progress->start("solving: edges in thick walls", 1);
-    const EdgeRefinement round = refine_edges(refined.domain, c, shifted, constraints, from, progress, scope);
+    LocalRecordQueries refined_records(refined, c, refined.domain, progress);
+    const EdgeRefinement round = refine_edges(refined.domain, refined_records, shifted, constraints, from, progress, scope);
     out.edges.moves += round.moves;
     out.edges.evaluations += round.evaluations;
     out.edges.openings = round.openings;

@@ -32,7 +32,7 @@ std::vector<RefinedRegion> thick_wall_edge_regions(const OpeningDomain& domain,
 // Nothing when no opening lies on a thick panel or the steps stop at whole elements. Otherwise the
 // refined records and the edges searched on them, starting from `start`. When the refined records
 // would not fit in memory (estimated from `coarse`'s), nothing, and *skipped says why.
-std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, const Contributions& coarse,
+std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, RecordQueries& coarse_records,
                                                       const LinearObjective& objective,
                                                       const OpeningConstraints& constraints,
                                                       const std::vector<PanelRectangle>& start, Progress* progress,

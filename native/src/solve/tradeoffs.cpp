@@ -5,7 +5,6 @@
 #include <optional>
 
 #include "solve/edge_refinement.h"
-#include "solve/region_search.h"
 #include "trace/evaluate.h"
 #include "util/progress.h"
 
@@ -28,7 +27,7 @@ std::vector<PanelRectangle> without(std::vector<PanelRectangle> openings, size_t
 
 }  // namespace
 
-std::vector<Tradeoff> fewer_openings(const Scene& scene, const Contributions& c, const LinearObjective& objective,
+std::vector<Tradeoff> fewer_openings(const Scene& scene, RecordQueries& records, const LinearObjective& objective,
                                      const OpeningConstraints& constraints, const std::vector<PanelRectangle>& openings,
                                      const Eigen::MatrixXd* opening_light, int check_paths,
                                      const Recompose& recompose, Progress* progress) {
@@ -37,13 +36,14 @@ std::vector<Tradeoff> fewer_openings(const Scene& scene, const Contributions& c,
   const bool cut = any_thick(domain, openings);
   auto cut_values = [&](const std::vector<PanelRectangle>& set) {
     std::vector<OpeningInput> cutters(set.begin(), set.end());
-    return evaluate_openings(scene, cutters, progress, check_paths);
+    return records.cut(cutters, check_paths);
   };
-  auto error_of = [&](const Eigen::VectorXd& values) { return prediction_error(objective, values - c.closed.value); };
+  const Eigen::VectorXd& closed = records.contributions().closed.value;
+  auto error_of = [&](const Eigen::VectorXd& values) { return prediction_error(objective, values - closed); };
   std::vector<PanelRectangle> current = openings;
   // One index of the records' points serves every removal and edge search (zero-thickness panels).
-  std::optional<RegionSearch> search;
-  if (!cut) search.emplace(c, domain, current);
+  std::unique_ptr<RegionQueries> search;
+  if (!cut) search = records.region_search(current);
   while (current.size() > 1 && static_cast<int>(out.size()) < kMaxTradeoffs) {
     if (progress) progress->throw_if_cancelled();
     // The opening whose removal raises the error least.
@@ -64,12 +64,12 @@ std::vector<Tradeoff> fewer_openings(const Scene& scene, const Contributions& c,
         EdgeSearchScope scope;
         scope.opening_light = opening_light;
         scope.coarsest_finest_step = kTradeoffEdgeStep;
-        current = refine_edges(domain, c, objective, constraints, &*search, progress, scope).openings;
+        current = refine_edges(domain, closed, objective, constraints, search.get(), progress, scope).openings;
       }
     }
     Tradeoff entry;
     entry.cut = cut;
-    entry.values = cut ? cut_values(current) : c.evaluate(OpenRegion(domain, current), progress);
+    entry.values = cut ? cut_values(current) : records.evaluate(current);
     entry.openings = current;
     out.push_back(std::move(entry));
   }

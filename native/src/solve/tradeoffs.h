@@ -15,6 +15,7 @@
 #include "scene/scene.h"
 #include "solve/constraints.h"
 #include "solve/genetic.h"
+#include "solve/record_queries.h"
 #include "trace/contributions.h"
 #include "trace/open_region.h"
 
@@ -35,7 +36,7 @@ using Recompose = std::function<std::vector<PanelRectangle>(const std::vector<Pa
 // Entries with fewer openings than `openings`, most openings first. `opening_light` (optional,
 // sensors x elements) screens the edge search as in the solver. With `recompose` (facade
 // composition rules), it replaces the edge search: each set is composed again.
-std::vector<Tradeoff> fewer_openings(const Scene& scene, const Contributions& c, const LinearObjective& objective,
+std::vector<Tradeoff> fewer_openings(const Scene& scene, RecordQueries& records, const LinearObjective& objective,
                                      const OpeningConstraints& constraints, const std::vector<PanelRectangle>& openings,
                                      const Eigen::MatrixXd* opening_light, int check_paths,
                                      const Recompose& recompose, Progress* progress);

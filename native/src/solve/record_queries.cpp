@@ -1,0 +1,36 @@
+#include "solve/record_queries.h"
+
+#include "scene/scene.h"
+#include "solve/region_search.h"
+#include "trace/evaluate.h"
+#include "trace/flip_effects.h"
+
+namespace fenestra {
+
+LocalRecordQueries::LocalRecordQueries(const Scene& scene, const Contributions& c, const OpeningDomain& domain,
+                                       Progress* progress)
+    : scene_(scene), c_(c), domain_(domain), progress_(progress), exact_(c, progress) {}
+
+SensorValues LocalRecordQueries::evaluate(const std::vector<PanelRectangle>& region) {
+  return c_.evaluate(OpenRegion(domain_, region), progress_);
+}
+
+Eigen::MatrixXd LocalRecordQueries::flip_effects(const std::vector<uint8_t>& about) {
+  return fenestra::flip_effects(c_, about, progress_);
+}
+
+std::unique_ptr<RegionQueries> LocalRecordQueries::region_search(const std::vector<PanelRectangle>& start) {
+  return std::make_unique<RegionSearch>(c_, domain_, start, progress_);
+}
+
+SensorValues LocalRecordQueries::cut(const std::vector<OpeningInput>& openings, int paths) {
+  return evaluate_openings(scene_, openings, progress_, paths);
+}
+
+double LocalRecordQueries::record_bytes() const {
+  double bytes = 0.0;
+  for (const SensorRecord& r : c_.records) bytes += static_cast<double>(r.memory_bytes());
+  return bytes;
+}
+
+}  // namespace fenestra

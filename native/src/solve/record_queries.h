@@ -1,0 +1,76 @@
+#pragma once
+// Where the solver reads the path records: exact values of sets of open elements and of open
+// regions, each element's flip effect, incremental searches over regions, and evaluations with
+// real cutters. LocalRecordQueries reads one process's records; a study sharded by sensors over a
+// cluster answers the same queries by asking every shard's local queries and concatenating their
+// sensors (fenestra.distributed). Every answer is per sensor, so the two agree bit for bit.
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "trace/evaluate.h"
+#include "solve/exact_values.h"
+#include "trace/contributions.h"
+#include "trace/open_region.h"
+
+namespace fenestra {
+
+class Progress;
+struct Scene;
+
+// An open region whose rectangles change a little at a time (solve/region_search.h).
+class RegionQueries {
+ public:
+  virtual ~RegionQueries() = default;
+  virtual const Eigen::VectorXd& values() const = 0;  // per sensor, for rectangles()
+  virtual const std::vector<PanelRectangle>& rectangles() const = 0;
+  // Values with `candidate` instead; accept() makes the last try the current rectangles.
+  virtual const Eigen::VectorXd& try_region(const std::vector<PanelRectangle>& candidate) = 0;
+  virtual void accept() = 0;
+};
+
+class RecordQueries {
+ public:
+  virtual ~RecordQueries() = default;
+  // E, E_stderr, A, T, closed and all-open values (its records may be elsewhere).
+  virtual const Contributions& contributions() const = 0;
+  // Exact values with the elements where open[k] != 0 open (ExactValues: kept, and evaluated from
+  // each sensor's reference when near it).
+  virtual const SensorValues& exact(const std::vector<uint8_t>& open) = 0;
+  // Exact values of an open region (rectangles on the domain's panels).
+  virtual SensorValues evaluate(const std::vector<PanelRectangle>& region) = 0;
+  // flip_effects (trace/flip_effects.h): sensors x elements.
+  virtual Eigen::MatrixXd flip_effects(const std::vector<uint8_t>& about) = 0;
+  virtual std::unique_ptr<RegionQueries> region_search(const std::vector<PanelRectangle>& start) = 0;
+  // The scene path-traced with these openings really cut (evaluate_openings; `paths` per sensor,
+  // 0: the scene's).
+  virtual SensorValues cut(const std::vector<OpeningInput>& openings, int paths) = 0;
+  // Bytes the path records take, over all sensors.
+  virtual double record_bytes() const = 0;
+};
+
+class LocalRecordQueries : public RecordQueries {
+ public:
+  // `scene` is what cut() traces, `domain` what regions lie on (the scene's, or a refined one).
+  LocalRecordQueries(const Scene& scene, const Contributions& c, const OpeningDomain& domain, Progress* progress);
+
+  const Contributions& contributions() const override { return c_; }
+  const SensorValues& exact(const std::vector<uint8_t>& open) override { return exact_(open); }
+  SensorValues evaluate(const std::vector<PanelRectangle>& region) override;
+  Eigen::MatrixXd flip_effects(const std::vector<uint8_t>& about) override;
+  std::unique_ptr<RegionQueries> region_search(const std::vector<PanelRectangle>& start) override;
+  SensorValues cut(const std::vector<OpeningInput>& openings, int paths) override;
+  double record_bytes() const override;
+
+  const ExactValues& exact_values() const { return exact_; }
+
+ private:
+  const Scene& scene_;
+  const Contributions& c_;
+  const OpeningDomain& domain_;
+  Progress* progress_;
+  ExactValues exact_;
+};
+
+}  // namespace fenestra
