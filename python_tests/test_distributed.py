@@ -10,6 +10,7 @@ import subprocess
 import sys
 import threading
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -241,7 +242,7 @@ def test_cli_usage_errors(tmp_path):
                           (["--workers", 2, "--shards", "-1"], "--shards expects an integer from 1")):
         r = cli("contributions", path, "-o", tmp_path / "out.npz", *args)
         assert r.returncode == 2 and message in r.stderr, r.stderr
-    for command in ("solve", "annual"):
+    for command in ("sky", "annual"):
         r = cli(command, path, "-o", tmp_path / "out.json", "--workers", 2)
         assert r.returncode == 2 and "does not run on a Dask cluster yet" in r.stderr, r.stderr
     for args, message in ((["--workers", "two"], "--workers expects an integer"),):
@@ -350,3 +351,103 @@ def test_a_local_cluster_has_the_workers_asked_for():
     for bad in (0, 1025, 2.0, True, "2"):
         with pytest.raises(ValueError, match="workers must be an integer from 1 to 1024"):
             distributed.Cluster(workers=bad)
+
+
+# ---- solve ------------------------------------------------------------------------------------
+
+
+def write_solve_floor(tmp_path, **solver):
+    """write_floor with goals (half the unobstructed light everywhere), opening limits and a short
+    genetic run: every stage of the solver runs (exact re-ranking, edges off the grid, trade-offs,
+    the check with real cutters)."""
+    path = write_floor(tmp_path, sensors=18, paths=256, element_size=0.4)
+    scene = json.loads(path.read_text())
+    scene["goals"] = {"units": "normalized", "uniform": [{"sensors": "all", "level": 0.3}]}
+    scene["solver"] = dict({"generations": 30, "population": 16, "seed": 3, "verify_paths": 64,
+                            "constraints": {"min_width": 0.6, "min_height": 0.8, "sill_min": 0.6}}, **solver)
+    path.write_text(json.dumps(scene))
+    return path
+
+
+def quietly(function, *args, **kwargs):
+    """function(...) without its RuntimeWarnings (a solve's warnings, which its result holds)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return function(*args, **kwargs)
+
+
+def without_timings(result):
+    """A solve result without what measures time."""
+    result = json.loads(json.dumps(result))
+    result.pop("timings_s")
+    for generation in result["genetic"]["history"]:
+        generation.pop("seconds")
+    return result
+
+
+def test_solve_on_a_cluster_equals_one_process(tmp_path, cluster):
+    path = write_solve_floor(tmp_path)
+    one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
+    assert one["openings"] and one["tradeoffs"] and one["error"]["verified"] and one["edge_moves"] > 0
+    many = quietly(distributed.solve, str(path), cluster, shards=3)
+    assert without_timings(many) == without_timings(one)
+    # From contributions already on the cluster (the solver's paths: render's here), shards of 1 to 7 sensors.
+    scene = fenestra.load_scene(str(path))
+    with distributed.contributions(scene, cluster, shards=5) as study:
+        again = quietly(study.solve)
+    assert without_timings(again) == without_timings(one)
+
+
+def test_a_worker_killed_mid_solve_leaves_the_answer_unchanged(tmp_path, cluster, monkeypatch):
+    """The solver's state on a shard (exact values' references, region searches) is rebuilt on the
+    worker that recomputes it, so the answer is the same bit for bit."""
+    path = write_solve_floor(tmp_path)
+    one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
+    cluster.client.wait_for_workers(2, timeout=60)
+    asked = distributed._ShardedRecords._ask
+    seen = {"calls": 0, "killed": [], "recomputed": 0}
+
+    def ask(records, op, *args):
+        seen["calls"] += 1
+        # Twice: among the genetic stage's exact values, and in an edge search's tries.
+        if (seen["calls"] == 20 and not seen["killed"]) or (op == "try" and len(seen["killed"]) == 1):
+            cluster.client.wait_for_workers(2, timeout=60)
+            holder = records._study.shards[0][2]
+            seen["killed"].append(op)
+            os.kill(worker_pids(cluster)[holder], signal.SIGKILL)
+        result = asked(records, op, *args)
+        seen["recomputed"] = records._study.recomputed_shards
+        return result
+
+    monkeypatch.setattr(distributed._ShardedRecords, "_ask", ask)
+    many = quietly(distributed.solve, str(path), cluster, shards=2)
+    assert len(seen["killed"]) == 2 and seen["killed"][1] == "try"
+    assert seen["recomputed"] >= 2
+    assert without_timings(many) == without_timings(one)
+    cluster.client.wait_for_workers(2, timeout=60)
+
+
+def test_solve_with_climate_goals_is_refused_before_any_work(tmp_path, cluster):
+    from test_climate_goals import SDA_ASE, climate_room
+
+    path, _ = climate_room(tmp_path, SDA_ASE, paths=64)
+    with pytest.raises(ValueError, match="climate goals .* are not solved on a cluster yet"):
+        distributed.solve(str(path), cluster)
+    r = cli("solve", path, "-o", tmp_path / "out.json", "--workers", 2)
+    assert r.returncode == 1 and "are not solved on a cluster yet" in r.stderr, r.stderr
+    assert "cluster:" not in r.stderr  # refused before a cluster started
+    assert not (tmp_path / "out.json").exists()
+
+
+def test_cli_solve_on_a_local_cluster_writes_what_one_process_writes(tmp_path):
+    path = write_solve_floor(tmp_path)
+    runs = {}
+    for name, extra in (("one", []), ("many", ["--workers", 2, "--threads", 1, "--shards", 3])):
+        r = cli("solve", path, "-o", tmp_path / (name + ".json"), "--seed", 5, "--paths", 192, "--quiet", *extra)
+        assert r.returncode == 0, r.stderr
+        runs[name] = r
+    one, many = (json.loads((tmp_path / n).read_text()) for n in ("one.json", "many.json"))
+    assert one["sensors"][0]["predicted"] > 0
+    assert without_timings(many) == without_timings(one)
+    summary = lambda out: [line.split("; ")[0:2] if line.startswith("solve:") else line for line in out.splitlines()]
+    assert summary(runs["many"].stdout.replace("many.json", "one.json")) == summary(runs["one"].stdout)  # but seconds

@@ -1,13 +1,17 @@
-"""`fenestra contributions|evaluate ... --workers N | --scheduler ADDRESS`: the command line's
+"""`fenestra solve|contributions|evaluate ... --workers N | --scheduler ADDRESS`: the command line's
 studies sharded over a Dask cluster (fenestra.distributed). The `fenestra` program hands such runs
 to this module (python3 -m fenestra.distributed_cli, the same arguments); outputs are the same
 files, written whole or not at all, after every shard has finished."""
 
+import json
+import os
 import signal
 import sys
 import time
+import warnings
 
 USAGE = """usage:
+  fenestra solve SCENE.json -o RESULT.json (--workers N | --scheduler ADDRESS) [options]
   fenestra contributions SCENE.json -o OUT[.npz] (--workers N | --scheduler ADDRESS) [options]
   fenestra evaluate SCENE.json --openings OPENINGS.json -o OUT.json (--workers N | --scheduler ADDRESS) [options]
 
@@ -57,11 +61,11 @@ def parse(argv):
         else:
             a["positional"].append(arg)
         i += 1
-    if a["positional"] and a["positional"][0] in ("solve", "annual", "sky"):
-        raise UsageError("%s does not run on a Dask cluster yet: contributions and evaluate do; run %s on one "
-                         "machine (without --workers, --scheduler and --shards)" % ((a["positional"][0],) * 2))
-    if len(a["positional"]) != 2 or a["positional"][0] not in ("contributions", "evaluate"):
-        raise UsageError("expected 'contributions' or 'evaluate' and one scene file")
+    if a["positional"] and a["positional"][0] in ("annual", "sky"):
+        raise UsageError("%s does not run on a Dask cluster yet: solve, contributions and evaluate do; run %s on "
+                         "one machine (without --workers, --scheduler and --shards)" % ((a["positional"][0],) * 2))
+    if len(a["positional"]) != 2 or a["positional"][0] not in ("solve", "contributions", "evaluate"):
+        raise UsageError("expected 'solve', 'contributions' or 'evaluate' and one scene file")
     a["command"], a["scene"] = a["positional"]
     if "output" not in a:
         raise UsageError("%s needs -o OUT" % a["command"])
@@ -91,18 +95,15 @@ def run(a):
     _core.check_output_paths(output_paths(a), inputs)
     scene = fenestra.load_scene(a["scene"])
     _core.check_output_paths(output_paths(a), inputs)
+    if a["command"] == "solve":
+        return run_solve(a, scene)
     if "paths" in a:
         scene.render.paths_per_sensor = a["paths"]
     if "seed" in a:
         scene.render.seed = a["seed"]
-    memory = "auto"
-    if "max_memory" in a:
-        memory = _core.parse_memory_size(a["max_memory"])
-    say = (lambda text: None) if a["quiet"] else (lambda text: print(text, file=sys.stderr, flush=True))
-    progress = lambda fraction, status: say("  %s: %3.0f%%" % (status, 100 * fraction))
+    say, progress = reporters(a)
     start = time.monotonic()
-    with distributed.Cluster(scheduler=a.get("scheduler"), workers=a.get("workers"),
-                             threads_per_worker=a.get("threads") or None, memory_limit=memory) as cluster:
+    with cluster_of(a) as cluster:
         say("cluster: %d workers at %s" % (len(cluster.workers()), cluster.address))
         if a["command"] == "contributions":
             with distributed.contributions(scene, cluster, shards=a.get("shards"), callback=progress) as c:
@@ -118,6 +119,68 @@ def run(a):
             print("evaluate: %d sensors, %d shards, %.2f s\nwrote %s"
                   % (len(value), len(distributed._blocks(len(value), a.get("shards") or len(cluster.workers()))),
                      time.monotonic() - start, a["output"]))
+    return 0
+
+
+def reporters(a):
+    """say(text) on stderr unless --quiet, and a progress callback that says the stage and share done."""
+    say = (lambda text: None) if a["quiet"] else (lambda text: print(text, file=sys.stderr, flush=True))
+    return say, lambda fraction, status: say("  %s: %3.0f%%" % (status, 100 * fraction))
+
+
+def cluster_of(a):
+    from fenestra import _core, distributed
+
+    memory = _core.parse_memory_size(a["max_memory"]) if "max_memory" in a else "auto"
+    return distributed.Cluster(scheduler=a.get("scheduler"), workers=a.get("workers"),
+                               threads_per_worker=a.get("threads") or None, memory_limit=memory)
+
+
+def solve_scene(a, scene):
+    """The scene to solve: its file, or with --paths and --seed its JSON with them applied as
+    `fenestra solve` applies them (render.paths_per_sensor and solver.paths; render.seed and
+    solver.seed), and the directory its relative paths start from."""
+    if "paths" not in a and "seed" not in a:
+        return a["scene"], "."
+    with open(a["scene"], encoding="utf-8") as f:
+        data = json.load(f)
+    render, solver = data.setdefault("render", {}), data.setdefault("solver", {})
+    if "paths" in a:
+        render["paths_per_sensor"] = solver["paths"] = a["paths"]
+    if "seed" in a:
+        render["seed"] = solver["seed"] = a["seed"]
+    return data, os.path.dirname(os.path.abspath(a["scene"]))
+
+
+def run_solve(a, scene):
+    from fenestra import _core, distributed
+
+    if scene.has_climate_goals:
+        distributed._refuse_climate_goals(scene)  # before a cluster starts
+    say, progress = reporters(a)
+    source, base_dir = solve_scene(a, scene)
+    with cluster_of(a) as cluster:
+        say("cluster: %d workers at %s" % (len(cluster.workers()), cluster.address))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # the result's warnings: printed below
+            r = distributed.solve(source, cluster, shards=a.get("shards"), base_dir=base_dir, callback=progress)
+    _core.write_json_text(a["output"], json.dumps(r))
+    e = r["error"]
+    opened = len(r["open_elements"])
+    if "climate" in r:
+        print("solve: %d openings, %d open elements; %.2f s\nwrote %s"
+              % (len(r["openings"]), opened, r["timings_s"]["total"], a["output"]))
+    else:
+        print("solve: %d openings, %d open elements; relative RMS error %.2f%% (linear model %.2f%%, compensated "
+              "%.2f%%), worst sensor %.1f%%; %.2f s\nwrote %s"
+              % (len(r["openings"]), opened, 100 * e["relative_rms"], 100 * e["linear"]["relative_rms"],
+                 100 * e["compensated"]["relative_rms"], 100 * e["max_relative"], r["timings_s"]["total"],
+                 a["output"]))
+        if e.get("verified"):
+            print("checked with real cutters: relative RMS error %.2f%%, worst sensor %.1f%%"
+                  % (100 * e["verified"]["relative_rms"], 100 * e["verified"]["max_relative"]))
+    for message in r.get("warnings", []):
+        print("fenestra: warning: %s" % message, file=sys.stderr)
     return 0
 
 

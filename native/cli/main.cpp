@@ -67,7 +67,7 @@ options:
   --quiet       no progress on stderr
   -h, --help    this text
 
-on a Dask cluster (contributions and evaluate; docs/distributed.md), sharded by sensors, with
+on a Dask cluster (solve, contributions and evaluate; docs/distributed.md), sharded by sensors, with
 results equal bit for bit to a single process's:
   --workers N          start a local cluster of N worker processes
   --scheduler ADDRESS  use a running Dask scheduler, e.g. tcp://host:8786

@@ -135,6 +135,19 @@ void bind_shards(py::module_& m) {
       "Raises ValueError unless every output can be written whole (docs/outputs.md): a regular file or a new "
       "one, not an input, a symbolic link or a device.");
   m.def(
+      "write_json_text",
+      [](const std::string& path, const std::string& text) {
+        nlohmann::json j;
+        try {
+          j = nlohmann::json::parse(text);
+        } catch (const nlohmann::json::exception& e) {
+          throw std::invalid_argument(std::string("write_json_text: not valid JSON: ") + e.what());
+        }
+        write_json(path, j);
+      },
+      py::arg("path"), py::arg("text"),
+      "Writes JSON text as the command line writes its results (indented, whole or not at all).");
+  m.def(
       "write_evaluation",
       [](const Scene& scene, const DoubleArray& value, const DoubleArray& stderr_, size_t openings,
          const std::string& path) {
