@@ -451,3 +451,24 @@ def test_cli_solve_on_a_local_cluster_writes_what_one_process_writes(tmp_path):
     assert without_timings(many) == without_timings(one)
     summary = lambda out: [line.split("; ")[0:2] if line.startswith("solve:") else line for line in out.splitlines()]
     assert summary(runs["many"].stdout.replace("many.json", "one.json")) == summary(runs["one"].stdout)  # but seconds
+
+
+def test_cli_solve_ctrl_c_stops_the_solver_and_writes_nothing(tmp_path):
+    path = write_solve_floor(tmp_path, generations=1000000)
+    out = tmp_path / "out.json"
+    p = subprocess.Popen([CLI, "solve", str(path), "-o", str(out), "--workers", "2"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    line = ""
+    while "solving:" not in line:  # the contributions are on the cluster, the solver runs
+        line = p.stderr.readline()
+        assert line or p.poll() is None, "exited early"
+        assert time.monotonic() < deadline
+    time.sleep(1.0)
+    start = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == 130, err
+    assert "interrupted by SIGINT; no output written" in err
+    assert time.monotonic() - start < 30
+    assert not out.exists()

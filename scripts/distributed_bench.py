@@ -4,10 +4,13 @@ A generated building floor: 12 rooms of 6 x 5 x 3 m in a row, 0.2 m apart, each 
 wall the opening domain (0.2 m elements: 5 400 in all) and a grid of 9 x 10 sensors at desk height
 (1 080 in all), under a Preetham sky. The contributions are computed by one process and by a local
 cluster of 2 worker processes over TCP, then a generation of 64 random sets is evaluated exactly
-from the records both ways. Printed: wall times, the ratio, each worker's peak memory (resident
-set) and the records it holds, and whether the results agree bit for bit.
+from the records both ways. Last the floor is solved (goals of 5 % of the unobstructed light,
+opening limits, a genetic run of --generations) by one process and on a fresh local cluster.
+Printed: wall times, the ratios, each worker's peak memory (resident set) and the records it
+holds, and whether the results agree bit for bit.
 
-    /usr/bin/python3 scripts/distributed_bench.py [--paths N] [--workers N] [--json OUT.json]
+    /usr/bin/python3 scripts/distributed_bench.py [--paths N] [--workers N] [--generations N]
+                                                  [--no-solve] [--json OUT.json]
 """
 
 import argparse
@@ -68,16 +71,85 @@ def write_floor(directory, paths):
     return path
 
 
-def peak_rss_bytes():
-    import resource as r  # here: the function also runs on the workers
+def write_solve_scene(path, generations):
+    """The floor with goals and solver settings, beside it."""
+    with open(path) as f:
+        scene = json.load(f)
+    scene["goals"] = {"units": "normalized", "uniform": [{"sensors": "all", "level": 0.05}]}
+    scene["solver"] = {"generations": generations, "population": 32, "seed": 1,
+                       "constraints": {"min_width": 0.6, "min_height": 1.0, "sill_min": 0.8}}
+    solve_path = os.path.join(os.path.dirname(path), "solve.json")
+    with open(solve_path, "w") as f:
+        json.dump(scene, f)
+    return solve_path
 
-    return r.getrusage(r.RUSAGE_SELF).ru_maxrss * 1024
+
+def without_timings(result):
+    result = json.loads(json.dumps(result))
+    result.pop("timings_s")
+    for generation in result["genetic"]["history"]:
+        generation.pop("seconds")
+    return result
+
+
+def one_process_solve(path):
+    """Runs in a child process, so that its peak memory is the solve's own."""
+    import warnings
+
+    warnings.simplefilter("ignore", RuntimeWarning)
+    start = time.monotonic()
+    result = fenestra.solve(fenestra.load_scene(path))
+    return time.monotonic() - start, without_timings(result), result["timings_s"], peak_rss_bytes()
+
+
+def solve_bench(path, args):
+    import concurrent.futures
+    import multiprocessing
+    import warnings
+
+    solve_path = write_solve_scene(path, args.generations)
+    with concurrent.futures.ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as pool:
+        one_seconds, one, one_timings, one_peak = pool.submit(one_process_solve, solve_path).result()
+    with distributed.Cluster(workers=args.workers, threads_per_worker=max(1, os.cpu_count() // args.workers),
+                             timeout=60) as cluster:
+        start = time.monotonic()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            many = distributed.solve(solve_path, cluster)
+        many_seconds = time.monotonic() - start
+        peaks = cluster.client.run(peak_rss_bytes)
+    same = without_timings(many) == one
+    mib = 1 << 20
+    print("  solve, one process: %.1f s (contributions %.1f s), peak resident %.0f MiB; %d openings, relative RMS "
+          "error %.1f %%" % (one_seconds, one_timings["contributions"], one_peak / mib, len(one["openings"]),
+                             100 * one["error"]["relative_rms"]))
+    print("  solve, %d workers: %.1f s; the solver's stages in this process %.1f s"
+          % (args.workers, many_seconds, many["timings_s"]["total"]))
+    for worker in sorted(peaks):
+        print("    worker %s: peak resident %.0f MiB" % (worker, peaks[worker] / mib))
+    print("  ratio (one process / cluster): solve %.2f x; results equal bit for bit (but timings): %s"
+          % (one_seconds / many_seconds, same))
+    return {"one_process_solve_seconds": one_seconds, "cluster_solve_seconds": many_seconds,
+            "one_process_solve_peak_resident_bytes": one_peak, "solve_worker_peak_resident_bytes": peaks,
+            "solve_bit_identical": same}
+
+
+def peak_rss_bytes():
+    """This process's peak resident memory: VmHWM, which a new program starts afresh (getrusage's
+    ru_maxrss is kept across exec, so a worker started late would report its parent's peak)."""
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) * 1024
+    raise RuntimeError("no VmHWM in /proc/self/status")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--paths", type=int, default=1024)
     parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--generations", type=int, default=100)
+    parser.add_argument("--no-solve", action="store_true")
     parser.add_argument("--json")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
@@ -123,14 +195,16 @@ def main():
                   % (worker, held[worker] / mib, [(b, e) for b, e, w in shards if w == worker], peaks[worker] / mib))
         print("  ratio (one process / cluster): contributions %.2f x, evaluations %.2f x; results equal bit for bit: %s"
               % (one_seconds / many_seconds, one_eval_seconds / many_eval_seconds, same))
+        solved = {} if args.no_solve else solve_bench(path, args)
+        same = same and solved.get("solve_bit_identical", True)
         if args.json:
             with open(args.json, "w") as f:
-                json.dump({"sensors": scene.sensor_count, "elements": scene.element_count, "paths": args.paths,
+                json.dump(dict(solved, **{"sensors": scene.sensor_count, "elements": scene.element_count, "paths": args.paths,
                            "one_process_seconds": one_seconds, "cluster_seconds": many_seconds,
                            "one_process_evaluation_seconds": one_eval_seconds, "slowest_shard_seconds": traced,
                            "cluster_evaluation_seconds": many_eval_seconds, "worker_records_bytes": held,
                            "worker_peak_resident_bytes": peaks, "one_process_records_bytes": one_records,
-                           "bit_identical": same}, f, indent=2)
+                           "bit_identical": same}), f, indent=2)
         return 0 if same else 1
 
 

@@ -32,7 +32,7 @@ import numpy as np
 from . import _core, api
 
 # What client and workers must agree on: the package version and the shard protocol.
-PROTOCOL = 1
+PROTOCOL = 2
 _ADDON_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
@@ -293,7 +293,7 @@ def _apply(state, op, args):
     if op == "evaluate":
         return queries.evaluate(args[0])
     if op == "flip_effects":
-        return queries.flip_effects(args[0])
+        return _sparse(queries.flip_effects(args[0]))
     if op == "record_bytes":
         return queries.record_bytes
     if op == "try":
@@ -309,6 +309,23 @@ def _apply(state, op, args):
     if op == "close":
         return searches.pop(args[0], None) and None
     raise ValueError("unknown record query %r" % (op,))
+
+
+def _sparse(matrix):
+    """A matrix as its shape and the entries whose bits are not all zero (a sensor's flip effects
+    are zero for the elements its paths never met: most of a floor's): (shape, rows, columns, values)."""
+    rows, columns = np.nonzero(np.ascontiguousarray(matrix).view(np.uint64))
+    return matrix.shape, rows.astype(np.int32), columns.astype(np.int32), matrix[rows, columns]
+
+
+def _dense(parts):
+    """The matrices _sparse gave, stacked by rows, bit for bit."""
+    out = np.zeros((sum(p[0][0] for p in parts), parts[0][0][1]))
+    at = 0
+    for shape, rows, columns, values in parts:
+        out[at + rows, columns] = values
+        at += shape[0]
+    return out
 
 
 def _session_call(key, sensors, spec, session, applied, op, args):
@@ -695,7 +712,7 @@ class _ShardedRecords:
         return self._pairs(self._ask("evaluate", np.asarray(rectangles, dtype=np.float64)))
 
     def flip_effects(self, about):
-        return np.concatenate(self._ask("flip_effects", np.asarray(about, dtype=np.uint8)), axis=0)
+        return _dense(self._ask("flip_effects", np.asarray(about, dtype=np.uint8)))
 
     def region_search(self, rectangles):
         search = next(self._searches)
