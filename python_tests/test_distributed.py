@@ -472,3 +472,38 @@ def test_cli_solve_ctrl_c_stops_the_solver_and_writes_nothing(tmp_path):
     assert "interrupted by SIGINT; no output written" in err
     assert time.monotonic() - start < 30
     assert not out.exists()
+
+
+def test_record_queries_refuse_bad_arguments_and_bad_answers(tmp_path):
+    """The shard side (fenestra._core.RecordQueries) names a bad mask or rectangle; the solver names a
+    records object whose answers have the wrong shape, or passes its exception on."""
+    from fenestra import _core
+
+    path = write_solve_floor(tmp_path)
+    scene = fenestra.load_scene(str(path))
+    c = fenestra.contributions(scene)
+    q = _core.RecordQueries(scene, c)
+    n = scene.element_count
+    with pytest.raises(ValueError, match=r"open mask must have shape \(%d,\)" % n):
+        q.exact(np.ones(n + 1, dtype=np.uint8))
+    for bad in ([[7, 0, 1, 0, 1]], [[-1, 0, 1, 0, 1]], [[0.5, 0, 1, 0, 1]], [[np.nan, 0, 1, 0, 1]]):
+        with pytest.raises(ValueError, match="is not a panel of the opening domain"):
+            q.evaluate(np.array(bad, dtype=float))
+    with pytest.raises(ValueError, match=r"shape \(n, 5\)"):
+        q.region_search(np.zeros((2, 4)))
+    v, e = q.exact(np.ones(n, dtype=np.uint8))
+    assert np.array_equal(v, c.evaluate(np.ones(n, dtype=bool))[0])
+
+    class Short:
+        def exact(self, open_mask):
+            return np.zeros(3), np.zeros(3)
+
+    with pytest.raises(RuntimeError, match="exact values: expected %d values" % scene.sensor_count):
+        _core.solve_with_records(scene, c, Short())
+
+    class Failing:
+        def exact(self, open_mask):
+            raise OSError("the cluster went away")
+
+    with pytest.raises(OSError, match="the cluster went away"):
+        _core.solve_with_records(scene, c, Failing())
