@@ -507,3 +507,17 @@ def test_record_queries_refuse_bad_arguments_and_bad_answers(tmp_path):
 
     with pytest.raises(OSError, match="the cluster went away"):
         _core.solve_with_records(scene, c, Failing())
+
+
+def test_a_stopped_worker_is_named_within_the_timeout(cluster):
+    """A worker that does not answer (here stopped with SIGSTOP) is named, not waited for forever."""
+    cluster.client.wait_for_workers(2, timeout=60)
+    address, pid = sorted(worker_pids(cluster).items())[0]
+    os.kill(pid, signal.SIGSTOP)
+    try:
+        start = time.monotonic()
+        with pytest.raises(distributed.ClusterError, match="worker %s did not answer within 3 s" % address):
+            distributed.Cluster(scheduler=cluster.address, timeout=3)
+        assert time.monotonic() - start < 20
+    finally:
+        os.kill(pid, signal.SIGCONT)

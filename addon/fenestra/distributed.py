@@ -106,7 +106,10 @@ class Cluster:
         mine = _identity()
         for address in self.workers():
             try:
-                theirs = self.client.run(_worker_identity, workers=[address])[address]
+                theirs = self._run_within(timeout, _worker_identity, workers=[address])[address]
+            except TimeoutError:
+                raise ClusterError("worker %s did not answer within %g s: it is stopped, overloaded or unreachable "
+                                   "from here (restart it, or leave it out of the cluster)" % (address, timeout)) from None
             except Exception as exc:  # the worker could not unpickle or run it: no Fenestra there
                 raise ClusterError(
                     "worker %s cannot run Fenestra (%s: %s): install Fenestra's dependencies there and put its "
@@ -115,6 +118,26 @@ class Cluster:
             if theirs != mine:
                 raise ClusterError("worker %s runs %s, this client %s: use the same Fenestra build on every machine"
                                    % (address, _describe(theirs), _describe(mine)))
+
+    def _run_within(self, timeout, function, **kwargs):
+        """client.run(function, **kwargs), or TimeoutError after `timeout` seconds (Dask's run has
+        no timeout: a stopped worker would hang it; the call is left to finish on its own thread)."""
+        done, outcome = threading.Event(), {}
+
+        def target():
+            try:
+                outcome["value"] = self.client.run(function, **kwargs)
+            except BaseException as exc:  # re-raised in the caller's thread
+                outcome["error"] = exc
+            finally:
+                done.set()
+
+        threading.Thread(target=target, name="fenestra-cluster-check", daemon=True).start()
+        if not done.wait(timeout):
+            raise TimeoutError
+        if "error" in outcome:
+            raise outcome["error"]
+        return outcome["value"]
 
     @property
     def address(self):
