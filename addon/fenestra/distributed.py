@@ -330,7 +330,8 @@ def _apply(state, op, args):
     if op == "accept":
         return searches[args[0]].accept()
     if op == "close":
-        return searches.pop(args[0], None) and None
+        searches.pop(args[0], None)
+        return None
     raise ValueError("unknown record query %r" % (op,))
 
 
@@ -565,24 +566,18 @@ class DistributedContributions:
         """(begin, end, worker address) of every shard."""
         return [(s["begin"], s["end"], s["worker"]) for s in self._shards]
 
-    def _map(self, function, *args, on_recompute=None, cancelled=None):
+    def _map(self, function, *args, cancelled=None):
         """function(key, (begin, end), *args) on every shard's worker, results in shard order. A
-        shard whose worker is gone (or restarted) is recomputed on another worker (then
-        on_recompute(i)), then asked again. cancelled(): polled while waiting; True raises Cancelled."""
+        shard whose worker is gone (or restarted) is recomputed on another worker, then asked again.
+        cancelled(): polled while waiting; True raises Cancelled."""
         client = self._cluster.client
         pending = {i: None for i in range(len(self._shards))}
         results = [None] * len(self._shards)
-
-        def recompute(i):
-            self._recompute(i)
-            if on_recompute is not None:
-                on_recompute(i)
-
         for attempt in range(4):
             alive = set(self._cluster.workers())
             for i in list(pending):
                 if self._shards[i]["worker"] not in alive:
-                    recompute(i)
+                    self._recompute(i)
             futures = {i: client.submit(function, self._keys[i], (self._shards[i]["begin"], self._shards[i]["end"]),
                                         *args, workers=[self._shards[i]["worker"]], allow_other_workers=False,
                                         pure=False) for i in pending}
@@ -599,7 +594,7 @@ class DistributedContributions:
             if not pending:
                 return results
             for i in pending:
-                recompute(i)
+                self._recompute(i)
         raise ClusterError("shards %s were lost four times in a row" % sorted(pending))
 
     def _wait(self, futures, cancelled=None):

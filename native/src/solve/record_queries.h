@@ -63,8 +63,6 @@ class LocalRecordQueries : public RecordQueries {
   SensorValues cut(const std::vector<OpeningInput>& openings, int paths) override;
   double record_bytes() const override;
 
-  const ExactValues& exact_values() const { return exact_; }
-
  private:
   const Scene& scene_;
   const Contributions& c_;
