@@ -489,6 +489,9 @@ def test_record_queries_refuse_bad_arguments_and_bad_answers(tmp_path):
     for bad in ([[7, 0, 1, 0, 1]], [[-1, 0, 1, 0, 1]], [[0.5, 0, 1, 0, 1]], [[np.nan, 0, 1, 0, 1]]):
         with pytest.raises(ValueError, match="is not a panel of the opening domain"):
             q.evaluate(np.array(bad, dtype=float))
+    for bad in ([[0, np.nan, 1, 0, 1]], [[0, 0, np.inf, 0, 1]], [[0, 0, 1, -np.inf, 1]]):
+        with pytest.raises(ValueError, match="is not a finite number of meters"):
+            q.evaluate(np.array(bad, dtype=float))
     with pytest.raises(ValueError, match=r"shape \(n, 5\)"):
         q.region_search(np.zeros((2, 4)))
     v, e = q.exact(np.ones(n, dtype=np.uint8))

@@ -8,6 +8,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -53,6 +54,11 @@ std::vector<PanelRectangle> rectangles_of(const DoubleArray& a, const OpeningDom
     if (!(panel >= 0.0 && panel < static_cast<double>(domain.panels().size())) || panel != std::floor(panel))
       throw std::invalid_argument("rectangle " + std::to_string(i) + ": panel " + std::to_string(panel) +
                                   " is not a panel of the opening domain");
+    static const char* const kNames[] = {"", "u0", "u1", "v0", "v1"};
+    for (int k = 1; k < 5; ++k)
+      if (!std::isfinite(r(i, k)))
+        throw std::invalid_argument("rectangle " + std::to_string(i) + ": " + kNames[k] + " is not a finite number " +
+                                    "of meters");
     out[i] = {static_cast<int>(panel), r(i, 1), r(i, 2), r(i, 3), r(i, 4)};
   }
   return out;
