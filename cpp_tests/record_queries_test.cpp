@@ -1,12 +1,18 @@
 // The solver reads the path records only through RecordQueries, and every answer is per sensor:
 // a study whose records are split into shards of sensors (as fenestra.distributed keeps them on
-// its workers) gives the solver the same answers, and the solve the same result, bit for bit.
+// its workers) gives the solver the same answers, and the solve the same result, bit for bit:
+// with per-sensor goals, and with climate goals (hourly models and annual studies stacked from
+// the shards').
 #include <gtest/gtest.h>
 
 #include <deque>
 #include <memory>
 #include <vector>
 
+#include "annual/annual_cut_study.h"
+#include "annual/annual_records.h"
+#include "solve/climate_design.h"
+#include "solve/goals.h"
 #include "solve/record_queries.h"
 #include "solve/solver.h"
 #include "test_scenes.h"
@@ -66,9 +72,11 @@ class ShardedRecords : public RecordQueries {
       : scene_(scene), blocks_(blocks) {
     summary_ = whole;
     summary_.records.assign(whole.records.size(), SensorRecord{});
+    summary_.annual = nullptr;  // the client holds no sensor's records
     for (const SensorRange& b : blocks) shards_.push_back(compute_contributions(scene, nullptr, false, b));
     for (const Contributions& c : shards_)
       local_.push_back(std::make_unique<LocalRecordQueries>(scene, c, scene.domain, nullptr));
+    if (scene.climate) annual_ = prepare_annual(scene);  // sources and hours: no sensor's records
   }
   const Contributions& contributions() const override { return summary_; }
   const SensorValues& exact(const std::vector<uint8_t>& open) override {
@@ -105,8 +113,47 @@ class ShardedRecords : public RecordQueries {
     for (auto& q : local_) bytes += q->record_bytes();
     return bytes;
   }
+  std::shared_ptr<const AnnualRecords> annual() const override { return annual_; }
+  HourlyFlipModel hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
+                               const HourlyColumns& columns, bool flips) override {
+    ++hourly_models;
+    std::vector<HourlyFlipModel> parts;
+    std::vector<std::vector<int>> positions;
+    for (size_t i = 0; i < blocks_.size(); ++i) {
+      std::vector<int> local, at;
+      for (size_t r = 0; r < rows.size(); ++r)
+        if (static_cast<size_t>(rows[r]) >= blocks_[i].begin && static_cast<size_t>(rows[r]) < blocks_[i].end)
+          local.push_back(rows[r] - static_cast<int>(blocks_[i].begin)), at.push_back(static_cast<int>(r));
+      parts.push_back(local_[i]->hourly_model(about, local, columns, flips));
+      positions.push_back(at);
+    }
+    return stack_hourly_models(about, rows, columns, std::move(parts), positions);
+  }
+  AnnualStudy annual_study(const std::vector<PanelRectangle>& region) override {
+    ++annual_studies;
+    std::vector<AnnualRegionParts> parts;
+    for (const Contributions& c : shards_) parts.push_back(annual_region_parts(c, OpenRegion(scene_.domain, region)));
+    AnnualRegionParts whole = stack(parts);
+    AnnualStudy study = annual_study_of(whole.coefficients, annual_, whole.occupied_mean);
+    study.paths_per_sensor = summary_.paths_per_sensor;
+    return study;
+  }
+  AnnualStudy annual_cut(const std::vector<OpeningInput>& openings, int paths) override {
+    ++annual_cuts;
+    std::vector<AnnualRegionParts> parts;
+    AnnualCutCoefficients whole;
+    for (const SensorRange& b : blocks_) {
+      AnnualCutCoefficients part = annual_cut_coefficients(scene_, openings, nullptr, paths, b);
+      parts.push_back({part.coefficients, part.occupied_mean});
+      whole.paths_per_sensor = part.paths_per_sensor;
+    }
+    AnnualRegionParts stacked = stack(parts);
+    whole.coefficients = stacked.coefficients;
+    whole.occupied_mean = stacked.occupied_mean;
+    return annual_cut_study_of(scene_, whole);
+  }
 
-  int exact_calls = 0, region_searches = 0, cuts = 0;
+  int exact_calls = 0, region_searches = 0, cuts = 0, hourly_models = 0, annual_studies = 0, annual_cuts = 0;
 
  private:
   template <typename F>
@@ -114,6 +161,23 @@ class ShardedRecords : public RecordQueries {
     std::vector<SensorValues> parts;
     for (auto& q : local_) parts.push_back(f(*q));
     return join(parts);
+  }
+  AnnualRegionParts stack(const std::vector<AnnualRegionParts>& parts) const {
+    AnnualRegionParts out;
+    const Eigen::Index n = summary_.E.rows();
+    out.coefficients.sources.resize(n, parts.front().coefficients.sources.cols());
+    out.coefficients.direct.resize(n, parts.front().coefficients.direct.cols());
+    std::vector<SensorValues> means;
+    Eigen::Index at = 0;
+    for (const AnnualRegionParts& p : parts) {
+      const Eigen::Index rows = p.coefficients.sources.rows();
+      out.coefficients.sources.middleRows(at, rows) = p.coefficients.sources;
+      out.coefficients.direct.middleRows(at, rows) = p.coefficients.direct;
+      means.push_back(p.occupied_mean);
+      at += rows;
+    }
+    out.occupied_mean = join(means);
+    return out;
   }
   SensorValues join(const std::vector<SensorValues>& parts) const {
     std::vector<Eigen::VectorXd> v, e;
@@ -128,6 +192,7 @@ class ShardedRecords : public RecordQueries {
   std::vector<Contributions> shards_;
   std::vector<std::unique_ptr<LocalRecordQueries>> local_;
   std::deque<SensorValues> known_;  // references handed out stay valid
+  std::shared_ptr<const AnnualRecords> annual_;
 };
 
 bool same(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
@@ -177,6 +242,140 @@ TEST(RecordQueries, ASolveOnShardedRecordsEqualsTheWholeStudysBitForBit) {
   ASSERT_EQ(one.tradeoffs.size(), many.tradeoffs.size());
   for (size_t i = 0; i < one.tradeoffs.size(); ++i) EXPECT_TRUE(same(one.tradeoffs[i].predicted, many.tradeoffs[i].predicted));
   EXPECT_EQ(one.warnings, many.warnings);
+}
+
+const std::string kChicago =
+    std::string(FENESTRA_EXAMPLES) + "/weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw";
+
+// A 3 x 4 x 2.5 m room lit by its south wall (0.5 m elements), six sensors, the Chicago year,
+// climate goals that need part of the wall, verified with real cutters, with trade-offs.
+Scene climate_room(const TempDir& dir) {
+  ObjBuilder obj;
+  obj.box({0, 0, 0}, {3, 4, 2.5f}, [](const std::string& f) { return f == "south" ? "glazing" : "wall"; });
+  dir.write("scene.obj", obj.str());
+  dir.write("scene.json", R"({"fenestra": 1, "geometry": "scene.obj",
+    "materials": {"glazing": {"reflectance": 0.5}, "wall": {"reflectance": 0.5}},
+    "opening_domain": {"materials": ["glazing"], "element_size": 0.5},
+    "sensors": {"points": [[0.75, 0.75, 0.8], [2.25, 0.75, 0.8], [0.75, 2, 0.8], [2.25, 2, 0.8], [0.75, 3.25, 0.8],
+                           [2.25, 3.25, 0.8]], "normals": [0, 0, 1]},
+    "sky": {"type": "climate", "weather": ")" + kChicago + R"("},
+    "goals": {"climate": [{"metric": "sda", "min_area_fraction": 0.5}, {"metric": "ase", "max_area_fraction": 0.2}],
+              "least_glazing": true},
+    "render": {"paths_per_sensor": 128, "max_bounces": 4, "seed": 5},
+    "solver": {"generations": 12, "population": 10, "seed": 3, "verify": true, "verify_paths": 32,
+               "tradeoffs": true}})");
+  return load_scene(dir.file("scene.json"));
+}
+
+bool same_figures(const std::vector<ClimateFigure>& a, const std::vector<ClimateFigure>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (!(a[i].achieved == b[i].achieved)) return false;
+  return true;
+}
+
+TEST(RecordQueries, HourlyModelsStackedFromShardsEqualTheWholeStudysBitForBit) {
+  TempDir dir;
+  const Scene scene = climate_room(dir);
+  const Contributions whole = compute_contributions(scene, nullptr, false);
+  ShardedRecords sharded(scene, whole, {{0, 2}, {2, 3}, {3, 6}});
+  LocalRecordQueries local(scene, whole, scene.domain, nullptr);
+  const HourlyColumns columns = hourly_columns(*whole.annual, true);
+  std::vector<uint8_t> about(whole.element_count(), 0);
+  for (size_t k = 0; k < about.size(); k += 3) about[k] = 1;
+  const std::vector<int> rows = {5, 0, 3, 1};  // out of order, one shard's sensors all left out
+  for (bool flips : {true, false}) {
+    const HourlyFlipModel a = local.hourly_model(about, rows, columns, flips);
+    const HourlyFlipModel b = sharded.hourly_model(about, rows, columns, flips);
+    ASSERT_EQ(a.total.rows(), 4);
+    EXPECT_TRUE((a.total.array() == b.total.array()).all());
+    EXPECT_TRUE((a.direct.array() == b.direct.array()).all());
+    ASSERT_EQ(a.flip_total.size(), b.flip_total.size());
+    size_t kept = 0, changes = 0;
+    for (size_t k = 0; k < a.flip_total.size(); ++k) {
+      ASSERT_EQ(a.flip_total[k].size(), b.flip_total[k].size()) << k;
+      if (a.flip_total[k].size()) EXPECT_TRUE((a.flip_total[k].array() == b.flip_total[k].array()).all()) << k;
+      kept += a.flip_total[k].size() > 0;
+      ASSERT_EQ(a.flip_direct[k].size(), b.flip_direct[k].size()) << k;
+      for (size_t i = 0; i < a.flip_direct[k].size(); ++i) {
+        EXPECT_EQ(a.flip_direct[k][i].row, b.flip_direct[k][i].row);
+        EXPECT_EQ(a.flip_direct[k][i].column, b.flip_direct[k][i].column);
+        EXPECT_EQ(a.flip_direct[k][i].lux, b.flip_direct[k][i].lux);
+      }
+      changes += a.flip_direct[k].size();
+    }
+    EXPECT_EQ(a.memory_bytes(), b.memory_bytes());
+    if (flips) {  // the flips were there to compare
+      EXPECT_GT(kept, 0u);
+      EXPECT_GT(changes, 0u);
+    }
+  }
+  // Parts that do not cover the rows, or overlap, are refused.
+  EXPECT_THROW(stack_hourly_models(about, rows, columns, {}, {}), std::invalid_argument);
+}
+
+TEST(RecordQueries, AClimateSolveOnShardedRecordsEqualsTheWholeStudysBitForBit) {
+  TempDir dir;
+  const Scene scene = climate_room(dir);
+  const Contributions whole = compute_contributions(scene);
+  const SolveResult one = solve_openings(scene, whole);
+  ShardedRecords sharded(scene, whole, {{0, 1}, {1, 4}, {4, 6}});
+  const SolveResult many = solve_openings(scene, sharded);
+  ASSERT_TRUE(one.climate.active);
+  EXPECT_GT(sharded.hourly_models, 3);
+  EXPECT_GT(sharded.annual_studies, 0);
+  EXPECT_EQ(sharded.annual_cuts, 1);
+  ASSERT_FALSE(one.climate.achieved.empty());
+  ASSERT_FALSE(one.climate.verified.empty());
+  EXPECT_EQ(one.open, many.open);
+  ASSERT_EQ(one.openings.size(), many.openings.size());
+  for (size_t i = 0; i < one.openings.size(); ++i) EXPECT_TRUE(one.openings[i].parameter == many.openings[i].parameter);
+  EXPECT_TRUE(same_figures(one.climate.element_figures, many.climate.element_figures));
+  EXPECT_TRUE(same_figures(one.climate.all_open_figures, many.climate.all_open_figures));
+  EXPECT_TRUE(same_figures(one.climate.achieved, many.climate.achieved));
+  EXPECT_TRUE(same_figures(one.climate.verified, many.climate.verified));
+  EXPECT_TRUE((one.climate.study->illuminance.total.array() == many.climate.study->illuminance.total.array()).all());
+  EXPECT_TRUE(same(one.climate.study->occupied_mean.value, many.climate.study->occupied_mean.value));
+  EXPECT_TRUE(
+      (one.climate.verified_study->illuminance.total.array() == many.climate.verified_study->illuminance.total.array()).all());
+  EXPECT_TRUE(same(one.climate.verified_study->occupied_mean.standard_error,
+                   many.climate.verified_study->occupied_mean.standard_error));
+  EXPECT_EQ(one.climate.model_bytes, many.climate.model_bytes);
+  EXPECT_EQ(one.climate.linearisations, many.climate.linearisations);
+  ASSERT_EQ(one.tradeoffs.size(), many.tradeoffs.size());
+  for (size_t i = 0; i < one.tradeoffs.size(); ++i)
+    EXPECT_TRUE(same_figures(one.tradeoffs[i].climate, many.tradeoffs[i].climate));
+  EXPECT_EQ(one.fitness, many.fitness);
+  EXPECT_EQ(one.warnings, many.warnings);
+}
+
+TEST(RecordQueries, AnAnnualStudyWithCuttersStackedFromRangesEqualsTheWholeOne) {
+  TempDir dir;
+  const Scene scene = climate_room(dir);
+  const std::vector<OpeningInput> openings = {PanelRectangle{0, 0.5, 2.0, 0.5, 2.0}};
+  const AnnualStudy whole = annual_study_with_cutters(scene, openings, nullptr, 16);
+  AnnualCutCoefficients a = annual_cut_coefficients(scene, openings, nullptr, 16, {0, 4});
+  const AnnualCutCoefficients b = annual_cut_coefficients(scene, openings, nullptr, 16, {4, 6});
+  AnnualCutCoefficients stacked;
+  stacked.paths_per_sensor = a.paths_per_sensor;
+  stacked.coefficients.sources.resize(6, a.coefficients.sources.cols());
+  stacked.coefficients.sources << a.coefficients.sources, b.coefficients.sources;
+  stacked.coefficients.direct.resize(6, a.coefficients.direct.cols());
+  stacked.coefficients.direct << a.coefficients.direct, b.coefficients.direct;
+  stacked.occupied_mean.value.resize(6);
+  stacked.occupied_mean.value << a.occupied_mean.value, b.occupied_mean.value;
+  stacked.occupied_mean.standard_error.resize(6);
+  stacked.occupied_mean.standard_error << a.occupied_mean.standard_error, b.occupied_mean.standard_error;
+  const AnnualStudy parts = annual_cut_study_of(scene, stacked);
+  EXPECT_GT(whole.illuminance.total.maxCoeff(), 0.0f);
+  EXPECT_TRUE((whole.illuminance.total.array() == parts.illuminance.total.array()).all());
+  EXPECT_TRUE((whole.illuminance.direct.array() == parts.illuminance.direct.array()).all());
+  EXPECT_TRUE(same(whole.occupied_mean.value, parts.occupied_mean.value));
+  EXPECT_TRUE(same(whole.occupied_mean.standard_error, parts.occupied_mean.standard_error));
+  EXPECT_EQ(whole.paths_per_sensor, parts.paths_per_sensor);
+  EXPECT_TRUE(parts.cutters);
+  // Not every sensor: refused by name.
+  EXPECT_THROW(annual_cut_study_of(scene, a), std::invalid_argument);
 }
 
 }  // namespace

@@ -2,19 +2,27 @@
 // Python boundary. A shard's worker answers them for its sensors with LocalRecordQueries
 // (`ShardQueries`); the client's solver asks them of a Python object that maps them over the shards
 // (`solve_with_records`, fenestra.distributed). Rectangles travel as (n, 5) float64 arrays
-// [panel, u0, u1, v0, v1] (meters in the panel's parameter domain): exact, unlike text.
+// [panel, u0, u1, v0, v1] (meters in the panel's parameter domain): exact, unlike text. Climate
+// goals' hourly models and annual coefficients travel as tuples of arrays (`hourly_parts`,
+// `annual_parts_tuple`), stacked by the client's side.
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "annual/annual_cut_study.h"
+#include "annual/annual_records.h"
+#include "annual/annual_study.h"
+#include "annual/hourly_flip_model.h"
 #include "io/results.h"
 #include "io/solve_result.h"
 #include "scene/scene.h"
@@ -26,6 +34,16 @@
 
 namespace py = pybind11;
 using namespace fenestra;
+
+// Annual coefficients and the occupied hours' mean of some sensors as (sources (sensors, sources)
+// float64, direct (sensors, sun hours) float32, mean, stderr): what a shard sends of an annual study.
+py::tuple annual_parts_tuple(const AnnualCoefficients& k, const SensorValues& mean) {
+  py::array_t<float> direct({static_cast<py::ssize_t>(k.direct.rows()), static_cast<py::ssize_t>(k.direct.cols())});
+  Eigen::Map<Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(direct.mutable_data(), k.direct.rows(),
+                                                                                    k.direct.cols()) = k.direct;
+  return py::make_tuple(py::cast(k.sources), direct, py::array_t<double>(mean.value.size(), mean.value.data()),
+                        py::array_t<double>(mean.standard_error.size(), mean.standard_error.data()));
+}
 
 namespace {
 
@@ -88,6 +106,109 @@ SensorValues values_from(const py::object& pair, Eigen::Index sensors, const cha
   return {vector_from(t[0], sensors, what), vector_from(t[1], sensors, what)};
 }
 
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+using IntArray = py::array_t<int32_t, py::array::c_style | py::array::forcecast>;
+
+template <typename T, typename Array>
+std::vector<T> vector_of_array(const Array& a, const char* what) {
+  if (a.ndim() != 1) throw std::runtime_error(std::string(what) + ": expected a one-dimensional array");
+  return std::vector<T>(a.data(), a.data() + a.shape(0));
+}
+
+// The hours an hourly model keeps (HourlyColumns) as (hour, occupied, daylight, occupied_hours,
+// daylight_hours), and back.
+py::tuple columns_tuple(const HourlyColumns& c) {
+  return py::make_tuple(py::array_t<int32_t>(static_cast<py::ssize_t>(c.hour.size()), c.hour.data()),
+                        py::array_t<uint8_t>(static_cast<py::ssize_t>(c.occupied.size()), c.occupied.data()),
+                        py::array_t<uint8_t>(static_cast<py::ssize_t>(c.daylight.size()), c.daylight.data()),
+                        c.occupied_hours, c.daylight_hours);
+}
+
+HourlyColumns columns_from(const py::handle& h) {
+  const py::tuple t = py::cast<py::tuple>(h);
+  if (t.size() != 5) throw std::invalid_argument("hourly columns: expected (hour, occupied, daylight, occupied_hours, daylight_hours)");
+  HourlyColumns c;
+  c.hour = vector_of_array<int>(py::cast<IntArray>(t[0]), "hourly columns' hours");
+  c.occupied = vector_of_array<uint8_t>(py::cast<MaskArray>(t[1]), "hourly columns' occupied flags");
+  c.daylight = vector_of_array<uint8_t>(py::cast<MaskArray>(t[2]), "hourly columns' daylight flags");
+  c.occupied_hours = py::cast<int>(t[3]);
+  c.daylight_hours = py::cast<int>(t[4]);
+  if (c.occupied.size() != c.hour.size() || c.daylight.size() != c.hour.size())
+    throw std::invalid_argument("hourly columns: hours and flags differ in length");
+  return c;
+}
+
+// A rows x columns HourlyMatrix as a (rows, columns) float32 array (both row-major: one copy).
+py::array_t<float> hourly_array(const HourlyMatrix& m) {
+  py::array_t<float> a({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
+  if (m.size()) std::memcpy(a.mutable_data(), m.data(), sizeof(float) * static_cast<size_t>(m.size()));
+  return a;
+}
+
+HourlyMatrix hourly_matrix(const float* data, Eigen::Index rows, Eigen::Index columns) {
+  return Eigen::Map<const HourlyMatrix>(data, rows, columns);
+}
+
+// An hourly model (a shard's rows) as (total, direct, elements, flips, changes): total and direct
+// (rows, hours) lux; the elements whose flips it keeps and their changes (elements, rows, hours);
+// the direct sun's changes as (element, row, column, lux) arrays.
+py::tuple hourly_parts(const HourlyFlipModel& m) {
+  std::vector<int32_t> kept;
+  for (size_t k = 0; k < m.flip_total.size(); ++k)
+    if (m.flip_total[k].size() > 0) kept.push_back(static_cast<int32_t>(k));
+  const py::ssize_t rows = m.total.rows(), columns = m.total.cols();
+  py::array_t<float> flips({static_cast<py::ssize_t>(kept.size()), rows, columns});
+  for (size_t i = 0; i < kept.size(); ++i)
+    std::memcpy(flips.mutable_data() + i * rows * columns, m.flip_total[kept[i]].data(), sizeof(float) * rows * columns);
+  std::vector<int32_t> element, row, column;
+  std::vector<float> lux;
+  for (size_t k = 0; k < m.flip_direct.size(); ++k)
+    for (const DirectChange& d : m.flip_direct[k])
+      element.push_back(static_cast<int32_t>(k)), row.push_back(d.row), column.push_back(d.column), lux.push_back(d.lux);
+  auto array = [](const auto& v) { return py::array(static_cast<py::ssize_t>(v.size()), v.data()); };
+  return py::make_tuple(hourly_array(m.total), hourly_array(m.direct), array(kept), flips,
+                        py::make_tuple(array(element), array(row), array(column), array(lux)));
+}
+
+HourlyFlipModel hourly_part_from(const py::handle& h, Eigen::Index rows, const HourlyColumns& columns, size_t elements) {
+  const py::tuple t = py::cast<py::tuple>(h);
+  if (t.size() != 5) throw std::runtime_error("hourly model part: expected (total, direct, elements, flips, changes)");
+  const Eigen::Index n = static_cast<Eigen::Index>(columns.hour.size());
+  auto matrix = [&](const py::handle& x, const char* what) {
+    const FloatArray a = py::cast<FloatArray>(x);
+    if (a.ndim() != 2 || a.shape(0) != rows || a.shape(1) != n)
+      throw std::runtime_error(std::string("hourly model part: ") + what + " is not " + std::to_string(rows) + " x " +
+                               std::to_string(n));
+    return hourly_matrix(a.data(), rows, n);
+  };
+  HourlyFlipModel m;
+  m.total = matrix(t[0], "total");
+  m.direct = matrix(t[1], "direct");
+  m.flip_total.resize(elements);
+  m.flip_direct.resize(elements);
+  const std::vector<int32_t> kept = vector_of_array<int32_t>(py::cast<IntArray>(t[2]), "hourly model part's elements");
+  const FloatArray flips = py::cast<FloatArray>(t[3]);
+  if (flips.ndim() != 3 || flips.shape(0) != static_cast<py::ssize_t>(kept.size()) || flips.shape(1) != rows ||
+      flips.shape(2) != n)
+    throw std::runtime_error("hourly model part: flips do not match its elements, rows and hours");
+  for (size_t i = 0; i < kept.size(); ++i) {
+    if (kept[i] < 0 || static_cast<size_t>(kept[i]) >= elements) throw std::runtime_error("hourly model part: element out of range");
+    m.flip_total[kept[i]] = hourly_matrix(flips.data() + i * rows * n, rows, n);
+  }
+  const py::tuple changes = py::cast<py::tuple>(t[4]);
+  const auto element = vector_of_array<int32_t>(py::cast<IntArray>(changes[0]), "direct changes");
+  const auto row = vector_of_array<int32_t>(py::cast<IntArray>(changes[1]), "direct changes");
+  const auto column = vector_of_array<int32_t>(py::cast<IntArray>(changes[2]), "direct changes");
+  const auto lux = vector_of_array<float>(py::cast<FloatArray>(changes[3]), "direct changes");
+  if (row.size() != element.size() || column.size() != element.size() || lux.size() != element.size())
+    throw std::runtime_error("hourly model part: direct changes differ in length");
+  for (size_t i = 0; i < element.size(); ++i) {
+    if (element[i] < 0 || static_cast<size_t>(element[i]) >= elements) throw std::runtime_error("hourly model part: element out of range");
+    m.flip_direct[element[i]].push_back({row[i], column[i], lux[i]});
+  }
+  return m;
+}
+
 // An opening as openings files give it (parse_openings reads it back; numbers round-trip exactly).
 nlohmann::json opening_json(const OpeningInput& o) {
   if (o.parameter) {
@@ -97,6 +218,43 @@ nlohmann::json opening_json(const OpeningInput& o) {
   nlohmann::json corners = nlohmann::json::array();
   for (const Vec3& c : o.corners) corners.push_back(nlohmann::json::array({c.x(), c.y(), c.z()}));
   return {{"corners", corners}};
+}
+
+AnnualRegionParts annual_parts_from(const py::handle& h, Eigen::Index sensors, const AnnualRecords& annual) {
+  const py::tuple t = py::cast<py::tuple>(h);
+  if (t.size() < 4) throw std::runtime_error("annual parts: expected (sources, direct, mean, stderr)");
+  AnnualRegionParts parts;
+  const DoubleArray sources = py::cast<DoubleArray>(t[0]);
+  const FloatArray direct = py::cast<FloatArray>(t[1]);
+  const py::ssize_t n_sources = annual.sources.count(), n_sun = static_cast<py::ssize_t>(annual.sun_hours.size());
+  if (sources.ndim() != 2 || sources.shape(0) != sensors || sources.shape(1) != n_sources || direct.ndim() != 2 ||
+      direct.shape(0) != sensors || direct.shape(1) != n_sun)
+    throw std::runtime_error("annual parts: expected coefficients of " + std::to_string(sensors) + " sensors x " +
+                             std::to_string(n_sources) + " sources and " + std::to_string(n_sun) + " sun hours");
+  parts.coefficients.sources =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(sources.data(), sensors, n_sources);
+  parts.coefficients.direct =
+      Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(direct.data(), sensors, n_sun);
+  parts.occupied_mean = {vector_from(t[2], sensors, "annual mean"), vector_from(t[3], sensors, "annual mean stderr")};
+  return parts;
+}
+
+// A Python ValueError (bad input, e.g. a region the records cannot give) as the solver expects it.
+template <typename F>
+auto value_errors_as_invalid_argument(F f) {
+  try {
+    return f();
+  } catch (py::error_already_set& e) {
+    if (!e.matches(PyExc_ValueError)) throw;
+    throw std::invalid_argument(e.what());
+  }
+}
+
+// The JSON text of an openings file with these openings.
+std::string openings_text(const std::vector<OpeningInput>& openings) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const OpeningInput& o : openings) list.push_back(opening_json(o));
+  return nlohmann::json{{"openings", list}}.dump();
 }
 
 // ---- a shard's side: its records' answers -------------------------------------------------------
@@ -184,7 +342,41 @@ void bind_shard_queries(py::module_& m) {
             return s;
           },
           py::arg("rectangles"), "A region search starting from these rectangles (n, 5).")
-      .def_property_readonly("record_bytes", [](const ShardQueries& q) { return q.queries.record_bytes(); });
+      .def_property_readonly("record_bytes", [](const ShardQueries& q) { return q.queries.record_bytes(); })
+      .def(
+          "hourly_model",
+          [](ShardQueries& q, const MaskArray& about, const IntArray& rows, const py::tuple& columns, bool flips) {
+            const std::vector<uint8_t> mask = mask_of(about, q.contributions->element_count());
+            const std::vector<int> r = vector_of_array<int>(rows, "rows");
+            for (int i : r)
+              if (i < 0 || static_cast<size_t>(i) >= q.contributions->sensor_count())
+                throw std::invalid_argument("row " + std::to_string(i) + " is not one of these records' " +
+                                            std::to_string(q.contributions->sensor_count()) + " sensors");
+            const HourlyColumns c = columns_from(columns);
+            HourlyFlipModel m;
+            {
+              py::gil_scoped_release release;
+              m = q.queries.hourly_model(mask, r, c, flips);
+            }
+            return hourly_parts(m);
+          },
+          py::arg("about"), py::arg("rows"), py::arg("columns"), py::arg("flips"),
+          "The climate goals' year of `about` at these rows (sensors of these records) and columns, with every "
+          "element's flip when `flips`: (total, direct, elements, flips, changes).")
+      .def(
+          "annual_parts",
+          [](ShardQueries& q, const DoubleArray& rects) {
+            const OpenRegion region(q.scene->domain, rectangles_of(rects, q.scene->domain));
+            AnnualRegionParts parts;
+            {
+              py::gil_scoped_release release;
+              parts = annual_region_parts(*q.contributions, region);
+            }
+            return annual_parts_tuple(parts.coefficients, parts.occupied_mean);
+          },
+          py::arg("rectangles"),
+          "The annual coefficients and occupied hours' mean of these rectangles (n, 5) open: (sources, direct, "
+          "mean, stderr).");
 }
 
 // ---- the client's side: a Python object answers for all shards ----------------------------------
@@ -230,7 +422,8 @@ class PythonRegionQueries : public RegionQueries {
 
 class PythonRecordQueries : public RecordQueries {
  public:
-  PythonRecordQueries(const Contributions& c, py::object backend) : c_(c), backend_(std::move(backend)) {}
+  PythonRecordQueries(const Scene& scene, const Contributions& c, py::object backend)
+      : scene_(scene), c_(c), backend_(std::move(backend)), annual_(scene.climate ? prepare_annual(scene) : nullptr) {}
   ~PythonRecordQueries() override {
     py::gil_scoped_acquire gil;
     backend_ = py::object();
@@ -263,9 +456,7 @@ class PythonRecordQueries : public RecordQueries {
     return std::make_unique<PythonRegionQueries>(std::move(search), start, sensors());
   }
   SensorValues cut(const std::vector<OpeningInput>& openings, int paths) override {
-    nlohmann::json list = nlohmann::json::array();
-    for (const OpeningInput& o : openings) list.push_back(opening_json(o));
-    const std::string text = nlohmann::json{{"openings", list}}.dump();
+    const std::string text = openings_text(openings);
     py::gil_scoped_acquire gil;
     return values_from(backend_.attr("cut")(text, paths), sensors(), "values with real cutters");
   }
@@ -273,12 +464,69 @@ class PythonRecordQueries : public RecordQueries {
     py::gil_scoped_acquire gil;
     return py::cast<double>(backend_.attr("record_bytes")());
   }
+  std::shared_ptr<const AnnualRecords> annual() const override { return annual_; }
+  // The backend answers with a (positions, part) per shard: its rows' positions in `rows`.
+  HourlyFlipModel hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
+                               const HourlyColumns& columns, bool flips) override {
+    require_annual();
+    std::vector<HourlyFlipModel> parts;
+    std::vector<std::vector<int>> positions;
+    {
+      py::gil_scoped_acquire gil;
+      py::array_t<uint8_t> mask(static_cast<py::ssize_t>(about.size()), about.data());
+      py::array_t<int32_t> r(static_cast<py::ssize_t>(rows.size()), rows.data());
+      const py::list answers = backend_.attr("hourly_model")(mask, r, columns_tuple(columns), flips);
+      for (const py::handle answer : answers) {
+        const py::tuple pair = py::cast<py::tuple>(answer);
+        if (pair.size() != 2) throw std::runtime_error("hourly model: expected (positions, part) per shard");
+        positions.push_back(vector_of_array<int>(py::cast<IntArray>(pair[0]), "hourly model positions"));
+        parts.push_back(hourly_part_from(pair[1], static_cast<Eigen::Index>(positions.back().size()), columns,
+                                         c_.element_count()));
+      }
+    }
+    return stack_hourly_models(about, rows, columns, std::move(parts), positions);
+  }
+  AnnualStudy annual_study(const std::vector<PanelRectangle>& region) override {
+    require_annual();
+    const auto start = std::chrono::steady_clock::now();
+    AnnualRegionParts parts;
+    {
+      py::gil_scoped_acquire gil;
+      parts = value_errors_as_invalid_argument(
+          [&] { return annual_parts_from(backend_.attr("annual_parts")(rectangles_array(region)), sensors(), *annual_); });
+    }
+    AnnualStudy study = annual_study_of(parts.coefficients, annual_, parts.occupied_mean);
+    study.paths_per_sensor = c_.paths_per_sensor;
+    study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return study;
+  }
+  AnnualStudy annual_cut(const std::vector<OpeningInput>& openings, int paths) override {
+    require_annual();
+    const auto start = std::chrono::steady_clock::now();
+    AnnualCutCoefficients whole;
+    {
+      py::gil_scoped_acquire gil;
+      const py::tuple answer = backend_.attr("annual_cut")(openings_text(openings), paths);
+      AnnualRegionParts parts = annual_parts_from(answer, sensors(), *annual_);
+      whole.coefficients = std::move(parts.coefficients);
+      whole.occupied_mean = std::move(parts.occupied_mean);
+      whole.paths_per_sensor = py::cast<int>(answer[4]);
+    }
+    AnnualStudy study = annual_cut_study_of(scene_, std::move(whole));
+    study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return study;
+  }
 
  private:
   Eigen::Index sensors() const { return c_.closed.value.size(); }
+  void require_annual() const {
+    if (!annual_) throw std::invalid_argument("scene '" + scene_.source + "': climate goals need a climate sky");
+  }
 
+  const Scene& scene_;
   const Contributions& c_;
   py::object backend_;
+  std::shared_ptr<const AnnualRecords> annual_;
   std::map<std::vector<uint8_t>, SensorValues> known_;
 };
 
@@ -286,7 +534,7 @@ void bind_solve_with_records(py::module_& m) {
   m.def(
       "solve_with_records",
       [](const Scene& scene, const Contributions& c, py::object backend, std::shared_ptr<Progress> progress) {
-        PythonRecordQueries records(c, std::move(backend));
+        PythonRecordQueries records(scene, c, std::move(backend));
         std::string text;
         {
           py::gil_scoped_release release;
@@ -298,7 +546,8 @@ void bind_solve_with_records(py::module_& m) {
       py::arg("scene"), py::arg("contributions"), py::arg("records"), py::arg("progress") = nullptr,
       "The opening solver on contributions whose path records `records` holds: an object with exact(open), "
       "evaluate(rectangles), flip_effects(about), region_search(rectangles) (values, try_region, accept, close), "
-      "cut(openings_json, paths) and record_bytes() (fenestra.distributed). Returns the result as JSON text.");
+      "cut(openings_json, paths), record_bytes(), and for climate goals hourly_model(about, rows, columns, flips), "
+      "annual_parts(rectangles) and annual_cut(openings_json, paths) (fenestra.distributed). Returns the result as JSON text.");
 }
 
 }  // namespace

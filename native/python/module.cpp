@@ -36,6 +36,7 @@ void bind_solver(py::module_& m);    // bind_solver.cpp
 void bind_cost(py::module_& m);      // bind_cost.cpp
 void bind_shards(py::module_& m);    // bind_shards.cpp
 void bind_record_queries(py::module_& m);  // bind_record_queries.cpp
+py::tuple annual_parts_tuple(const fenestra::AnnualCoefficients& k, const fenestra::SensorValues& mean);  // bind_record_queries.cpp
 
 namespace {
 
@@ -515,6 +516,26 @@ PYBIND11_MODULE(_core, m) {
       "The annual study of openings (as for evaluate) from paths traced with them really cut, no records "
       "kept: the same dict as Contributions.annual_openings. `paths` per sensor, 0 for the scene's "
       "render.paths_per_sensor. With `output`, also writes OUTPUT.npz and OUTPUT.json.");
+  m.def(
+      "annual_cut_coefficients",
+      [](const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress, const py::object& sensors,
+         int paths) {
+        const auto given = openings_from(openings);
+        const SensorRange range = sensor_range_from(sensors, scene);
+        AnnualCutCoefficients k;
+        {
+          py::gil_scoped_release release;
+          k = while_doing("tracing the year of scene '" + scene.source + "' with the openings cut",
+                          [&] { return annual_cut_coefficients(scene, given, progress.get(), paths, range); });
+        }
+        py::tuple parts = annual_parts_tuple(k.coefficients, k.occupied_mean);
+        return py::make_tuple(parts[0], parts[1], parts[2], parts[3], k.paths_per_sensor);
+      },
+      py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr, py::arg("sensors") = py::none(),
+      py::arg("paths") = 0,
+      "annual_with_cutters' parts for the sensors (begin, end) (a shard of a study on a cluster): (sources, "
+      "direct, mean, stderr, paths per sensor), the coefficients per sensor and source and per sun hour, and the "
+      "occupied hours' mean illuminance with its standard error (lux).");
   m.def(
       "constraint_violations",
       [](const Scene& scene, const py::object& openings) {

@@ -24,24 +24,34 @@ constexpr size_t kBatchBytes = size_t(64) << 20;
 AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<OpeningInput>& openings, Progress* progress,
                                       int paths_per_sensor) {
   const auto start = std::chrono::steady_clock::now();
+  AnnualStudy study = annual_cut_study_of(scene, annual_cut_coefficients(scene, openings, progress, paths_per_sensor, {}));
+  study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return study;
+}
+
+AnnualCutCoefficients annual_cut_coefficients(const Scene& scene, const std::vector<OpeningInput>& openings,
+                                              Progress* progress, int paths_per_sensor, SensorRange range) {
   if (!scene.climate || !scene.climate->sky)
     throw std::invalid_argument("an annual study needs a scene whose sky is \"climate\" (a weather file); scene '" +
                                 scene.source + "' has another sky");
   if (paths_per_sensor < 0)
     throw std::invalid_argument("paths per sensor must be at least 1 (0: the scene's), got " +
                                 std::to_string(paths_per_sensor));
+  range = range.within(scene.sensors.size());
   const std::shared_ptr<AnnualRecords> annual = prepare_annual(scene);
   OpeningsGeometry g = build_openings(scene, openings);  // names an opening off its panel
   const Scene traced = annual_tracing_scene(scene, annual->sources);
   const PathTracer tracer(traced, std::move(g.cutters), std::move(g.reveals), &scene.climate->sky->patches);
-  tracer.check_sensors();
+  tracer.check_sensors(range);
 
-  const size_t sensors = scene.sensors.size();
+  const size_t sensors = range.size();
   const size_t sources = static_cast<size_t>(annual->sources.count());
   const int paths = paths_per_sensor > 0 ? paths_per_sensor : scene.render.paths_per_sensor;
   const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
   const size_t batch = std::max<size_t>(1, kBatchBytes / (sizeof(double) * sources * tasks_per_sensor));
-  AnnualCoefficients k;
+  AnnualCutCoefficients out;
+  out.paths_per_sensor = paths;
+  AnnualCoefficients& k = out.coefficients;
   k.sources.setZero(sensors, sources);
   k.direct.setZero(sensors, annual->sun_hours.size());
   // Per task, the sum and the sum of squares of its paths' values under the design sky (the
@@ -54,7 +64,7 @@ AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<Open
     Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(sources),
                                                  static_cast<Eigen::Index>(count * tasks_per_sensor));
     parallel_tasks(count * tasks_per_sensor, scene.render.threads, progress, [&](size_t t) {
-      const size_t sensor = first + t / tasks_per_sensor;
+      const size_t sensor = range.begin + first + t / tasks_per_sensor;  // the scene's index: it seeds the paths
       const size_t task = first * tasks_per_sensor + t;
       const size_t from = (t % tasks_per_sensor) * kPathsPerTask;
       const size_t to = std::min<size_t>(paths, from + kPathsPerTask);
@@ -90,19 +100,23 @@ AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<Open
   const SkyMatrix& sky = *scene.climate->sky;
   parallel_tasks(sensors, scene.render.threads, progress, [&](size_t i) {
     for (size_t j = 0; j < annual->sun_hours.size(); ++j) {
-      const PathTracer::DirectSun sun = tracer.direct_sun_through_openings(i, sky.sun_direction[annual->sun_hours[j]]);
+      const PathTracer::DirectSun sun =
+          tracer.direct_sun_through_openings(range.begin + i, sky.sun_direction[annual->sun_hours[j]]);
       if (sun.visible) k.direct(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = sun.cosine * sun.attenuation;
     }
   });
 
-  AnnualStudy study = annual_study_of(k, annual, SensorValues());
   // The occupied hours' mean: the paths' mean under the design sky plus the exact direct sun's
   // mean, which has no spread.
+  const AnnualMetricSettings& settings = annual->metric_settings;
+  auto occupied = [&](int h) {
+    return sky.hours[h].clock_hour >= settings.occupied_start_hour && sky.hours[h].clock_hour < settings.occupied_end_hour;
+  };
   std::vector<double> occupied_sun;  // per sun hour: its normal illuminance when occupied
   size_t occupied_hours = 0;
-  for (const char o : study.occupied) occupied_hours += o != 0;
-  for (const int h : annual->sun_hours) occupied_sun.push_back(study.occupied[h] ? sky.sun_normal_illuminance[h] : 0.0);
-  SensorValues& mean = study.occupied_mean;
+  for (size_t h = 0; h < sky.hours.size(); ++h) occupied_hours += occupied(static_cast<int>(h));
+  for (const int h : annual->sun_hours) occupied_sun.push_back(occupied(h) ? sky.sun_normal_illuminance[h] : 0.0);
+  SensorValues& mean = out.occupied_mean;
   mean.value.resize(static_cast<Eigen::Index>(sensors));
   mean.standard_error.resize(static_cast<Eigen::Index>(sensors));
   for (size_t i = 0; i < sensors; ++i) {
@@ -116,9 +130,17 @@ AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<Open
     mean.value[static_cast<Eigen::Index>(i)] = m + direct / static_cast<double>(occupied_hours);
     mean.standard_error[static_cast<Eigen::Index>(i)] = standard_error;
   }
-  study.paths_per_sensor = paths;
+  return out;
+}
+
+AnnualStudy annual_cut_study_of(const Scene& scene, AnnualCutCoefficients whole) {
+  const Eigen::Index sensors = static_cast<Eigen::Index>(scene.sensors.size());
+  if (whole.coefficients.sources.rows() != sensors || whole.occupied_mean.value.size() != sensors)
+    throw std::invalid_argument("an annual study with cutters needs the coefficients of all " +
+                                std::to_string(sensors) + " sensors of scene '" + scene.source + "'");
+  AnnualStudy study = annual_study_of(whole.coefficients, prepare_annual(scene), whole.occupied_mean);
+  study.paths_per_sensor = whole.paths_per_sensor;
   study.cutters = true;
-  study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return study;
 }
 

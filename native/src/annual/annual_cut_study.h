@@ -5,9 +5,11 @@
 // (edges off the element grid in a thick wall). See docs/annual.md.
 #include <vector>
 
+#include "annual/annual_illuminance.h"
 #include "annual/annual_study.h"
 #include "scene/scene.h"
 #include "trace/evaluate.h"
+#include "trace/sensor_range.h"
 #include "util/progress.h"
 
 namespace fenestra {
@@ -22,5 +24,18 @@ namespace fenestra {
 // (naming it), Cancelled when `progress` is cancelled.
 AnnualStudy annual_study_with_cutters(const Scene& scene, const std::vector<OpeningInput>& openings,
                                       Progress* progress = nullptr, int paths_per_sensor = 0);
+
+// Its parts for the sensors of `range` (a shard of a study on a cluster; rows from range.begin):
+// the coefficients and the occupied hours' mean, the same per sensor as the whole study's.
+struct AnnualCutCoefficients {
+  AnnualCoefficients coefficients;
+  SensorValues occupied_mean;  // lux
+  int paths_per_sensor = 0;
+};
+AnnualCutCoefficients annual_cut_coefficients(const Scene& scene, const std::vector<OpeningInput>& openings,
+                                              Progress* progress, int paths_per_sensor, SensorRange range);
+
+// The study of the coefficients of all the scene's sensors (stacked in order from ranges).
+AnnualStudy annual_cut_study_of(const Scene& scene, AnnualCutCoefficients whole);
 
 }  // namespace fenestra

@@ -84,6 +84,15 @@ AnnualStudy annual_study(const Scene& scene, const Contributions& c, const OpenR
                c.evaluate(region, progress), progress);
 }
 
+AnnualRegionParts annual_region_parts(const Contributions& c, const OpenRegion& region, const Progress* progress) {
+  check_annual(c);
+  AnnualRegionParts parts;
+  parts.occupied_mean = c.evaluate(region, progress);
+  parts.coefficients = annual_coefficients(
+      c.records, *c.annual, [&](int32_t k, const CellPoint& p) { return region.is_open(k, p); }, progress);
+  return parts;
+}
+
 AnnualStudy annual_study(const Contributions& c, const std::vector<uint8_t>& open, const Progress* progress) {
   check_annual(c);
   const SensorValues mean = c.evaluate(open, progress);  // checks the mask's size

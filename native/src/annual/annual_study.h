@@ -42,6 +42,15 @@ AnnualStudy annual_study(const Scene& scene, const Contributions& c, const OpenR
                          const Progress* progress = nullptr);
 AnnualStudy annual_study(const Contributions& c, const std::vector<uint8_t>& open, const Progress* progress = nullptr);
 
+// What annual_study(scene, c, region) is made of, per sensor of `c` (a shard's sensors when its
+// records are a shard's): the region's daylight coefficients and the occupied hours' mean (lux).
+struct AnnualRegionParts {
+  AnnualCoefficients coefficients;
+  SensorValues occupied_mean;
+};
+AnnualRegionParts annual_region_parts(const Contributions& c, const OpenRegion& region,
+                                      const Progress* progress = nullptr);
+
 // The study of given daylight coefficients: the hourly illuminance, the occupied hours and the
 // metrics; `mean` is the occupied hours' mean per sensor with its standard error (lux).
 AnnualStudy annual_study_of(const AnnualCoefficients& coefficients, std::shared_ptr<const AnnualRecords> annual,

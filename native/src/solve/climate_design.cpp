@@ -12,6 +12,7 @@
 #include "solve/climate_search.h"
 #include "solve/linear_start.h"
 #include "solve/nnls.h"
+#include "solve/record_queries.h"
 #include "util/progress.h"
 
 namespace fenestra {
@@ -61,14 +62,15 @@ struct Ranked {
 };
 
 // The exact year of each candidate (path records), best first.
-std::vector<Ranked> rank_exactly(const Contributions& c, const ClimateProblem& p, const ElementGrid& grid,
+std::vector<Ranked> rank_exactly(RecordQueries& records, const ClimateProblem& p, const ElementGrid& grid,
                                  const ShapeWeights& shape, const std::vector<std::vector<uint8_t>>& candidates,
                                  const Progress* progress) {
+  if (progress) progress->throw_if_cancelled();
   std::vector<Ranked> out;
   std::set<std::vector<uint8_t>> seen;
   for (const auto& open : candidates) {
     if (!seen.insert(open).second) continue;
-    const HourlyFlipModel exact = hourly_state(c, open, p.rows, p.columns, progress);
+    const HourlyFlipModel exact = records.hourly_model(open, p.rows, p.columns, false);
     double area = 0.0;
     for (size_t k = 0; k < open.size(); ++k)
       if (open[k]) area += p.objective->element_area(static_cast<int>(k));
@@ -85,7 +87,11 @@ std::vector<Ranked> rank_exactly(const Contributions& c, const ClimateProblem& p
 }  // namespace
 
 ClimateProblem climate_problem(const Scene& scene, const Contributions& c, const SolverGoals& linear) {
-  if (!c.annual) throw std::invalid_argument("scene '" + scene.source + "': climate goals need a climate sky's contributions");
+  return climate_problem(scene, c.annual.get(), linear);
+}
+
+ClimateProblem climate_problem(const Scene& scene, const AnnualRecords* annual, const SolverGoals& linear) {
+  if (!annual) throw std::invalid_argument("scene '" + scene.source + "': climate goals need a climate sky's contributions");
   const ClimateGoals& goals = scene.sensors.climate_goals;
   ClimateProblem p;
   std::set<int> rows;
@@ -97,13 +103,13 @@ ClimateProblem climate_problem(const Scene& scene, const Contributions& c, const
   for (Eigen::Index i = 0; i < linear.weight.size(); ++i)
     if (linear.weight[i] > 0.0) rows.insert(static_cast<int>(i));
   p.rows.assign(rows.begin(), rows.end());
-  p.columns = hourly_columns(*c.annual, en17037);
+  p.columns = hourly_columns(*annual, en17037);
   std::vector<double> area;
   for (const Element& e : scene.domain.elements()) area.push_back(static_cast<double>(e.width()) * e.height());
   ClimateObjectiveSettings settings;
   settings.glazing_weight = goals.least_glazing ? 0.05 : 0.0;
   settings.bound_weight = scene.solver.bound_weight;
-  settings.horizontal_openings = c.annual->metric_settings.en17037_openings == DaylightOpenings::Horizontal;
+  settings.horizontal_openings = annual->metric_settings.en17037_openings == DaylightOpenings::Horizontal;
   p.objective = std::make_unique<ClimateObjective>(goals, p.columns, p.rows, &linear, std::move(area), settings);
   return p;
 }
@@ -120,7 +126,7 @@ std::vector<ClimateFigure> climate_figures(const ClimateProblem& p, const Eigen:
   return p.objective->figures(t, d);
 }
 
-ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& p, const ElementGrid& grid,
+ClimateDesign design_for_climate(RecordQueries& records, const ClimateProblem& p, const ElementGrid& grid,
                                  const GeneticSettings& ga, const std::vector<std::vector<uint8_t>>& seeds,
                                  const std::vector<uint8_t>& excluded, Progress* progress) {
   // Excluded elements change nothing in the model (their flips are dropped) and leave every state.
@@ -134,15 +140,16 @@ ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& p
         if (excluded[k]) s[k] = 0;
     return states;
   };
+  const Contributions& c = records.contributions();
   const size_t n = c.element_count();
   ClimateDesign out;
   auto t = Clock::now();
   if (progress) progress->start("solving: the year's hourly model", 1);
   const std::vector<uint8_t> closed(n, 0), all_open(n, 1);
-  HourlyFlipModel model = hourly_flip_model(c, closed, p.rows, p.columns, progress);
+  HourlyFlipModel model = records.hourly_model(closed, p.rows, p.columns, true);
   exclude(&model);
   out.model_bytes = static_cast<double>(model.memory_bytes());
-  const HourlyFlipModel everything = hourly_state(c, within({all_open})[0], p.rows, p.columns, progress);
+  const HourlyFlipModel everything = records.hourly_model(within({all_open})[0], p.rows, p.columns, false);
   out.all_open_figures = p.objective->figures(everything.total, everything.direct);
   out.seconds_model += since(t);
 
@@ -159,14 +166,14 @@ ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& p
   out.generations = first.generations;
   std::vector<std::vector<uint8_t>> pool = within(first.elite);
   pool.insert(pool.end(), starts.begin(), starts.end());
-  std::vector<Ranked> ranked = rank_exactly(c, p, grid, ga.shape, pool, progress);
+  std::vector<Ranked> ranked = rank_exactly(records, p, grid, ga.shape, pool, progress);
   out.seconds_search += since(t);
   // Successive linearisation: the model about the best state is exact for it and its single
   // flips, where the model about "all closed" misses what open elements do together.
   for (int round = 0; round < kLinearisationRounds && ga.generations > 0; ++round) {
     t = Clock::now();
     if (progress) progress->start("solving: the hourly model about the best state", 1);
-    model = hourly_flip_model(c, ranked.front().open, p.rows, p.columns, progress);
+    model = records.hourly_model(ranked.front().open, p.rows, p.columns, true);
     exclude(&model);
     out.model_bytes = std::max(out.model_bytes, static_cast<double>(model.memory_bytes()));
     out.seconds_model += since(t);
@@ -180,7 +187,7 @@ ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& p
     std::vector<std::vector<uint8_t>> again = within(refined.elite);
     for (const Ranked& r : ranked) again.push_back(r.open);
     const double before = ranked.front().fitness;
-    ranked = rank_exactly(c, p, grid, ga.shape, again, progress);
+    ranked = rank_exactly(records, p, grid, ga.shape, again, progress);
     out.seconds_search += since(t);
     if (!(ranked.front().fitness < before * (1.0 - 1e-9))) break;
     ++out.linearisations;
@@ -189,7 +196,7 @@ ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& p
   out.open = ranked.front().open;
   out.error = ranked.front().error;
   for (const Ranked& r : ranked) out.candidates.push_back(r.open);
-  const HourlyFlipModel exact = hourly_state(c, out.open, p.rows, p.columns, progress);
+  const HourlyFlipModel exact = records.hourly_model(out.open, p.rows, p.columns, false);
   out.figures = p.objective->figures(exact.total, exact.direct);
   return out;
 }

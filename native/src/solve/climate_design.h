@@ -18,6 +18,7 @@
 namespace fenestra {
 
 class Progress;
+class RecordQueries;  // solve/record_queries.h
 struct Scene;
 
 // What the climate goals look at: the sensors (goal groups and per-sensor goals), the hours, the
@@ -27,7 +28,9 @@ struct ClimateProblem {
   HourlyColumns columns;
   std::unique_ptr<ClimateObjective> objective;
 };
-// `linear`: the scene's per-sensor goals (may have none).
+// `linear`: the scene's per-sensor goals (may have none); `annual`: the climate sky's sources and
+// hours (RecordQueries::annual), std::invalid_argument when null.
+ClimateProblem climate_problem(const Scene& scene, const AnnualRecords* annual, const SolverGoals& linear);
 ClimateProblem climate_problem(const Scene& scene, const Contributions& c, const SolverGoals& linear);
 
 struct ClimateDesign {
@@ -45,7 +48,7 @@ struct ClimateDesign {
 
 // `seeds`: further starting states (e.g. the linear start of per-sensor goals); `excluded`: elements
 // no admissible opening can cover (empty: none), kept closed.
-ClimateDesign design_for_climate(const Contributions& c, const ClimateProblem& problem, const ElementGrid& grid,
+ClimateDesign design_for_climate(RecordQueries& records, const ClimateProblem& problem, const ElementGrid& grid,
                                  const GeneticSettings& ga, const std::vector<std::vector<uint8_t>>& seeds,
                                  const std::vector<uint8_t>& excluded = {}, Progress* progress = nullptr);
 

@@ -1,5 +1,6 @@
 #include "solve/record_queries.h"
 
+#include "annual/annual_cut_study.h"
 #include "scene/scene.h"
 #include "solve/region_search.h"
 #include "trace/evaluate.h"
@@ -31,6 +32,19 @@ double LocalRecordQueries::record_bytes() const {
   double bytes = 0.0;
   for (const SensorRecord& r : c_.records) bytes += static_cast<double>(r.memory_bytes());
   return bytes;
+}
+
+HourlyFlipModel LocalRecordQueries::hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
+                                                 const HourlyColumns& columns, bool flips) {
+  return flips ? hourly_flip_model(c_, about, rows, columns, progress_) : hourly_state(c_, about, rows, columns, progress_);
+}
+
+AnnualStudy LocalRecordQueries::annual_study(const std::vector<PanelRectangle>& region) {
+  return fenestra::annual_study(scene_, c_, OpenRegion(domain_, region), progress_);
+}
+
+AnnualStudy LocalRecordQueries::annual_cut(const std::vector<OpeningInput>& openings, int paths) {
+  return annual_study_with_cutters(scene_, openings, progress_, paths);
 }
 
 }  // namespace fenestra

@@ -9,6 +9,8 @@
 #include <memory>
 #include <vector>
 
+#include "annual/annual_study.h"
+#include "annual/hourly_flip_model.h"
 #include "trace/evaluate.h"
 #include "solve/exact_values.h"
 #include "trace/contributions.h"
@@ -48,6 +50,18 @@ class RecordQueries {
   virtual SensorValues cut(const std::vector<OpeningInput>& openings, int paths) = 0;
   // Bytes the path records take, over all sensors.
   virtual double record_bytes() const = 0;
+
+  // Climate goals (a climate sky's records; std::invalid_argument without one).
+  // Its sources and hours (no per-sensor records): nullptr for another sky.
+  virtual std::shared_ptr<const AnnualRecords> annual() const = 0;
+  // The year of `about` at the sensors `rows` (scene indices) and the hours `columns`, with each
+  // element's flip when `flips` (hourly_flip_model), or alone (hourly_state).
+  virtual HourlyFlipModel hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
+                                       const HourlyColumns& columns, bool flips) = 0;
+  // The annual study of an open region from the records (annual_study).
+  virtual AnnualStudy annual_study(const std::vector<PanelRectangle>& region) = 0;
+  // The annual study of openings really cut, from paths of their own (annual_study_with_cutters).
+  virtual AnnualStudy annual_cut(const std::vector<OpeningInput>& openings, int paths) = 0;
 };
 
 class LocalRecordQueries : public RecordQueries {
@@ -62,6 +76,11 @@ class LocalRecordQueries : public RecordQueries {
   std::unique_ptr<RegionQueries> region_search(const std::vector<PanelRectangle>& start) override;
   SensorValues cut(const std::vector<OpeningInput>& openings, int paths) override;
   double record_bytes() const override;
+  std::shared_ptr<const AnnualRecords> annual() const override { return c_.annual; }
+  HourlyFlipModel hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
+                               const HourlyColumns& columns, bool flips) override;
+  AnnualStudy annual_study(const std::vector<PanelRectangle>& region) override;
+  AnnualStudy annual_cut(const std::vector<OpeningInput>& openings, int paths) override;
 
  private:
   const Scene& scene_;

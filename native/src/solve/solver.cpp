@@ -357,14 +357,14 @@ std::vector<std::string> unmet_climate_goals(const ClimateGoals& goals, const st
 
 // The final openings' year and each climate goal's figure: from the path records, and with real
 // cutters when verification is on.
-void report_climate(const Scene& scene, const Contributions& c, const ClimateProblem& problem,
+void report_climate(const Scene& scene, RecordQueries& records, const ClimateProblem& problem,
                     const std::vector<PanelRectangle>& openings, bool verify, int verify_paths, SolveResult* out,
                     Progress* progress) {
   ClimateOutcome& climate = out->climate;
   for (const PanelRectangle& r : openings) climate.glazing_area_m2 += (r.u1 - r.u0) * (r.v1 - r.v0);
   for (const Element& e : scene.domain.elements()) climate.domain_area_m2 += static_cast<double>(e.width()) * e.height();
   try {
-    auto study = std::make_shared<AnnualStudy>(annual_study(scene, c, OpenRegion(scene.domain, openings), progress));
+    auto study = std::make_shared<AnnualStudy>(records.annual_study(openings));
     climate.achieved = climate_figures(problem, study->illuminance.total, study->illuminance.direct);
     climate.study = std::move(study);
   } catch (const std::invalid_argument& e) {
@@ -373,7 +373,7 @@ void report_climate(const Scene& scene, const Contributions& c, const ClimatePro
   }
   if (verify) {
     const std::vector<OpeningInput> cutters(openings.begin(), openings.end());
-    auto cut = std::make_shared<AnnualStudy>(annual_study_with_cutters(scene, cutters, progress, verify_paths));
+    auto cut = std::make_shared<AnnualStudy>(records.annual_cut(cutters, verify_paths));
     climate.verified = climate_figures(problem, cut->illuminance.total, cut->illuminance.direct);
     climate.verified_study = std::move(cut);
   }
@@ -400,9 +400,8 @@ struct ClimateScore {
   double error = 0.0;
   bool all_met = false;
 };
-ClimateScore climate_error_of(const Contributions& c, const ClimateProblem& problem, const std::vector<uint8_t>& open,
-                              const Progress* progress) {
-  const HourlyFlipModel year = hourly_state(c, open, problem.rows, problem.columns, progress);
+ClimateScore climate_error_of(RecordQueries& records, const ClimateProblem& problem, const std::vector<uint8_t>& open) {
+  const HourlyFlipModel year = records.hourly_model(open, problem.rows, problem.columns, false);
   double area = 0.0;
   for (size_t k = 0; k < open.size(); ++k)
     if (open[k]) area += problem.objective->element_area(static_cast<int>(k));
@@ -430,13 +429,13 @@ SolverGoals raised_goals(SolverGoals goals, const std::vector<int>& rows, const 
 }
 
 // A trade-off's climate figures: the answer's, or its openings' year from the path records.
-std::vector<ClimateFigure> tradeoff_climate(const Scene& scene, const Contributions& c, const ClimateProblem& problem,
+std::vector<ClimateFigure> tradeoff_climate(RecordQueries& records, const ClimateProblem& problem,
                                             const TradeoffResult& entry, const SolveResult& out) {
   if (entry.answer) return out.climate.achieved;
   std::vector<PanelRectangle> rects;
   for (const OpeningRectangle& o : entry.openings) rects.push_back(o.parameter);
   try {
-    const AnnualStudy year = annual_study(scene, c, OpenRegion(scene.domain, rects));
+    const AnnualStudy year = records.annual_study(rects);
     return climate_figures(problem, year.illuminance.total, year.illuminance.direct);
   } catch (const std::invalid_argument&) {
     return {};  // edges off the grid lines of a thick wall: the records cannot tell
@@ -465,10 +464,10 @@ ElementStage climate_element_stage(const Scene& scene, const Contributions& c, c
   // Elements no admissible opening can cover stay closed: the answer must survive the constraints.
   const std::vector<uint8_t> excluded =
       elements_out_of_bounds(scene.domain, grid_search_constraints(scene.domain, measured_constraints(scene)));
-  problem->emplace(climate_problem(scene, c, out.goals));
+  problem->emplace(climate_problem(scene, records.annual().get(), out.goals));
   std::vector<std::vector<uint8_t>> seeds;
   if (out.goals.count() > 0) seeds.push_back(linear_start(*objective, grid, progress).open);
-  const ClimateDesign design = design_for_climate(c, **problem, grid, ga, seeds, excluded, progress);
+  const ClimateDesign design = design_for_climate(records, **problem, grid, ga, seeds, excluded, progress);
   out.history = design.history;
   out.generations = design.generations;
   out.climate.active = true;
@@ -633,7 +632,7 @@ SolveResult solve_openings(const Scene& scene, RecordQueries& records, Progress*
     if (progress) progress->start("solving: openings for the climate goals", 1);
     const ClimateProblem& problem = *climate_problem_of;
     auto climate_score = [&](const std::vector<GridRectangle>& rects) {
-      return climate_error_of(c, problem, rectangles_mask(scene.domain, rects), progress);
+      return climate_error_of(records, problem, rectangles_mask(scene.domain, rects));
     };
     ClimateScore kept_score = climate_score(kept.rects);
     const SolverGoals followed = out.goals;
@@ -842,8 +841,8 @@ SolveResult solve_openings(const Scene& scene, RecordQueries& records, Progress*
   }
   if (climate) {
     t = Clock::now();
-    report_climate(scene, c, *climate_problem_of, final_rects, settings.verify, settings.verify_paths, &out, progress);
-    for (TradeoffResult& entry : out.tradeoffs) entry.climate = tradeoff_climate(scene, c, *climate_problem_of, entry, out);
+    report_climate(scene, records, *climate_problem_of, final_rects, settings.verify, settings.verify_paths, &out, progress);
+    for (TradeoffResult& entry : out.tradeoffs) entry.climate = tradeoff_climate(records, *climate_problem_of, entry, out);
     out.timings.push_back({"climate figures", since(t)});
   }
   for (const std::string& w : {sparse_sampling_warning(c.paths_per_sensor, c.element_count()),
