@@ -427,16 +427,61 @@ def test_a_worker_killed_mid_solve_leaves_the_answer_unchanged(tmp_path, cluster
     cluster.client.wait_for_workers(2, timeout=60)
 
 
-def test_solve_with_climate_goals_is_refused_before_any_work(tmp_path, cluster):
+def write_climate_room(tmp_path):
+    """The climate goals' test room (sDA and ASE, least glazing) with a short search, trade-offs and
+    the check with real cutters."""
     from test_climate_goals import SDA_ASE, climate_room
 
-    path, _ = climate_room(tmp_path, SDA_ASE, paths=64)
-    with pytest.raises(ValueError, match="climate goals .* are not solved on a cluster yet"):
-        distributed.solve(str(path), cluster)
-    r = cli("solve", path, "-o", tmp_path / "out.json", "--workers", 2)
-    assert r.returncode == 1 and "are not solved on a cluster yet" in r.stderr, r.stderr
-    assert "cluster:" not in r.stderr  # refused before a cluster started
-    assert not (tmp_path / "out.json").exists()
+    path, scene = climate_room(tmp_path, SDA_ASE, paths=128)
+    scene["solver"].update(generations=10, population=10, tradeoffs=True, verify_paths=64)
+    path.write_text(json.dumps(scene))
+    return path
+
+
+def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tmp_path, cluster, monkeypatch):
+    """Climate goals: the hourly models' rows and the years of openings (from the records, and
+    traced with real cutters) come from the shards; a worker killed while the first model is asked
+    for is recomputed, and the result is the same bit for bit."""
+    path = write_climate_room(tmp_path)
+    one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
+    climate = one["climate"]
+    assert climate["goals"][0]["verified"] is not None and one["tradeoffs"], climate
+    cluster.client.wait_for_workers(2, timeout=60)
+    asked = distributed._ShardedRecords._ask
+    seen = {"ops": set(), "killed": 0, "recomputed": 0}
+
+    def ask(records, op, *args):
+        seen["ops"].add(op)
+        if op == "hourly_model" and not seen["killed"]:
+            seen["killed"] += 1
+            os.kill(worker_pids(cluster)[records._study.shards[0][2]], signal.SIGKILL)
+        result = asked(records, op, *args)
+        seen["recomputed"] = records._study.recomputed_shards
+        return result
+
+    monkeypatch.setattr(distributed._ShardedRecords, "_ask", ask)
+    many = quietly(distributed.solve, str(path), cluster, shards=3)
+    assert {"hourly_model", "annual_parts", "exact"} <= seen["ops"], seen
+    assert seen["killed"] == 1 and seen["recomputed"] >= 1
+    assert without_timings(many) == without_timings(one)
+    cluster.client.wait_for_workers(2, timeout=60)
+
+
+def test_cli_solves_climate_goals_on_a_local_cluster_as_one_process(tmp_path):
+    path = write_climate_room(tmp_path)
+    runs = {}
+    for name, extra in (("one", []), ("many", ["--workers", 2, "--threads", 1, "--shards", 2])):
+        r = cli("solve", path, "-o", tmp_path / (name + ".json"), "--quiet", *extra)
+        assert r.returncode == 0, r.stderr
+        runs[name] = r
+    one, many = (json.loads((tmp_path / n).read_text()) for n in ("one.json", "many.json"))
+    assert one["climate"]["goals"][0]["achieved"] is not None
+    assert without_timings(many) == without_timings(one)
+    assert "climate goal sDA300/50% >= 50 %:" in runs["many"].stdout, runs["many"].stdout
+    # The summary is the one process's, but its seconds and the output's name.
+    summary = lambda out: [line.split("; ")[0] if line.startswith("solve:") else line
+                           for line in out.replace("many.json", "one.json").splitlines()]
+    assert summary(runs["many"].stdout) == summary(runs["one"].stdout)
 
 
 def test_cli_solve_on_a_local_cluster_writes_what_one_process_writes(tmp_path):

@@ -32,7 +32,7 @@ import numpy as np
 from . import _core, api
 
 # What client and workers must agree on: the package version and the shard protocol.
-PROTOCOL = 2
+PROTOCOL = 3
 _ADDON_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
@@ -310,11 +310,16 @@ def _session_state(key, spec, session, applied):
     return state
 
 
-def _apply(state, op, args):
-    """One query of the solver on a shard's records (solve/record_queries.h)."""
+def _apply(state, op, args, sensors):
+    """One query of the solver on a shard's records (solve/record_queries.h); `sensors`: the
+    shard's (begin, end)."""
     queries, searches = state["queries"], state["searches"]
     if op == "evaluate":
         return queries.evaluate(args[0])
+    if op == "hourly_model":
+        return _hourly_model(queries, sensors, *args)
+    if op == "annual_parts":
+        return queries.annual_parts(args[0])
     if op == "flip_effects":
         return _sparse(queries.flip_effects(args[0]))
     if op == "record_bytes":
@@ -352,8 +357,15 @@ def _dense(parts):
     return out
 
 
+def _hourly_model(queries, sensors, about, rows, columns, flips):
+    """The shard's rows of the climate goals' hourly model: (their positions in `rows`, its part)."""
+    begin, end = sensors
+    positions = np.flatnonzero((rows >= begin) & (rows < end)).astype(np.int32)
+    return positions, queries.hourly_model(about, (rows[positions] - begin).astype(np.int32), columns, flips)
+
+
 def _session_call(key, sensors, spec, session, applied, op, args):
-    return _apply(_session_state(key, spec, session, applied), op, args)
+    return _apply(_session_state(key, spec, session, applied), op, args, sensors)
 
 
 class _SessionActor:
@@ -379,7 +391,7 @@ def _session_replay(key, sensors, spec, session, log, pending):
     for op, args in log:
         if op == "accept":
             state["searches"][args[0]].try_region(args[1])
-        _apply(state, op, args)
+        _apply(state, op, args, sensors)
     for search, rectangles in pending.items():
         state["searches"][search].try_region(rectangles)
     return state["applied"]
@@ -656,11 +668,10 @@ class DistributedContributions:
 
     def solve(self, progress=None, callback=None):
         """The opening solver on these contributions (fenestra.solve's result dict, the same bit for
-        bit as one process gives). Its exact evaluations, flip effects and edge searches run on the
-        shards; the linear and genetic stages, and the thick walls' refined grid, in this process.
+        bit as one process gives). Its exact evaluations, flip effects, edge searches and, with
+        climate goals, the hourly models' rows and the years of openings run on the shards; the
+        linear and genetic stages, and the thick walls' refined grid, in this process.
         callback(fraction, status) as for fenestra.solve; returning False cancels."""
-        if self.scene.has_climate_goals:
-            _refuse_climate_goals(self.scene)
         summary = self.as_contributions()
         progress = progress if progress is not None else _core.Progress()
         records = _ShardedRecords(self, progress)
@@ -721,7 +732,7 @@ class _ShardedRecords:
 
     def _ask(self, op, *args):
         self.calls += 1
-        changes = op not in ("evaluate", "flip_effects", "record_bytes", "try")
+        changes = op not in ("evaluate", "flip_effects", "record_bytes", "try", "hourly_model", "annual_parts")
         parts = self._ask_shards(op, args)
         if changes:
             self._log.append((op, args))
@@ -743,8 +754,11 @@ class _ShardedRecords:
             for i in sorted(pending):
                 s = study._shards[i]
                 plan.setdefault(s["worker"], []).append((i, study._keys[i], (s["begin"], s["end"])))
-            calls = {worker: self._actor(worker).call(shards, study._spec, self._session, len(self._log), op, args)
-                     for worker, shards in plan.items()}
+            calls = {}
+            for worker, shards in plan.items():
+                actor = self._actor(worker)
+                if actor is not None:  # else its worker left: its shards stay pending, recovered below
+                    calls[worker] = actor.call(shards, study._spec, self._session, len(self._log), op, args)
             for worker, call in calls.items():
                 answer = self._answer(worker, call)
                 for i, (status, value) in (answer or {}).items():
@@ -777,11 +791,23 @@ class _ShardedRecords:
                 return None
 
     def _actor(self, worker):
+        """The worker's _SessionActor, started on first use; None when the worker left before it
+        started (a task bound to a worker that is gone would wait for ever)."""
         if worker not in self._actors:
             client = self._study._cluster.client
             future = client.submit(_SessionActor, workers=[worker], allow_other_workers=False, actor=True, pure=False)
-            with client.as_current():  # the actor's handle finds its client so (this one is not Dask's default)
-                self._actors[worker] = (future, future.result())
+            while True:
+                try:
+                    with client.as_current():  # the actor's handle finds its client so (this one is not Dask's default)
+                        self._actors[worker] = (future, future.result(timeout=0.25))
+                    break
+                except TimeoutError:
+                    pass
+                if self._progress.cancelled or worker not in self._study._cluster.workers():
+                    future.cancel()
+                    if self._progress.cancelled:
+                        raise api.Cancelled("cancelled while asking the shards")
+                    return None
         return self._actors[worker][1]
 
     def _recover(self, i):
@@ -821,6 +847,21 @@ class _ShardedRecords:
     def record_bytes(self):
         return float(sum(self._ask("record_bytes")))
 
+    def hourly_model(self, about, rows, columns, flips):
+        """Per shard, its rows' positions in `rows` and its part of the hourly model (the native
+        side stacks them)."""
+        return self._ask("hourly_model", np.asarray(about, dtype=np.uint8), np.asarray(rows, dtype=np.int32),
+                         columns, bool(flips))
+
+    def annual_parts(self, rectangles):
+        parts = self._ask("annual_parts", np.asarray(rectangles, dtype=np.float64))
+        return tuple(np.concatenate([p[j] for p in parts]) for j in range(4))
+
+    def annual_cut(self, openings, paths):
+        s = self._study
+        parts = s._map(_annual_cut_session, s._spec, openings, paths, cancelled=lambda: self._progress.cancelled)
+        return tuple(np.concatenate([p[j] for p in parts]) for j in range(4)) + (parts[0][4],)
+
     def close(self):
         self._actors.clear()  # their futures released: the workers drop them
         try:
@@ -854,14 +895,17 @@ def _evaluate_cut_session(key, sensors, spec, openings, paths):
     return _core.evaluate(_scene_of(spec), openings, None, sensors, paths)
 
 
+def _annual_cut_session(key, sensors, spec, openings, paths):
+    """The shard's sensors' year path-traced with the openings cut (the climate goals' check)."""
+    return _core.annual_cut_coefficients(_scene_of(spec), openings, None, sensors, paths)
+
+
 def solve(scene, cluster, shards=None, base_dir=".", callback=None):
     """fenestra.solve on a cluster: the contributions sharded by sensors (as contributions()), then
     the solver on them (DistributedContributions.solve); the shards' records are freed afterwards.
     The result dict is the one fenestra.solve returns for the same scene and seed, bit for bit,
     except its timings."""
     spec, local = _spec(scene, base_dir)
-    if local.has_climate_goals:
-        _refuse_climate_goals(local)
     if local.solver_paths > 0:  # as fenestra.solve traces them
         if local is scene:  # the caller's Scene keeps its settings
             local = api.load_scene(spec["path"])
@@ -870,11 +914,6 @@ def solve(scene, cluster, shards=None, base_dir=".", callback=None):
         _set_render(spec, local, paths_per_sensor=local.solver_paths)
     with _contributions(spec, local, cluster, shards, callback) as study:
         return study.solve(callback=callback)
-
-
-def _refuse_climate_goals(scene):
-    raise ValueError("scene %r: climate goals (goals.climate) are not solved on a cluster yet: solve it in one "
-                     "process (fenestra solve without --workers or --scheduler)" % scene.source)
 
 
 def evaluate(scene, openings, cluster, shards=None, base_dir=".", callback=None):

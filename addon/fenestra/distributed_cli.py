@@ -152,11 +152,28 @@ def solve_scene(a, scene):
     return data, os.path.dirname(os.path.abspath(a["scene"]))
 
 
+def print_climate_summary(climate):
+    """Each climate goal: reached (path records) and checked (real cutters), and the glazing; as the
+    one-process `fenestra solve` prints them."""
+    if not climate:
+        return
+
+    def text(goal, x):
+        return "%.0f lx" % x if goal["unit"] == "lux" else "%.1f %%" % (100 * x)
+
+    for goal in climate["goals"]:
+        line = "climate goal %s:" % goal["description"]
+        if goal.get("achieved") is not None:
+            line += " %s %s" % (text(goal, goal["achieved"]), "met" if goal["met"] else "NOT met")
+        if goal.get("verified") is not None:
+            line += "; real cutters %s %s" % (text(goal, goal["verified"]), "met" if goal["verified_met"] else "NOT met")
+        print(line)
+    print("glazing %.2f m2 of %.2f m2 of opening domain" % (climate["glazing_area_m2"], climate["domain_area_m2"]))
+
+
 def run_solve(a, scene):
     from fenestra import _core, distributed
 
-    if scene.has_climate_goals:
-        distributed._refuse_climate_goals(scene)  # before a cluster starts
     say, progress = reporters(a)
     source, base_dir = solve_scene(a, scene)
     with cluster_of(a) as cluster:
@@ -179,6 +196,7 @@ def run_solve(a, scene):
         if e.get("verified"):
             print("checked with real cutters: relative RMS error %.2f%%, worst sensor %.1f%%"
                   % (100 * e["verified"]["relative_rms"], 100 * e["verified"]["max_relative"]))
+    print_climate_summary(r.get("climate"))
     for message in r.get("warnings", []):
         print("fenestra: warning: %s" % message, file=sys.stderr)
     return 0
