@@ -467,6 +467,21 @@ def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tm
     cluster.client.wait_for_workers(2, timeout=60)
 
 
+def test_a_solve_under_a_sky_without_light_is_refused_before_any_tracing(tmp_path, cluster, monkeypatch):
+    path = write_solve_floor(tmp_path)
+    scene = json.loads(path.read_text())
+    scene["sky"] = {"type": "preetham", "latitude": 78, "longitude": 15, "utc_offset": 1, "date": "2026-12-21",
+                    "resolution": [64, 32]}
+    path.write_text(json.dumps(scene))
+
+    def traced(*args, **kwargs):
+        raise AssertionError("traced contributions for a solve that cannot be met")
+
+    monkeypatch.setattr(distributed, "_contributions", traced)
+    with pytest.raises(ValueError, match="2026-12-21.*the goals cannot be met"):
+        distributed.solve(str(path), cluster)
+
+
 def test_cli_solves_climate_goals_on_a_local_cluster_as_one_process(tmp_path):
     path = write_climate_room(tmp_path)
     runs = {}

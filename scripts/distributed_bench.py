@@ -5,12 +5,13 @@ wall the opening domain (0.2 m elements: 5 400 in all) and a grid of 9 x 10 sens
 (1 080 in all), under a Preetham sky. The contributions are computed by one process and by a local
 cluster of 2 worker processes over TCP, then a generation of 64 random sets is evaluated exactly
 from the records both ways. Last the floor is solved (goals of 5 % of the unobstructed light,
-opening limits, a genetic run of --generations) by one process and on a fresh local cluster.
-Printed: wall times, the ratios, each worker's peak memory (resident set) and the records it
+opening limits, a genetic run of --generations) by one process and on a fresh local cluster, and
+so is a floor of 2 such rooms (0.5 m elements, 180 sensors) under the Chicago O'Hare TMY3 year
+for climate goals (sDA300/50% >= 50 %, ASE1000,250 <= 10 %, least glazing). Printed: wall times, the ratios, each worker's peak memory (resident set) and the records it
 holds, and whether the results agree bit for bit.
 
     /usr/bin/python3 scripts/distributed_bench.py [--paths N] [--workers N] [--generations N]
-                                                  [--no-solve] [--json OUT.json]
+                                                  [--no-solve] [--no-climate] [--json OUT.json]
 """
 
 import argparse
@@ -29,6 +30,8 @@ import fenestra  # noqa: E402
 from fenestra import distributed  # noqa: E402
 
 ROOMS, WIDTH, DEPTH, HEIGHT, GAP = 12, 6.0, 5.0, 3.0, 0.2
+CLIMATE_ROOMS = 2
+WEATHER = os.path.join(ROOT, "examples", "weather", "USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw")
 
 
 def box_faces(x0, x1):
@@ -44,9 +47,9 @@ def box_faces(x0, x1):
     }
 
 
-def write_floor(directory, paths):
+def write_floor(directory, paths, rooms=ROOMS):
     lines, n, sensors = [], 0, []
-    for r in range(ROOMS):
+    for r in range(rooms):
         x0 = r * (WIDTH + GAP)
         for name, quad in box_faces(x0, x0 + WIDTH).items():
             lines += ["o room%d_%s" % (r, name), "usemtl %s" % ("facade" if name == "south" else "interior")]
@@ -84,6 +87,24 @@ def write_solve_scene(path, generations):
     return solve_path
 
 
+def write_climate_scene(directory, paths, generations):
+    """A floor of CLIMATE_ROOMS rooms under the weather file's year, with climate goals."""
+    climate_dir = os.path.join(directory, "climate")
+    os.makedirs(climate_dir)
+    path = write_floor(climate_dir, paths, rooms=CLIMATE_ROOMS)
+    with open(path) as f:
+        scene = json.load(f)
+    scene["opening_domain"]["element_size"] = 0.5
+    scene["sky"] = {"type": "climate", "weather": WEATHER}
+    scene["goals"] = {"climate": [{"metric": "sda", "min_area_fraction": 0.5},
+                                  {"metric": "ase", "max_area_fraction": 0.1}], "least_glazing": True}
+    scene["solver"] = {"generations": generations, "population": 16, "seed": 1,
+                       "constraints": {"min_width": 0.6, "min_height": 1.0, "sill_min": 0.8}}
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    return path
+
+
 def without_timings(result):
     result = json.loads(json.dumps(result))
     result.pop("timings_s")
@@ -103,11 +124,15 @@ def one_process_solve(path):
 
 
 def solve_bench(path, args):
+    return compare_solves(write_solve_scene(path, args.generations), args, "solve")
+
+
+def compare_solves(solve_path, args, name):
+    """The scene solved by one process (a child) and on a fresh local cluster: times, peaks, equality."""
     import concurrent.futures
     import multiprocessing
     import warnings
 
-    solve_path = write_solve_scene(path, args.generations)
     with concurrent.futures.ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as pool:
         one_seconds, one, one_timings, one_peak = pool.submit(one_process_solve, solve_path).result()
     with distributed.Cluster(workers=args.workers, threads_per_worker=max(1, os.cpu_count() // args.workers),
@@ -120,18 +145,23 @@ def solve_bench(path, args):
         peaks = cluster.client.run(peak_rss_bytes)
     same = without_timings(many) == one
     mib = 1 << 20
-    print("  solve, one process: %.1f s (contributions %.1f s), peak resident %.0f MiB; %d openings, relative RMS "
-          "error %.1f %%" % (one_seconds, one_timings["contributions"], one_peak / mib, len(one["openings"]),
-                             100 * one["error"]["relative_rms"]))
-    print("  solve, %d workers: %.1f s; the solver's stages in this process %.1f s"
-          % (args.workers, many_seconds, many["timings_s"]["total"]))
+    if "climate" in one:
+        quality = "; ".join("%s: %.2f" % (g["description"], g["achieved"]) for g in one["climate"]["goals"])
+        quality += "; hourly model %.0f MiB" % (one["climate"]["model_bytes"] / mib)
+    else:
+        quality = "relative RMS error %.1f %%" % (100 * one["error"]["relative_rms"])
+    print("  %s, one process: %.1f s (contributions %.1f s), peak resident %.0f MiB; %d openings, %s"
+          % (name, one_seconds, one_timings["contributions"], one_peak / mib, len(one["openings"]), quality))
+    print("  %s, %d workers: %.1f s; the solver's stages in this process %.1f s"
+          % (name, args.workers, many_seconds, many["timings_s"]["total"]))
     for worker in sorted(peaks):
         print("    worker %s: peak resident %.0f MiB" % (worker, peaks[worker] / mib))
-    print("  ratio (one process / cluster): solve %.2f x; results equal bit for bit (but timings): %s"
-          % (one_seconds / many_seconds, same))
-    return {"one_process_solve_seconds": one_seconds, "cluster_solve_seconds": many_seconds,
-            "one_process_solve_peak_resident_bytes": one_peak, "solve_worker_peak_resident_bytes": peaks,
-            "solve_bit_identical": same}
+    print("  ratio (one process / cluster): %s %.2f x; results equal bit for bit (but timings): %s"
+          % (name, one_seconds / many_seconds, same))
+    key = name.replace(" ", "_")
+    return {"one_process_%s_seconds" % key: one_seconds, "cluster_%s_seconds" % key: many_seconds,
+            "one_process_%s_peak_resident_bytes" % key: one_peak, "%s_worker_peak_resident_bytes" % key: peaks,
+            "%s_bit_identical" % key: same}
 
 
 def peak_rss_bytes():
@@ -150,6 +180,7 @@ def main():
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--generations", type=int, default=100)
     parser.add_argument("--no-solve", action="store_true")
+    parser.add_argument("--no-climate", action="store_true")
     parser.add_argument("--json")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
@@ -196,7 +227,13 @@ def main():
         print("  ratio (one process / cluster): contributions %.2f x, evaluations %.2f x; results equal bit for bit: %s"
               % (one_seconds / many_seconds, one_eval_seconds / many_eval_seconds, same))
         solved = {} if args.no_solve else solve_bench(path, args)
-        same = same and solved.get("solve_bit_identical", True)
+        if not args.no_climate:
+            climate_path = write_climate_scene(tmp, 256, max(1, args.generations // 5))
+            climate = fenestra.load_scene(climate_path)
+            print("  climate goals: %d rooms, %d sensors x %d elements, 256 paths per sensor, the Chicago year"
+                  % (CLIMATE_ROOMS, climate.sensor_count, climate.element_count))
+            solved.update(compare_solves(climate_path, args, "climate solve"))
+        same = same and all(v for k, v in solved.items() if k.endswith("bit_identical"))
         if args.json:
             with open(args.json, "w") as f:
                 json.dump(dict(solved, **{"sensors": scene.sensor_count, "elements": scene.element_count, "paths": args.paths,

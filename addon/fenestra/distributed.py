@@ -906,6 +906,10 @@ def solve(scene, cluster, shards=None, base_dir=".", callback=None):
     The result dict is the one fenestra.solve returns for the same scene and seed, bit for bit,
     except its timings."""
     spec, local = _spec(scene, base_dir)
+    dark = _core.dark_sky_warning(local)
+    if dark:  # as one process refuses it, before any tracing
+        raise ValueError("scene '%s': sky: %s; the goals cannot be met: choose a date and time interval with daylight"
+                         % (local.source, dark))
     if local.solver_paths > 0:  # as fenestra.solve traces them
         if local is scene:  # the caller's Scene keeps its settings
             local = api.load_scene(spec["path"])
