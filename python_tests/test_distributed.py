@@ -572,6 +572,62 @@ def test_record_queries_refuse_bad_arguments_and_bad_answers(tmp_path):
         _core.solve_with_records(scene, c, Failing())
 
 
+def test_record_queries_refuse_bad_climate_arguments_and_bad_answers(tmp_path):
+    """Climate goals' queries: rows and hours out of range, columns of the wrong form and records of
+    another sky are named; a records object whose hourly model has the wrong shape, or leaves a row
+    out, is named by the solver."""
+    from fenestra import _core
+    from test_climate_goals import SDA_ASE, climate_room
+
+    path, _ = climate_room(tmp_path, SDA_ASE, paths=64)
+    scene = fenestra.load_scene(str(path))
+    c = fenestra.contributions(scene)
+    q = _core.RecordQueries(scene, c)
+    n, sensors = scene.element_count, scene.sensor_count
+    about = np.zeros(n, dtype=np.uint8)
+    hours = np.arange(8, 18, dtype=np.int32)
+    columns = (hours, np.ones(10, np.uint8), np.zeros(10, np.uint8), 10, 0)
+    rows = np.array([2, 0], dtype=np.int32)
+    total, direct, elements, flips, changes = q.hourly_model(about, rows, columns, True)
+    assert total.shape == direct.shape == (2, 10) and flips.shape == (len(elements), 2, 10)
+    with pytest.raises(ValueError, match="row %d is not one of these records' %d sensors" % (sensors, sensors)):
+        q.hourly_model(about, np.array([sensors], np.int32), columns, False)
+    with pytest.raises(ValueError, match="hour 999999 is not one of the year's"):
+        q.hourly_model(about, rows, (np.array([999999], np.int32), np.ones(1, np.uint8), np.zeros(1, np.uint8), 1, 0),
+                       False)
+    with pytest.raises(ValueError, match="hourly columns: expected"):
+        q.hourly_model(about, rows, (hours,), False)
+    with pytest.raises(ValueError, match="hours and flags differ in length"):
+        q.hourly_model(about, rows, (hours, np.ones(3, np.uint8), np.zeros(10, np.uint8), 10, 0), False)
+    with pytest.raises(ValueError, match=r"open mask must have shape"):
+        q.hourly_model(np.zeros(n + 2, np.uint8), rows, columns, False)
+    sources, sun, mean, stderr = q.annual_parts(np.zeros((0, 5)))
+    assert sources.shape[0] == sun.shape[0] == len(mean) == len(stderr) == sensors
+
+    (tmp_path / "other").mkdir()
+    other_scene = fenestra.load_scene(str(write_solve_floor(tmp_path / "other")))
+    other_scene.render.paths_per_sensor = 16
+    with pytest.raises(ValueError, match="not a climate sky's"):
+        _core.RecordQueries(other_scene, fenestra.contributions(other_scene)).hourly_model(
+            np.zeros(other_scene.element_count, np.uint8), rows, columns, False)
+
+    class WrongShape:
+        def hourly_model(self, about, rows, columns, flips):
+            bad = np.zeros((1, 1), np.float32)
+            return [(np.arange(len(rows), dtype=np.int32), (bad, bad, np.zeros(0, np.int32), np.zeros((0, 1, 1)),
+                                                            (np.zeros(0, np.int32),) * 3 + (np.zeros(0, np.float32),)))]
+
+    with pytest.raises(RuntimeError, match="hourly model part: total is not"):
+        _core.solve_with_records(scene, c, WrongShape())
+
+    class MissingRow:
+        def hourly_model(self, about, rows, columns, flips):
+            return [(np.arange(len(rows) - 1, dtype=np.int32), q.hourly_model(about, rows[:-1], columns, flips))]
+
+    with pytest.raises(ValueError, match="do not cover every row"):
+        _core.solve_with_records(scene, c, MissingRow())
+
+
 def test_a_stopped_worker_is_named_within_the_timeout(cluster):
     """A worker that does not answer (here stopped with SIGSTOP) is named, not waited for forever."""
     cluster.client.wait_for_workers(2, timeout=60)

@@ -113,11 +113,19 @@ class RecordQueries:
     def region_search(self, rectangles: npt.ArrayLike) -> RegionSearch: ...
     @property
     def record_bytes(self) -> float: ...
+    # Climate goals: rows are these records' sensors; columns (hour, occupied, daylight,
+    # occupied_hours, daylight_hours); returns (total, direct, elements, flips, direct changes), lux.
+    def hourly_model(self, about: npt.ArrayLike, rows: npt.ArrayLike, columns: tuple, flips: bool) -> tuple: ...
+    # (sources (sensors, sources), direct (sensors, sun hours), mean, stderr): the region's year.
+    def annual_parts(self, rectangles: npt.ArrayLike) -> tuple: ...
 def solve_with_records(scene: Scene, contributions: Contributions, records: object,
                        progress: Optional[Progress] = None) -> str: ...  # JSON
 def write_evaluation(scene: Scene, value: npt.ArrayLike, stderr: npt.ArrayLike, openings: int, path: str) -> None: ...
 def annual_with_cutters(scene: Scene, openings: npt.ArrayLike | str, paths: int = 0,
                         progress: Optional[Progress] = None, output: str = "") -> dict: ...  # openings cut, no records
+def annual_cut_coefficients(scene: Scene, openings: npt.ArrayLike | str, progress: Optional[Progress] = None,
+                            sensors: Optional[Tuple[int, int]] = None, paths: int = 0
+                            ) -> tuple: ...  # (sources, direct, mean, stderr, paths per sensor)
 def constraint_violations(scene: Scene, openings: npt.ArrayLike | str) -> list[str]: ...  # empty: every constraint met
 def write_image(path: str, image: npt.ArrayLike) -> None: ...
 def read_openings(path: str) -> npt.NDArray[np.float64] | list[dict]: ...  # a list when any opening is by parameter_rectangle

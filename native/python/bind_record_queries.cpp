@@ -353,6 +353,13 @@ void bind_shard_queries(py::module_& m) {
                 throw std::invalid_argument("row " + std::to_string(i) + " is not one of these records' " +
                                             std::to_string(q.contributions->sensor_count()) + " sensors");
             const HourlyColumns c = columns_from(columns);
+            if (!q.contributions->annual)
+              throw std::invalid_argument("hourly_model: these contributions are not a climate sky's");
+            const size_t hours = q.contributions->annual->climate->sky->hours.size();
+            for (int h : c.hour)
+              if (h < 0 || static_cast<size_t>(h) >= hours)
+                throw std::invalid_argument("hourly columns: hour " + std::to_string(h) + " is not one of the year's " +
+                                            std::to_string(hours));
             HourlyFlipModel m;
             {
               py::gil_scoped_release release;
