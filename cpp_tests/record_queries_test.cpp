@@ -153,7 +153,21 @@ class ShardedRecords : public RecordQueries {
     return annual_cut_study_of(scene_, whole);
   }
 
-  int exact_calls = 0, region_searches = 0, cuts = 0, hourly_models = 0, annual_studies = 0, annual_cuts = 0;
+  // The refined records as a cluster holds them: traced shard by shard, asked shard by shard.
+  std::unique_ptr<RecordQueries> refined(const std::vector<RefinedRegion>& regions) override {
+    ++refinements;
+    auto scene = std::make_unique<Scene>(scene_);
+    scene->render.paths_per_sensor = summary_.paths_per_sensor;
+    scene->domain = scene_.domain.refined(regions);
+    const Contributions whole = compute_contributions(*scene, nullptr, false);  // the rows the client gathers
+    auto out = std::make_unique<ShardedRecords>(*scene, whole, blocks_);
+    out->owned_scene_ = std::move(scene);
+    return out;
+  }
+  const Scene& scene() const override { return scene_; }
+
+  int exact_calls = 0, region_searches = 0, cuts = 0, hourly_models = 0, annual_studies = 0, annual_cuts = 0,
+      refinements = 0;
 
  private:
   template <typename F>
@@ -193,6 +207,7 @@ class ShardedRecords : public RecordQueries {
   std::vector<std::unique_ptr<LocalRecordQueries>> local_;
   std::deque<SensorValues> known_;  // references handed out stay valid
   std::shared_ptr<const AnnualRecords> annual_;
+  std::unique_ptr<Scene> owned_scene_;  // a refined study's scene (scene_ refers to it)
 };
 
 bool same(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
@@ -201,13 +216,13 @@ bool same(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 
 // A 4 x 3 x 2.5 m room, its south wall the opening domain (0.4 m elements), six sensors, goals
 // that want about a third of the unobstructed light, and opening limits: every stage runs.
-Scene solve_room(const TempDir& dir) {
+Scene solve_room(const TempDir& dir, const std::string& thickness = "") {
   ObjBuilder obj;
   obj.box({0, 0, 0}, {4, 3, 2.5f}, [](const std::string& f) { return f == "south" ? "domain" : "grey"; });
   dir.write("scene.obj", obj.str());
   dir.write("scene.json", R"({"fenestra": 1, "geometry": "scene.obj",
     "materials": {"grey": {"reflectance": 0.6}, "domain": {"reflectance": 0.5}},
-    "opening_domain": {"materials": ["domain"], "element_size": 0.4},
+    "opening_domain": {"materials": ["domain"], "element_size": 0.4)" + thickness + R"(},
     "sensors": {"points": [[0.5, 0.6, 0.8], [2.0, 0.6, 0.8], [3.5, 0.6, 0.8], [0.5, 2.4, 0.8], [2.0, 2.4, 0.8],
                            [3.5, 2.4, 0.8]], "normals": [0, 0, 1]},
     "sky": {"type": "uniform", "radiance": 318.3},
@@ -241,6 +256,29 @@ TEST(RecordQueries, ASolveOnShardedRecordsEqualsTheWholeStudysBitForBit) {
   EXPECT_EQ(one.edge_moves, many.edge_moves);
   ASSERT_EQ(one.tradeoffs.size(), many.tradeoffs.size());
   for (size_t i = 0; i < one.tradeoffs.size(); ++i) EXPECT_TRUE(same(one.tradeoffs[i].predicted, many.tradeoffs[i].predicted));
+  EXPECT_EQ(one.warnings, many.warnings);
+}
+
+// In a 0.3 m wall the edges below the element size are searched on records traced again on a
+// refined grid: on a cluster those are traced and asked shard by shard too.
+TEST(RecordQueries, AThickWallSolveOnShardedRecordsEqualsTheWholeStudysBitForBit) {
+  TempDir dir;
+  const Scene scene = solve_room(dir, R"(, "thickness": 0.3)");
+  const Contributions whole = compute_contributions(scene);
+  const SolveResult one = solve_openings(scene, whole);
+  ShardedRecords sharded(scene, whole, {{0, 2}, {2, 5}, {5, 6}});
+  const SolveResult many = solve_openings(scene, sharded);
+  EXPECT_GT(sharded.refinements, 0);
+  bool refined_timing = false;
+  for (const auto& [name, seconds] : one.timings) refined_timing = refined_timing || name == "thick-wall edges";
+  EXPECT_TRUE(refined_timing);
+  ASSERT_FALSE(one.openings.empty());
+  ASSERT_EQ(one.openings.size(), many.openings.size());
+  for (size_t i = 0; i < one.openings.size(); ++i) EXPECT_TRUE(one.openings[i].parameter == many.openings[i].parameter);
+  EXPECT_TRUE(same(one.predicted, many.predicted));
+  EXPECT_TRUE(same(one.verified_value, many.verified_value));
+  EXPECT_EQ(one.fitness, many.fitness);
+  EXPECT_EQ(one.edge_moves, many.edge_moves);
   EXPECT_EQ(one.warnings, many.warnings);
 }
 

@@ -101,7 +101,7 @@ void bind_shards(py::module_& m) {
         c->E = matrix_of(E, ns, no, "E");
         c->E_stderr = matrix_of(E_stderr, ns, no, "E_stderr");
         c->A = matrix_of(A, ns, no, "A");
-        c->T = matrix_of(T, no, no, "T");
+        if (T.size() > 0) c->T = matrix_of(T, no, no, "T");  // empty: records traced without T
         c->closed = {vector_of(closed, ns, "closed"), vector_of(closed_stderr, ns, "closed_stderr")};
         c->all_open = {vector_of(all_open, ns, "all_open"), vector_of(all_open_stderr, ns, "all_open_stderr")};
         c->records.resize(static_cast<size_t>(ns));  // none kept here: the shards hold them

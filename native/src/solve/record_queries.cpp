@@ -9,8 +9,35 @@
 namespace fenestra {
 
 LocalRecordQueries::LocalRecordQueries(const Scene& scene, const Contributions& c, const OpeningDomain& domain,
-                                       Progress* progress)
-    : scene_(scene), c_(c), domain_(domain), progress_(progress), exact_(c, progress) {}
+                                       Progress* progress, SensorRange sensors)
+    : scene_(scene), c_(c), domain_(domain), progress_(progress), sensors_(sensors), exact_(c, progress) {}
+
+namespace {
+
+// Refined records with the scene and contributions they read (held first, so they outlive the
+// queries that refer to them).
+struct RefinedStudy {
+  Scene scene;
+  Contributions contributions;
+};
+
+class OwningRecordQueries : private RefinedStudy, public LocalRecordQueries {
+ public:
+  OwningRecordQueries(RefinedStudy study, Progress* progress, SensorRange sensors)
+      : RefinedStudy(std::move(study)),
+        LocalRecordQueries(RefinedStudy::scene, RefinedStudy::contributions, RefinedStudy::scene.domain, progress,
+                           sensors) {}
+};
+
+}  // namespace
+
+std::unique_ptr<RecordQueries> LocalRecordQueries::refined(const std::vector<RefinedRegion>& regions) {
+  RefinedStudy study{scene_, Contributions()};
+  study.scene.render.paths_per_sensor = c_.paths_per_sensor;  // as many as these records
+  study.scene.domain = scene_.domain.refined(regions);
+  study.contributions = compute_contributions(study.scene, progress_, false, sensors_);
+  return std::make_unique<OwningRecordQueries>(std::move(study), progress_, sensors_);
+}
 
 SensorValues LocalRecordQueries::evaluate(const std::vector<PanelRectangle>& region) {
   return c_.evaluate(OpenRegion(domain_, region), progress_);

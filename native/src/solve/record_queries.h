@@ -15,6 +15,7 @@
 #include "solve/exact_values.h"
 #include "trace/contributions.h"
 #include "trace/open_region.h"
+#include "trace/sensor_range.h"
 
 namespace fenestra {
 
@@ -62,12 +63,20 @@ class RecordQueries {
   virtual AnnualStudy annual_study(const std::vector<PanelRectangle>& region) = 0;
   // The annual study of openings really cut, from paths of their own (annual_study_with_cutters).
   virtual AnnualStudy annual_cut(const std::vector<OpeningInput>& openings, int paths) = 0;
+
+  // The records of the scene with its opening domain refined about `regions` (edges in thick walls,
+  // solve/thick_wall_edges.h), traced with these records' paths per sensor and seed, without T,
+  // and asked as these are (a cluster's refined records stay on its shards).
+  virtual std::unique_ptr<RecordQueries> refined(const std::vector<RefinedRegion>& regions) = 0;
+  // The scene these records answer for (the refined one for refined records).
+  virtual const Scene& scene() const = 0;
 };
 
 class LocalRecordQueries : public RecordQueries {
  public:
   // `scene` is what cut() traces, `domain` what regions lie on (the scene's, or a refined one).
-  LocalRecordQueries(const Scene& scene, const Contributions& c, const OpeningDomain& domain, Progress* progress);
+  LocalRecordQueries(const Scene& scene, const Contributions& c, const OpeningDomain& domain, Progress* progress,
+                     SensorRange sensors = {});
 
   const Contributions& contributions() const override { return c_; }
   const SensorValues& exact(const std::vector<uint8_t>& open) override { return exact_(open); }
@@ -81,12 +90,15 @@ class LocalRecordQueries : public RecordQueries {
                                const HourlyColumns& columns, bool flips) override;
   AnnualStudy annual_study(const std::vector<PanelRectangle>& region) override;
   AnnualStudy annual_cut(const std::vector<OpeningInput>& openings, int paths) override;
+  std::unique_ptr<RecordQueries> refined(const std::vector<RefinedRegion>& regions) override;
+  const Scene& scene() const override { return scene_; }
 
  private:
   const Scene& scene_;
   const Contributions& c_;
   const OpeningDomain& domain_;
   Progress* progress_;
+  SensorRange sensors_;  // the scene's sensors the records hold (a shard's block)
   ExactValues exact_;
 };
 

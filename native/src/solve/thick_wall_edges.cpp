@@ -91,24 +91,21 @@ std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, Record
   ThickWallEdges out;
   std::vector<PanelRectangle> from = start;
   for (out.rounds = 1;; ++out.rounds) {
-    Scene refined = scene;
-    refined.render.paths_per_sensor = coarse.paths_per_sensor;  // as many as the element grid's records
-    refined.domain = scene.domain.refined(thick_wall_edge_regions(scene.domain, from, constraints.module));
     if (progress) progress->start("solving: edges in thick walls, tracing a finer grid", 1);
-    Contributions c = compute_contributions(refined, progress, false);
+    const std::unique_ptr<RecordQueries> refined =
+        coarse_records.refined(thick_wall_edge_regions(scene.domain, from, constraints.module));
+    const Contributions& c = refined->contributions();
+    const OpeningDomain& domain = refined->scene().domain;
     const LinearObjective shifted = shifted_objective(objective, coarse, c);
     if (progress) progress->start("solving: edges in thick walls", 1);
-    LocalRecordQueries refined_records(refined, c, refined.domain, progress);
-    const EdgeRefinement round = refine_edges(refined.domain, refined_records, shifted, constraints, from, progress, scope);
+    const EdgeRefinement round = refine_edges(domain, *refined, shifted, constraints, from, progress, scope);
     out.edges.moves += round.moves;
     out.edges.evaluations += round.evaluations;
     out.edges.openings = round.openings;
-    out.start_values = c.evaluate(OpenRegion(refined.domain, from), progress);
-    out.values = c.evaluate(OpenRegion(refined.domain, round.openings), progress);
+    out.start_values = refined->evaluate(from);
+    out.values = refined->evaluate(round.openings);
     out.start_error = prediction_error(shifted, out.start_values.value - c.closed.value);
     out.error = prediction_error(shifted, out.values.value - c.closed.value);
-    out.domain = std::move(refined.domain);
-    out.contributions = std::move(c);
     if (out.rounds >= kMaxRounds || !reached_border(scene.domain, from, round.openings, span)) break;
     from = round.openings;
   }

@@ -15,8 +15,6 @@
 namespace fenestra {
 
 struct ThickWallEdges {
-  OpeningDomain domain;         // the refined domain of the last round
-  Contributions contributions;  // traced on it (no transport matrix T)
   EdgeRefinement edges;         // the search's result (moves and evaluations over all rounds)
   // Exact values from the last round's records, and the objective's error, of its start and result.
   SensorValues start_values, values;
