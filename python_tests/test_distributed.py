@@ -427,6 +427,41 @@ def test_a_worker_killed_mid_solve_leaves_the_answer_unchanged(tmp_path, cluster
     cluster.client.wait_for_workers(2, timeout=60)
 
 
+def test_a_thick_wall_solve_traces_its_finer_grid_on_the_shards(tmp_path, cluster, monkeypatch):
+    """In a 0.3 m wall the edges below the element size are searched on records traced again on a
+    refined grid: on a cluster those are traced and held by the shards' workers, asked as the
+    coarse ones are, and freed after; a worker killed during the refined search is recomputed from
+    the refined spec. The result is one process's, bit for bit."""
+    path = write_solve_floor(tmp_path)
+    scene = json.loads(path.read_text())
+    scene["opening_domain"]["thickness"] = 0.3
+    path.write_text(json.dumps(scene))
+    one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
+    assert "thick-wall edges" in one["timings_s"], one["timings_s"]
+    cluster.client.wait_for_workers(2, timeout=60)
+    asked = distributed._ShardedRecords._ask
+    seen = {"refined_ops": set(), "killed": 0, "recomputed": 0}
+
+    def ask(records, op, *args):
+        if getattr(records, "_owns_study", False):
+            seen["refined_ops"].add(op)
+            if op == "try" and not seen["killed"]:
+                seen["killed"] += 1
+                os.kill(worker_pids(cluster)[records._study.shards[0][2]], signal.SIGKILL)
+        result = asked(records, op, *args)
+        if getattr(records, "_owns_study", False):
+            seen["recomputed"] += records._study.recomputed_shards
+        return result
+
+    monkeypatch.setattr(distributed._ShardedRecords, "_ask", ask)
+    many = quietly(distributed.solve, str(path), cluster, shards=3)
+    assert {"search", "try"} <= seen["refined_ops"], seen
+    assert seen["killed"] == 1 and seen["recomputed"] >= 1, seen
+    assert without_timings(many) == without_timings(one)
+    cluster.client.wait_for_workers(2, timeout=60)
+    assert not any(cluster.client.run(lambda: len(distributed._HELD)).values())  # refined shards freed too
+
+
 def write_climate_room(tmp_path):
     """The climate goals' test room (sDA and ASE, least glazing) with a short search, trade-offs and
     the check with real cutters."""

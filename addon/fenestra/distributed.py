@@ -201,6 +201,8 @@ def _scene_of(spec):
                 scene = api.load_scene(spec["path"])
             else:
                 scene = api.scene_from_dict(spec["dict"], spec["base_dir"])
+        if "refined" in spec:  # a solve's grid refined about its openings in thick walls
+            scene = _core.refined_scene(scene, spec["refined"])
         for name, value in spec["render"].items():
             setattr(scene.render, name, value)
         scene.render.threads = _worker_threads()  # the worker's share of its machine (results do not depend on it)
@@ -227,13 +229,13 @@ def _compute_shard(spec, key, begin, end):
     scene = _scene_of(spec)
     c = _tracked(key, lambda progress: _core.compute_contributions(scene, progress, (begin, end)))
     _HELD[key] = c
-    frm, to, value, sensors = _core.transport_entries(c)
     part = {
         "worker": _worker_address(), "begin": begin, "end": end,
         "E": np.array(c.E), "E_stderr": np.array(c.E_stderr), "A": np.array(c.A),
         "closed": np.array(c.closed), "closed_stderr": np.array(c.closed_stderr),
         "all_open": np.array(c.all_open), "all_open_stderr": np.array(c.all_open_stderr),
-        "transport": (frm, to, value, sensors), "seconds": c.seconds, "events": c.events,
+        "transport": _core.transport_entries(c) if spec.get("transport", True) else None,
+        "seconds": c.seconds, "events": c.events,
         "paths_per_sensor": c.paths_per_sensor,
     }
     _core.keep_records_only(c)  # the rows travel to the client; the worker keeps what evaluations read
@@ -298,12 +300,13 @@ class SessionLost(ShardLost):
     """The worker does not hold the solve's state for the shard as the client expects it."""
 
 
-def _session_state(key, spec, session, applied):
+def _session_state(key, sensors, spec, session, applied):
     state = _SESSIONS.get((key, session))
     if state is None:
         if applied:  # calls were made that this worker has not seen: the shard moved here
             raise SessionLost(key)
-        state = {"queries": _core.RecordQueries(_scene_of(spec), _held(key)), "searches": {}, "applied": 0}
+        state = {"queries": _core.RecordQueries(_scene_of(spec), _held(key), tuple(sensors)), "searches": {},
+                 "applied": 0}
         _SESSIONS[(key, session)] = state
     elif state["applied"] != applied:
         raise SessionLost(key)
@@ -365,7 +368,7 @@ def _hourly_model(queries, sensors, about, rows, columns, flips):
 
 
 def _session_call(key, sensors, spec, session, applied, op, args):
-    return _apply(_session_state(key, spec, session, applied), op, args, sensors)
+    return _apply(_session_state(key, sensors, spec, session, applied), op, args, sensors)
 
 
 class _SessionActor:
@@ -387,7 +390,7 @@ def _session_replay(key, sensors, spec, session, log, pending):
     """Brings a recomputed shard's solve state to where the client's log says: the same calls in the
     same order (an accepted region as its try, then accept), then each open search's last try."""
     _SESSIONS.pop((key, session), None)
-    state = _session_state(key, spec, session, 0)
+    state = _session_state(key, sensors, spec, session, 0)
     for op, args in log:
         if op == "accept":
             state["searches"][args[0]].try_region(args[1])
@@ -565,8 +568,9 @@ class DistributedContributions:
         self.closed, self.closed_stderr = stack("closed"), stack("closed_stderr")
         self.all_open, self.all_open_stderr = stack("all_open"), stack("all_open_stderr")
         self.paths_per_sensor = parts[0]["paths_per_sensor"]
-        self.T = _core.transport_matrix_from_entries([p["transport"] for p in parts], scene.element_count,
-                                                     self.paths_per_sensor)
+        self.T = (_core.transport_matrix_from_entries([p["transport"] for p in parts], scene.element_count,
+                                                      self.paths_per_sensor)
+                  if parts[0]["transport"] is not None else np.zeros((0, 0)))  # a solve's refined grid: no T
         self.seconds = max(p["seconds"] for p in parts)
         self.events = sum(p["events"] for p in parts)
         self.shard_memory_bytes = [p["memory_bytes"] for p in parts]
@@ -862,12 +866,39 @@ class _ShardedRecords:
         parts = s._map(_annual_cut_session, s._spec, openings, paths, cancelled=lambda: self._progress.cancelled)
         return tuple(np.concatenate([p[j] for p in parts]) for j in range(4)) + (parts[0][4],)
 
+    def refined(self, regions, paths):
+        """The records traced again on the grid refined about `regions` (edges in thick walls), shard
+        by shard on the workers, as records of their own (`summary`: their contributions without
+        records); closing them frees the shards."""
+        s = self._study
+        spec = dict(s._spec, refined=[list(r[:5]) + [list(r[5]), list(r[6])] for r in regions], transport=False)
+        local = _core.refined_scene(s.scene, spec["refined"])
+        for name, value in spec["render"].items():
+            setattr(local.render, name, value)
+        _set_render(spec, local, paths_per_sensor=int(paths))
+        keys = _shard_keys("refined", spec, len(s._shards))
+        client = s._cluster.client
+        alive = set(s._cluster.workers())
+        futures = [client.submit(_compute_shard, spec, key, sh["begin"], sh["end"], pure=False, key=key,
+                                 workers=[sh["worker"]] if sh["worker"] in alive else None, allow_other_workers=True)
+                   for key, sh in zip(keys, s._shards)]
+        parts = _gather(s._cluster, futures, keys, lambda fraction, what: not self._progress.cancelled,
+                        "tracing a finer grid in thick walls")
+        del futures
+        study = DistributedContributions(s._cluster, spec, local, keys, parts)
+        records = _ShardedRecords(study, self._progress)
+        records.summary = study.as_contributions()
+        records._owns_study = True
+        return records
+
     def close(self):
         self._actors.clear()  # their futures released: the workers drop them
         try:
             self._study._cluster.client.run(_end_session, self._session)
         except Exception:  # the cluster is gone: so is the state
             pass
+        if getattr(self, "_owns_study", False):
+            self._study.close()
 
 
 class _ShardedSearch:
