@@ -517,6 +517,23 @@ def test_a_solve_under_a_sky_without_light_is_refused_before_any_tracing(tmp_pat
         distributed.solve(str(path), cluster)
 
 
+def test_a_solve_whose_client_would_not_fit_is_refused_before_any_tracing(tmp_path, cluster, monkeypatch):
+    path = write_solve_floor(tmp_path)
+    scene = fenestra.load_scene(str(path))
+    held = distributed.check_client_fits(scene)
+    # E, E_stderr, A, T and the flip effects at least: 8 bytes per sensor and element, four times.
+    assert held >= 8 * (4 * scene.sensor_count * scene.element_count + scene.element_count ** 2)
+
+    def traced(*args, **kwargs):
+        raise AssertionError("traced contributions for a client that cannot hold them")
+
+    monkeypatch.setattr(distributed, "_contributions", traced)
+    with pytest.raises(ValueError, match=r"the client of a solve on a cluster holds about .* allowed by max_memory"):
+        distributed.solve(str(path), cluster, max_memory=int(held) - 1)
+    with pytest.raises(ValueError, match="max_memory expects"):
+        distributed.solve(str(path), cluster, max_memory=-5)
+
+
 def test_cli_solves_climate_goals_on_a_local_cluster_as_one_process(tmp_path):
     path = write_climate_room(tmp_path)
     runs = {}

@@ -672,9 +672,9 @@ class DistributedContributions:
 
     def solve(self, progress=None, callback=None):
         """The opening solver on these contributions (fenestra.solve's result dict, the same bit for
-        bit as one process gives). Its exact evaluations, flip effects, edge searches and, with
-        climate goals, the hourly models' rows and the years of openings run on the shards; the
-        linear and genetic stages, and the thick walls' refined grid, in this process.
+        bit as one process gives). Its exact evaluations, flip effects, edge searches (on thick
+        walls' refined grid too, traced there) and, with climate goals, the hourly models' rows and
+        the years of openings run on the shards; the linear and genetic stages in this process.
         callback(fraction, status) as for fenestra.solve; returning False cancels."""
         summary = self.as_contributions()
         progress = progress if progress is not None else _core.Progress()
@@ -931,16 +931,19 @@ def _annual_cut_session(key, sensors, spec, openings, paths):
     return _core.annual_cut_coefficients(_scene_of(spec), openings, None, sensors, paths)
 
 
-def solve(scene, cluster, shards=None, base_dir=".", callback=None):
+def solve(scene, cluster, shards=None, base_dir=".", callback=None, max_memory=None):
     """fenestra.solve on a cluster: the contributions sharded by sensors (as contributions()), then
     the solver on them (DistributedContributions.solve); the shards' records are freed afterwards.
     The result dict is the one fenestra.solve returns for the same scene and seed, bit for bit,
-    except its timings."""
+    except its timings. Refused (ValueError) before any work under a sky without light, or when
+    what this process holds would not fit in max_memory (bytes or "8G"; default what this machine
+    has available): see check_client_fits."""
     spec, local = _spec(scene, base_dir)
     dark = _core.dark_sky_warning(local)
     if dark:  # as one process refuses it, before any tracing
         raise ValueError("scene '%s': sky: %s; the goals cannot be met: choose a date and time interval with daylight"
                          % (local.source, dark))
+    check_client_fits(local, max_memory)
     if local.solver_paths > 0:  # as fenestra.solve traces them
         if local is scene:  # the caller's Scene keeps its settings
             local = api.load_scene(spec["path"])
@@ -949,6 +952,32 @@ def solve(scene, cluster, shards=None, base_dir=".", callback=None):
         _set_render(spec, local, paths_per_sensor=local.solver_paths)
     with _contributions(spec, local, cluster, shards, callback) as study:
         return study.solve(callback=callback)
+
+
+# What the client of a solve on a cluster holds, by the cost model's names (docs/cost.md): the
+# contributions' arrays and the solver's own state. The records, their indexes and the tracing stay
+# on the workers.
+_CLIENT_PARTS = ("E", "E_stderr", "A", "T", "solver_copies", "population", "genetic_history", "result_history")
+
+
+def check_client_fits(scene, max_memory=None):
+    """Raises ValueError, naming the figures, when what the client of a solve on a cluster holds
+    would not fit in max_memory (default: what this machine has available): E, E_stderr, A and T,
+    the solver's copies and population, and the flip-effect matrices the shards' answers are
+    assembled into (sensors x elements, 8 bytes each). Climate goals' hourly model is checked when
+    it is stacked, as one process checks it."""
+    estimate = api.estimate_cost(scene, "solve", max_memory)
+    held = {name: estimate["memory"].get(name, 0.0) for name in _CLIENT_PARTS}
+    held["flip_effects"] = 8.0 * scene.sensor_count * scene.element_count
+    total = sum(held.values())
+    if total > estimate["available_bytes"]:
+        largest = max(held, key=held.get)
+        raise ValueError("scene %r: the client of a solve on a cluster holds about %s (E, E_stderr, A, T and the "
+                         "solver's state; the largest part, %s, %s), more than the %s %s here: use a larger "
+                         "element_size or fewer sensors, or run the client on a machine with more memory"
+                         % (scene.source, _mib(total), largest, _mib(held[largest]), _mib(estimate["available_bytes"]),
+                            estimate["available_source"]))
+    return total
 
 
 def evaluate(scene, openings, cluster, shards=None, base_dir=".", callback=None):
