@@ -663,6 +663,14 @@ def test_record_queries_refuse_bad_climate_arguments_and_bad_answers(tmp_path):
         _core.RecordQueries(other_scene, fenestra.contributions(other_scene)).hourly_model(
             np.zeros(other_scene.element_count, np.uint8), rows, columns, False)
 
+    for regions, message in (([[99, 0, 1, 0, 1, [], []]], "panel 99 is not a panel"),
+                             ([[0, 0, float("nan"), 0, 1, [], []]], "not a finite number of meters"),
+                             ([[0, 1, 0, 0, 1, [], []]], "its rectangle is empty"),
+                             ([[0, 0, 1]], r"expected \[panel, u0"),
+                             ([[0, -1e30, -1e29, 0, 1, [], []]], "hold no element")):
+        with pytest.raises(ValueError, match=message):
+            _core.refined_scene(scene, regions)
+
     class WrongShape:
         def hourly_model(self, about, rows, columns, flips):
             bad = np.zeros((1, 1), np.float32)

@@ -270,6 +270,7 @@ std::vector<RefinedRegion> regions_from(const py::handle& h, const OpeningDomain
     for (float x : r.u_lines) finite = finite && std::isfinite(x);
     for (float x : r.v_lines) finite = finite && std::isfinite(x);
     if (!finite) throw std::invalid_argument(name + ": a coordinate is not a finite number of meters");
+    if (!(r.u0 < r.u1 && r.v0 < r.v1)) throw std::invalid_argument(name + ": its rectangle is empty (u0 < u1, v0 < v1)");
     out.push_back(std::move(r));
   }
   return out;
@@ -620,6 +621,9 @@ void bind_refined_scene(py::module_& m) {
       [](const Scene& scene, const py::list& regions) {
         auto out = std::make_shared<Scene>(scene);
         out->domain = scene.domain.refined(regions_from(regions, scene.domain));
+        if (out->domain.element_count() == 0)
+          throw std::invalid_argument("the refined regions hold no element of scene '" + scene.source +
+                                      "''s opening domain");
         return out;
       },
       py::arg("scene"), py::arg("regions"),
