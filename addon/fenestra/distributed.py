@@ -732,6 +732,8 @@ class _ShardedRecords:
         self._pending = {}    # open search -> the rectangles of its last try
         self._searches = itertools.count()
         self._actors = {}     # worker -> (its actor's future, the actor)
+        self.summary = None   # refined records: their contributions without records (refined())
+        self._owns_study = False  # refined records free their study's shards when closed
         self.calls = 0
 
     def _ask(self, op, *args):
@@ -872,9 +874,7 @@ class _ShardedRecords:
         records); closing them frees the shards."""
         s = self._study
         spec = dict(s._spec, refined=[list(r[:5]) + [list(r[5]), list(r[6])] for r in regions], transport=False)
-        local = _core.refined_scene(s.scene, spec["refined"])
-        for name, value in spec["render"].items():
-            setattr(local.render, name, value)
+        local = _core.refined_scene(s.scene, spec["refined"])  # with the study's render settings
         _set_render(spec, local, paths_per_sensor=int(paths))
         keys = _shard_keys("refined", spec, len(s._shards))
         client = s._cluster.client
@@ -887,8 +887,7 @@ class _ShardedRecords:
         del futures
         study = DistributedContributions(s._cluster, spec, local, keys, parts)
         records = _ShardedRecords(study, self._progress)
-        records.summary = study.as_contributions()
-        records._owns_study = True
+        records.summary, records._owns_study = study.as_contributions(), True
         return records
 
     def close(self):
@@ -897,7 +896,7 @@ class _ShardedRecords:
             self._study._cluster.client.run(_end_session, self._session)
         except Exception:  # the cluster is gone: so is the state
             pass
-        if getattr(self, "_owns_study", False):
+        if self._owns_study:
             self._study.close()
 
 
