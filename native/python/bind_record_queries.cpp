@@ -593,6 +593,7 @@ class PythonRecordQueries : public RecordQueries {
       whole.coefficients = std::move(parts.coefficients);
       whole.occupied_mean = std::move(parts.occupied_mean);
       whole.paths_per_sensor = py::cast<int>(answer[4]);
+      whole.annual = annual_;
     }
     AnnualStudy study = annual_cut_study_of(scene_, std::move(whole));
     study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -51,6 +51,7 @@ AnnualCutCoefficients annual_cut_coefficients(const Scene& scene, const std::vec
   const size_t batch = std::max<size_t>(1, kBatchBytes / (sizeof(double) * sources * tasks_per_sensor));
   AnnualCutCoefficients out;
   out.paths_per_sensor = paths;
+  out.annual = annual;
   AnnualCoefficients& k = out.coefficients;
   k.sources.setZero(sensors, sources);
   k.direct.setZero(sensors, annual->sun_hours.size());
@@ -138,7 +139,8 @@ AnnualStudy annual_cut_study_of(const Scene& scene, AnnualCutCoefficients whole)
   if (whole.coefficients.sources.rows() != sensors || whole.occupied_mean.value.size() != sensors)
     throw std::invalid_argument("an annual study with cutters needs the coefficients of all " +
                                 std::to_string(sensors) + " sensors of scene '" + scene.source + "'");
-  AnnualStudy study = annual_study_of(whole.coefficients, prepare_annual(scene), whole.occupied_mean);
+  AnnualStudy study = annual_study_of(whole.coefficients, whole.annual ? whole.annual : prepare_annual(scene),
+                                      whole.occupied_mean);
   study.paths_per_sensor = whole.paths_per_sensor;
   study.cutters = true;
   return study;

@@ -31,6 +31,7 @@ struct AnnualCutCoefficients {
   AnnualCoefficients coefficients;
   SensorValues occupied_mean;  // lux
   int paths_per_sensor = 0;
+  std::shared_ptr<const AnnualRecords> annual;  // the sources and hours they are of (null: the scene's)
 };
 AnnualCutCoefficients annual_cut_coefficients(const Scene& scene, const std::vector<OpeningInput>& openings,
                                               Progress* progress, int paths_per_sensor, SensorRange range);
