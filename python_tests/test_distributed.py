@@ -427,7 +427,7 @@ def test_a_worker_killed_mid_solve_leaves_the_answer_unchanged(tmp_path, cluster
     cluster.client.wait_for_workers(2, timeout=60)
 
 
-def test_a_thick_wall_solve_traces_its_finer_grid_on_the_shards(tmp_path, cluster, monkeypatch):
+def test_a_thick_wall_solve_traces_its_finer_grid_on_the_shards(tmp_path, monkeypatch):
     """In a 0.3 m wall the edges below the element size are searched on records traced again on a
     refined grid: on a cluster those are traced and held by the shards' workers, asked as the
     coarse ones are, and freed after; a worker killed during the refined search is recomputed from
@@ -438,7 +438,6 @@ def test_a_thick_wall_solve_traces_its_finer_grid_on_the_shards(tmp_path, cluste
     path.write_text(json.dumps(scene))
     one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
     assert "thick-wall edges" in one["timings_s"], one["timings_s"]
-    cluster.client.wait_for_workers(2, timeout=60)
     asked = distributed._ShardedRecords._ask
     seen = {"refined_ops": set(), "killed": 0, "recomputed": 0}
 
@@ -454,12 +453,13 @@ def test_a_thick_wall_solve_traces_its_finer_grid_on_the_shards(tmp_path, cluste
         return result
 
     monkeypatch.setattr(distributed._ShardedRecords, "_ask", ask)
-    many = quietly(distributed.solve, str(path), cluster, shards=3)
+    # A cluster of its own: the killed worker's restart is not waited for (the shared one stays whole).
+    with distributed.Cluster(workers=2, threads_per_worker=1, timeout=30) as cluster:
+        many = quietly(distributed.solve, str(path), cluster, shards=3)
+        assert not any(cluster.client.run(lambda: len(distributed._HELD)).values())  # refined shards freed too
     assert {"search", "try"} <= seen["refined_ops"], seen
     assert seen["killed"] == 1 and seen["recomputed"] >= 1, seen
     assert without_timings(many) == without_timings(one)
-    cluster.client.wait_for_workers(2, timeout=60)
-    assert not any(cluster.client.run(lambda: len(distributed._HELD)).values())  # refined shards freed too
 
 
 def write_climate_room(tmp_path):
@@ -473,7 +473,7 @@ def write_climate_room(tmp_path):
     return path
 
 
-def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tmp_path, cluster, monkeypatch):
+def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tmp_path, monkeypatch):
     """Climate goals: the hourly models' rows and the years of openings (from the records, and
     traced with real cutters) come from the shards; a worker killed while the first model is asked
     for is recomputed, and the result is the same bit for bit."""
@@ -481,7 +481,6 @@ def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tm
     one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
     climate = one["climate"]
     assert climate["goals"][0]["verified"] is not None and one["tradeoffs"], climate
-    cluster.client.wait_for_workers(2, timeout=60)
     asked = distributed._ShardedRecords._ask
     seen = {"ops": set(), "killed": 0, "recomputed": 0}
 
@@ -495,11 +494,12 @@ def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tm
         return result
 
     monkeypatch.setattr(distributed._ShardedRecords, "_ask", ask)
-    many = quietly(distributed.solve, str(path), cluster, shards=3)
+    # A cluster of its own: the killed worker's restart is not waited for (the shared one stays whole).
+    with distributed.Cluster(workers=2, threads_per_worker=1, timeout=30) as cluster:
+        many = quietly(distributed.solve, str(path), cluster, shards=3)
     assert {"hourly_model", "annual_parts", "exact"} <= seen["ops"], seen
     assert seen["killed"] == 1 and seen["recomputed"] >= 1
     assert without_timings(many) == without_timings(one)
-    cluster.client.wait_for_workers(2, timeout=60)
 
 
 def test_a_solve_under_a_sky_without_light_is_refused_before_any_tracing(tmp_path, cluster, monkeypatch):
