@@ -185,7 +185,7 @@ TEST(SceneErrors, OpeningsOffTheDomainOrNotRectangles) {
   const Rectangle skew = {Vec3(1, 0, 1), Vec3(2, 0, 1), Vec3(2.5f, 0, 2), Vec3(1, 0, 2)};
   EXPECT_THROW(evaluate_openings(scene, {skew}), std::invalid_argument);
   dir.write("openings.json", R"({"openings": [{"corners": [[1, 0, 1], [2, 0, 1]]}]})");
-  EXPECT_THROW(read_openings(dir.file("openings.json")), std::invalid_argument);
+  EXPECT_THROW(read_openings(dir.file("openings.json"), SiteFrame{}), std::invalid_argument);
 }
 
 // ---- Every number validated after its conversion ----
@@ -204,9 +204,12 @@ const char* kDomain = R"({"materials": ["facade"]})";
 
 TEST(Validation, SensorCoordinatesOutsideTheRangeAreRefused) {
   // 1e39 is infinite as a float; 2e18 reached Embree and aborted.
-  for (const char* p : {"[1e39, 1, 1]", "[1, 2e18, 1]", "[1, 1, -1000001]"})
+  for (const char* p : {"[1e39, 1, 1]", "[1, 2e18, 1]", "[1, 1, -10000001]"})
     expect_scene_error(scene_text(kDomain, std::string(R"({"points": [[2, 1.5, 0.8], )") + p + "]}"),
-                       {"sensors.points[1]", "1e+06 m"});
+                       {"sensors.points[1]", "1e+07 m"});
+  // Within the site's range but farther from the model than a float keeps centimetres.
+  expect_scene_error(scene_text(kDomain, R"({"points": [[2, 1.5, 0.8], [1, 1, -1000001]]})"),
+                     {"sensors.points[1]", "1e+06 m from the model's local origin"});
   TempDir dir;
   dir.write("scene.obj", room_obj());
   dir.write("scene.json", scene_text(kDomain, R"({"points": [[2, 1.5, 0.8], [1000000, 1, 1]]})"));
@@ -279,8 +282,11 @@ TEST(Validation, ObjIndicesAndCoordinatesAreCheckedWithTheirLine) {
   expect_error(dir, {"scene.obj", "line " + std::to_string(lines + 2), "-9999"});
   dir.write("scene.obj", room + "usemtl wall\nf 1 2 3x\n");
   expect_error(dir, {"scene.obj", "not an integer"});
-  dir.write("scene.obj", "usemtl facade\nv 0 0 0\nv 2e6 0 0\nv 0 0 1\nf 1 2 3\n");
-  expect_error(dir, {"scene.obj", "line 3", "out of range"});
+  dir.write("scene.obj", "usemtl facade\nv 0 0 0\nv 2e7 0 0\nv 0 0 1\nf 1 2 3\n");
+  expect_error(dir, {"scene.obj", "line 3", "out of range", "1e+07 m"});
+  // Within the site's range, but wider than a float keeps centimetres across.
+  dir.write("scene.obj", "usemtl facade\nv 0 0 0\nv 3e6 0 0\nv 0 0 1\nf 1 2 3\n");
+  expect_error(dir, {"scene.obj", "vertex 1", "1e+06 m from the model's local origin"});
 }
 
 TEST(Validation, RadianceScaleAndAnglesMustStayFiniteAsFloats) {
@@ -332,7 +338,7 @@ TEST(Validation, JsonErrorsNameTheFileLineAndKeyInWords) {
   expect_error(dir, {"scene.json", "materials.wall.type", "expected a string"});
   dir.write("openings.json", "{\"openings\": [\n{\"corners\": [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1e400, 0, 2]]}]}");
   try {
-    read_openings(dir.file("openings.json"));
+    read_openings(dir.file("openings.json"), SiteFrame{});
     FAIL() << "1e400 accepted";
   } catch (const std::invalid_argument& e) {
     const std::string m = e.what();
@@ -342,7 +348,7 @@ TEST(Validation, JsonErrorsNameTheFileLineAndKeyInWords) {
   }
   dir.write("openings.json", R"({"openings": [{"corners": [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1e39, 0, 2]]}]})");
   try {
-    read_openings(dir.file("openings.json"));
+    read_openings(dir.file("openings.json"), SiteFrame{});
     FAIL() << "1e39 accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("opening 0: corner 3"), std::string::npos) << e.what();
@@ -357,7 +363,7 @@ TEST(Validation, InputsThatAreNotRegularFilesAreRefused) {
   dir.write("scene.json", R"({"fenestra": 1, "geometry": "/dev/zero", "materials": {"a": {}}})");
   expect_error(dir, {"/dev/zero", "not a regular file"});  // read forever before
   EXPECT_THROW(load_scene("/dev/null"), std::invalid_argument);
-  EXPECT_THROW(read_openings("/dev/zero"), std::invalid_argument);
+  EXPECT_THROW(read_openings("/dev/zero", SiteFrame{}), std::invalid_argument);
 }
 
 TEST(Validation, ContributionsOfAnotherSceneAreRefused) {

@@ -43,7 +43,9 @@ class Scene:
     @property
     def element_size(self) -> float: ...
     @property
-    def sensor_points(self) -> npt.NDArray[np.float64]: ...  # (sensors, 3), meters
+    def site_origin(self) -> Tuple[float, float, float]: ...  # local frame's origin, input coordinates, meters
+    @property
+    def sensor_points(self) -> npt.NDArray[np.float64]: ...  # (sensors, 3), meters, input coordinates
     @property
     def goals(self) -> Optional[npt.NDArray[np.float64]]: ...
     @property

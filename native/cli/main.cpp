@@ -254,7 +254,7 @@ int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& 
                                 "docs/scene-format.md)");
   if (a.cutters) {
     const AnnualStudy study = with_progress(
-        progress, a.quiet, [&] { return annual_study_with_cutters(scene, read_openings(a.openings), &progress); });
+        progress, a.quiet, [&] { return annual_study_with_cutters(scene, read_openings(a.openings, scene.site), &progress); });
     const auto paths = write_annual(scene, study, a.output);
     const AnnualMetrics& m = study.metrics;
     std::printf("annual (openings cut): %zu sensors x %d hours (%d occupied), %d paths per sensor; %.2f s\n"
@@ -263,7 +263,7 @@ int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& 
                 m.to_string().c_str(), paths.first.c_str(), paths.second.c_str());
     return 0;
   }
-  const OpenRegion region = region_of_openings(scene, read_openings(a.openings));  // before the long pass
+  const OpenRegion region = region_of_openings(scene, read_openings(a.openings, scene.site));  // before the long pass
   const Contributions c =
       with_progress(progress, a.quiet, [&] { return compute_contributions(scene, &progress, /*transport=*/false); });
   const AnnualStudy study = with_progress(progress, a.quiet, [&] { return annual_study(scene, c, region, &progress); });
@@ -366,7 +366,7 @@ int run(const Args& a) {
     return 0;
   }
   if (a.command == "annual") return run_annual(a, scene, progress);
-  const auto openings = read_openings(a.openings);
+  const auto openings = read_openings(a.openings, scene.site);
   const auto start = std::chrono::steady_clock::now();
   const SensorValues v = with_progress(progress, a.quiet, [&] { return evaluate_openings(scene, openings, &progress); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -209,14 +209,18 @@ HourlyFlipModel hourly_part_from(const py::handle& h, Eigen::Index rows, const H
   return m;
 }
 
-// An opening as openings files give it (parse_openings reads it back; numbers round-trip exactly).
-nlohmann::json opening_json(const OpeningInput& o) {
+// An opening as openings files give it, in the scene's input coordinates (parse_openings reads it
+// back into the local frame; numbers round-trip exactly, the frame's origin being whole meters).
+nlohmann::json opening_json(const OpeningInput& o, const SiteFrame& site) {
   if (o.parameter) {
     const PanelRectangle& r = *o.parameter;
     return {{"panel", r.panel}, {"parameter_rectangle", {{"u0", r.u0}, {"u1", r.u1}, {"v0", r.v0}, {"v1", r.v1}}}};
   }
   nlohmann::json corners = nlohmann::json::array();
-  for (const Vec3& c : o.corners) corners.push_back(nlohmann::json::array({c.x(), c.y(), c.z()}));
+  for (const Vec3& c : o.corners) {
+    const Vec3d p = site.to_site(c);
+    corners.push_back(nlohmann::json::array({p.x(), p.y(), p.z()}));
+  }
   return {{"corners", corners}};
 }
 
@@ -288,9 +292,9 @@ auto value_errors_as_invalid_argument(F f) {
 }
 
 // The JSON text of an openings file with these openings.
-std::string openings_text(const std::vector<OpeningInput>& openings) {
+std::string openings_text(const std::vector<OpeningInput>& openings, const SiteFrame& site) {
   nlohmann::json list = nlohmann::json::array();
-  for (const OpeningInput& o : openings) list.push_back(opening_json(o));
+  for (const OpeningInput& o : openings) list.push_back(opening_json(o, site));
   return nlohmann::json{{"openings", list}}.dump();
 }
 
@@ -538,7 +542,7 @@ class PythonRecordQueries : public RecordQueries {
     return std::make_unique<PythonRegionQueries>(std::move(search), start, sensors());
   }
   SensorValues cut(const std::vector<OpeningInput>& openings, int paths) override {
-    const std::string text = openings_text(openings);
+    const std::string text = openings_text(openings, scene_.site);
     py::gil_scoped_acquire gil;
     return values_from(backend_.attr("cut")(text, paths), sensors(), "values with real cutters");
   }
@@ -588,7 +592,7 @@ class PythonRecordQueries : public RecordQueries {
     AnnualCutCoefficients whole;
     {
       py::gil_scoped_acquire gil;
-      const py::tuple answer = backend_.attr("annual_cut")(openings_text(openings), paths);
+      const py::tuple answer = backend_.attr("annual_cut")(openings_text(openings, scene_.site), paths);
       AnnualRegionParts parts = annual_parts_from(answer, sensors(), *annual_);
       whole.coefficients = std::move(parts.coefficients);
       whole.occupied_mean = std::move(parts.occupied_mean);

@@ -109,7 +109,9 @@ py::tuple values_tuple(SensorValues v) {
                         py::array_t<double>(v.standard_error.size(), v.standard_error.data()));
 }
 
-std::vector<Rectangle> rectangles_from(py::array_t<double, py::array::c_style | py::array::forcecast> a) {
+// Corners in the scene's input coordinates, returned in its local frame.
+std::vector<Rectangle> rectangles_from(py::array_t<double, py::array::c_style | py::array::forcecast> a,
+                                       const SiteFrame& frame) {
   if (a.ndim() == 2 && a.shape(0) == 0) return {};
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 3)
     throw std::invalid_argument("openings must be an array of shape (n, 4, 3): four corners per rectangle, meters");
@@ -126,14 +128,19 @@ std::vector<Rectangle> rectangles_from(py::array_t<double, py::array::c_style | 
             << r(i, c, k);
           throw std::invalid_argument(s.str());
         }
-      out[i][c] = Vec3(r(i, c, 0), r(i, c, 1), r(i, c, 2));
+      const Vec3d site(r(i, c, 0), r(i, c, 1), r(i, c, 2));
+      if (!local_coordinates_in_range(frame.to_local_exact(site)))
+        throw std::invalid_argument("opening " + std::to_string(i) + ", corner " + std::to_string(c) + " " +
+                                    local_range_problem(frame.origin));
+      out[i][c] = frame.to_local(site);
     }
   return out;
 }
 
 // Openings from Python: an (n, 4, 3) array of corners, or the JSON text of an openings file
-// ({"openings": [...]}, with "corners" or "panel" and "parameter_rectangle" each).
-std::vector<OpeningInput> openings_from(const py::object& openings) {
+// ({"openings": [...]}, with "corners" or "panel" and "parameter_rectangle" each), in the input
+// coordinates of a scene whose local frame is `frame`.
+std::vector<OpeningInput> openings_from(const py::object& openings, const SiteFrame& frame) {
   if (py::isinstance<py::str>(openings)) {
     nlohmann::json j;
     try {
@@ -142,12 +149,13 @@ std::vector<OpeningInput> openings_from(const py::object& openings) {
       throw std::invalid_argument(std::string("openings: not valid JSON: ") + e.what());
     }
     try {
-      return parse_openings(j, "argument");
+      return parse_openings(j, "argument", frame);
     } catch (const nlohmann::json::exception& e) {
       throw std::invalid_argument(std::string("openings: a value has the wrong type: ") + e.what());
     }
   }
-  const auto rects = rectangles_from(openings.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>());
+  const auto rects =
+      rectangles_from(openings.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), frame);
   return std::vector<OpeningInput>(rects.begin(), rects.end());
 }
 
@@ -299,12 +307,18 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("element_count", [](const Scene& s) { return s.domain.element_count(); })
       .def_property_readonly("triangle_count", [](const Scene& s) { return s.mesh.triangle_count(); })
       .def_property_readonly("element_size", [](const Scene& s) { return s.domain.element_size(); })
+      .def_property_readonly("site_origin",
+                             [](const Scene& s) { return py::make_tuple(s.site.origin.x(), s.site.origin.y(), s.site.origin.z()); },
+                             "The local frame's origin in the input's coordinates (meters, whole): (0, 0, 0) for a model "
+                             "near the origin; positions in and out are in the input's coordinates.")
       .def_property_readonly("sensor_points",
                              [](const Scene& s) {
                                py::array_t<double> a({static_cast<py::ssize_t>(s.sensors.size()), py::ssize_t(3)});
                                auto w = a.mutable_unchecked<2>();
-                               for (size_t i = 0; i < s.sensors.size(); ++i)
-                                 for (int k = 0; k < 3; ++k) w(i, k) = s.sensors.points[i][k];
+                               for (size_t i = 0; i < s.sensors.size(); ++i) {
+                                 const Vec3d p = s.site.to_site(s.sensors.points[i]);
+                                 for (int k = 0; k < 3; ++k) w(i, k) = p[k];
+                               }
                                return a;
                              })
       .def_property_readonly("goals",
@@ -320,7 +334,7 @@ PYBIND11_MODULE(_core, m) {
                                auto w = a.mutable_unchecked<3>();
                                for (size_t k = 0; k < el.size(); ++k)
                                  for (int c = 0; c < 4; ++c)
-                                   for (int d = 0; d < 3; ++d) w(k, c, d) = el[k].corners[c][d];
+                                   for (int d = 0; d < 3; ++d) w(k, c, d) = s.site.to_site(el[k].corners[c])[d];
                                return a;
                              },
                              "Corners of every element, shape (elements, 4, 3), meters.")
@@ -390,7 +404,7 @@ PYBIND11_MODULE(_core, m) {
                                             " of this scene");
             }
             std::vector<PanelRectangle> rects;
-            const auto given = openings_from(openings);
+            const auto given = openings_from(openings, scene.site);
             for (size_t i = 0; i < given.size(); ++i) {
               try {
                 rects.push_back(to_panel_rectangle(scene.domain, given[i]));
@@ -432,7 +446,7 @@ PYBIND11_MODULE(_core, m) {
       .def(
           "annual_openings",
           [](const Contributions& c, const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress) {
-            const OpenRegion region = region_of_openings(scene, openings_from(openings));
+            const OpenRegion region = region_of_openings(scene, openings_from(openings, scene.site));
             AnnualStudy study;
             {
               py::gil_scoped_release release;
@@ -445,7 +459,7 @@ PYBIND11_MODULE(_core, m) {
           "The annual study of openings (as for evaluate_openings).")
       .def("save_annual",
            [](const Contributions& c, const Scene& scene, const py::object& openings, const std::string& out) {
-             const OpenRegion region = region_of_openings(scene, openings_from(openings));
+             const OpenRegion region = region_of_openings(scene, openings_from(openings, scene.site));
              py::gil_scoped_release release;
              return write_annual(scene, annual_study(scene, c, region), out);
            },
@@ -479,7 +493,7 @@ PYBIND11_MODULE(_core, m) {
       "evaluate",
       [](const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress, const py::object& sensors,
          int paths_per_sensor) {
-        const auto rects = openings_from(openings);
+        const auto rects = openings_from(openings, scene.site);
         const SensorRange range = sensor_range_from(sensors, scene);
         if (paths_per_sensor < 0 || paths_per_sensor > limits::kPathsPerSensor.hi)
           throw std::invalid_argument("paths_per_sensor must be 0 (the scene's render.paths_per_sensor) or from 1 to " +
@@ -501,7 +515,7 @@ PYBIND11_MODULE(_core, m) {
       "annual_with_cutters",
       [](const Scene& scene, const py::object& openings, int paths, std::shared_ptr<Progress> progress,
          const std::string& output) {
-        const auto given = openings_from(openings);
+        const auto given = openings_from(openings, scene.site);
         AnnualStudy study;
         {
           py::gil_scoped_release release;
@@ -520,7 +534,7 @@ PYBIND11_MODULE(_core, m) {
       "annual_cut_coefficients",
       [](const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress, const py::object& sensors,
          int paths) {
-        const auto given = openings_from(openings);
+        const auto given = openings_from(openings, scene.site);
         const SensorRange range = sensor_range_from(sensors, scene);
         AnnualCutCoefficients k;
         {
@@ -540,7 +554,7 @@ PYBIND11_MODULE(_core, m) {
       "constraint_violations",
       [](const Scene& scene, const py::object& openings) {
         std::vector<PanelRectangle> rects;
-        for (const OpeningInput& o : openings_from(openings)) rects.push_back(to_panel_rectangle(scene.domain, o));
+        for (const OpeningInput& o : openings_from(openings, scene.site)) rects.push_back(to_panel_rectangle(scene.domain, o));
         return solved_constraint_violations(scene, rects);
       },
       py::arg("scene"), py::arg("openings"),
@@ -630,7 +644,9 @@ PYBIND11_MODULE(_core, m) {
       "sqrt(sum w (v - g)^2 / sum w g^2), the largest relative error and its sensor.");
   m.def("rays_traced", &rays_traced, "Rays traced by parallel computations since the module was loaded.");
   m.def("read_openings", [](const std::string& path) -> py::object {
-    const auto openings = read_openings(path);
+    // Corners as the file gives them (site coordinates too): read into a frame near them, then back.
+    const SiteFrame frame = openings_file_frame(path);
+    const auto openings = read_openings(path, frame);
     const bool by_parameter = std::any_of(openings.begin(), openings.end(), [](const OpeningInput& o) { return o.parameter.has_value(); });
     if (by_parameter) {  // the file's openings as dicts, checked
       py::list list;
@@ -643,7 +659,10 @@ PYBIND11_MODULE(_core, m) {
           d["parameter_rectangle"] = r;
         } else {
           py::list corners;
-          for (const Vec3& c : o.corners) corners.append(py::make_tuple(c.x(), c.y(), c.z()));
+          for (const Vec3& local : o.corners) {
+            const Vec3d c = frame.to_site(local);
+            corners.append(py::make_tuple(c.x(), c.y(), c.z()));
+          }
           d["corners"] = corners;
         }
         list.append(d);
@@ -654,7 +673,7 @@ PYBIND11_MODULE(_core, m) {
     auto w = a.mutable_unchecked<3>();
     for (size_t i = 0; i < openings.size(); ++i)
       for (int c = 0; c < 4; ++c)
-        for (int d = 0; d < 3; ++d) w(i, c, d) = openings[i].corners[c][d];
+        for (int d = 0; d < 3; ++d) w(i, c, d) = frame.to_site(openings[i].corners[c])[d];
     return std::move(a);
   }, py::arg("path"), "The openings of an openings file: an (n, 4, 3) array of corners, or, when the file gives "
                       "any by \"parameter_rectangle\", a list of opening dicts; evaluate() takes either.");

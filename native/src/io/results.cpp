@@ -29,6 +29,7 @@ std::vector<double> row_major(const Eigen::MatrixXd& m) {
 std::vector<double> to_vector(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
 json vec_json(const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
+json vec_json(const Vec3d& p) { return json::array({p.x(), p.y(), p.z()}); }
 
 }  // namespace
 
@@ -38,7 +39,7 @@ json elements_json(const Scene& scene) {
   for (size_t k = 0; k < elements.size(); ++k) {
     const Element& e = elements[k];
     json corners = json::array();
-    for (const auto& c : e.corners) corners.push_back(vec_json(c));
+    for (const auto& c : e.corners) corners.push_back(vec_json(scene.site.to_site(c)));
     list.push_back({{"index", k}, {"panel", e.panel}, {"row", e.row}, {"col", e.col}, {"corners", corners}});
   }
   return list;
@@ -66,7 +67,10 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
   std::vector<double> corners;
   for (const auto& e : scene.domain.elements()) {
     panel.push_back(e.panel), row.push_back(e.row), col.push_back(e.col);
-    for (const auto& p : e.corners) corners.insert(corners.end(), {p.x(), p.y(), p.z()});
+    for (const auto& c : e.corners) {
+      const Vec3d p = scene.site.to_site(c);
+      corners.insert(corners.end(), {p.x(), p.y(), p.z()});
+    }
   }
   npz.add("element_panel", panel, {no});
   npz.add("element_row", row, {no});
@@ -76,7 +80,7 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
   json panels = json::array();
   for (const auto& p : scene.domain.panels())
     panels.push_back({{"label", p.label}, {"rows", p.rows}, {"cols", p.cols}, {"area_m2", p.area},
-                      {"origin", vec_json(p.origin)}, {"u_axis", vec_json(p.u_axis)}, {"v_axis", vec_json(p.v_axis)},
+                      {"origin", vec_json(scene.site.to_site(p.origin))}, {"u_axis", vec_json(p.u_axis)}, {"v_axis", vec_json(p.v_axis)},
                       {"normal", vec_json(p.normal)}, {"outward", vec_json(p.outward)},
                       {"parameterisation", p.curved() ? p.chart->source_name() : "plane"},
                       {"parameter_domain", {{"u0", p.parameter_lower.x()}, {"u1", p.parameter_upper.x()},
@@ -131,7 +135,7 @@ PanelRectangle parse_parameter_rectangle(const json& o, const std::function<void
 
 }  // namespace
 
-std::vector<OpeningInput> parse_openings(const json& j, const std::string& source) {
+std::vector<OpeningInput> parse_openings(const json& j, const std::string& source, const SiteFrame& frame) {
   auto fail = [&](const std::string& m) -> void { throw std::invalid_argument("openings '" + source + "': " + m); };
   if (!j.is_object() || !j.contains("openings") || !j.at("openings").is_array())
     fail("expected an object with an \"openings\" list");
@@ -155,22 +159,49 @@ std::vector<OpeningInput> parse_openings(const json& j, const std::string& sourc
         if (!coordinate_in_range(p[k].get<double>()))
           fail(where + ": corner " + std::to_string(c) + " " + p.dump() + " is out of range: coordinates " +
                coordinate_requirement());
-      r[c] = Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+      const Vec3d site(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+      if (!local_coordinates_in_range(frame.to_local_exact(site)))
+        fail(where + ": corner " + std::to_string(c) + " " + p.dump() + " " + local_range_problem(frame.origin));
+      r[c] = frame.to_local(site);
     }
     out.emplace_back(r);
   }
   return out;
 }
 
-std::vector<OpeningInput> read_openings(const std::string& path) {
+namespace {
+
+json openings_file_json(const std::string& path) {
   check_input_file(path, "openings file", limits::kMaxSceneFileBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument("cannot open openings file '" + path + "'");
   std::ostringstream text;
   text << in.rdbuf();
-  const json j = parse_json_text(text.str(), "openings", path);
+  return parse_json_text(text.str(), "openings", path);
+}
+
+}  // namespace
+
+SiteFrame openings_file_frame(const std::string& path) {
+  const json j = openings_file_json(path);
+  bool any = false;
+  Vec3d lo, hi;
+  if (j.is_object() && j.contains("openings") && j.at("openings").is_array())
+    for (const json& o : j.at("openings"))
+      if (o.is_object() && o.contains("corners") && o.at("corners").is_array())
+        for (const json& p : o.at("corners"))
+          if (p.is_array() && p.size() == 3 && p[0].is_number() && p[1].is_number() && p[2].is_number()) {
+            const Vec3d v(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+            if (!v.allFinite()) continue;
+            lo = any ? lo.cwiseMin(v) : v, hi = any ? hi.cwiseMax(v) : v, any = true;
+          }
+  return any ? SiteFrame::around(lo, hi) : SiteFrame{};
+}
+
+std::vector<OpeningInput> read_openings(const std::string& path, const SiteFrame& frame) {
+  const json j = openings_file_json(path);
   try {
-    return parse_openings(j, path);
+    return parse_openings(j, path, frame);
   } catch (const json::exception& e) {
     throw std::invalid_argument("openings '" + path + "': a value has the wrong type: " + json_error_text(e));
   }

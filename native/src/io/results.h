@@ -10,7 +10,8 @@
 
 namespace fenestra {
 
-// The elements of the opening domain: index, panel, row, column and four corners (meters).
+// The elements of the opening domain: index, panel, row, column and four corners (meters, in the
+// scene's input coordinates).
 nlohmann::json elements_json(const Scene& scene);
 
 // Writes OUT.npz (arrays) and OUT.json (summary); `out` may end in .npz or be the stem.
@@ -19,8 +20,12 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
                                                         const std::string& out);
 
 // Reads {"openings": [{"corners": [[x,y,z] x 4]}, ...]}; throws naming the file and opening.
-std::vector<OpeningInput> read_openings(const std::string& path);
-std::vector<OpeningInput> parse_openings(const nlohmann::json& j, const std::string& source);
+// Corners are in the scene's input coordinates, read in double and returned in `frame` (the
+// scene's local frame, Scene::site).
+std::vector<OpeningInput> read_openings(const std::string& path, const SiteFrame& frame);
+std::vector<OpeningInput> parse_openings(const nlohmann::json& j, const std::string& source, const SiteFrame& frame);
+// A frame around an openings file's corners (SiteFrame::around), to read the file without a scene.
+SiteFrame openings_file_frame(const std::string& path);
 
 // `horizontal_illuminance`: the sky's (and sun's) on an unobstructed horizontal surface, for
 // daylight factors (sensors get "daylight_factor" in percent when it is positive).

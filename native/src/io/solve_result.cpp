@@ -12,6 +12,9 @@ using nlohmann::json;
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+json point(const Vec3d& p) { return {p.x(), p.y(), p.z()}; }
+// A position, back in the scene's input coordinates.
+json position(const SiteFrame& site, const Vec3& p) { return point(site.to_site(p)); }
 
 json error_json(const GoalError& e) {
   return {{"relative_rms", e.relative_rms}, {"max_relative", e.max_relative}, {"worst_sensor", e.worst_sensor}};
@@ -24,13 +27,13 @@ json verified_error_json(const SolveResult& r) {
   return e;
 }
 
-json openings_json(const std::vector<OpeningRectangle>& openings) {
+json openings_json(const SiteFrame& site, const std::vector<OpeningRectangle>& openings) {
   json list = json::array();
   for (const OpeningRectangle& o : openings) {
     json corners = json::array();
-    for (const Vec3& c : o.corners) corners.push_back(point(c));
+    for (const Vec3& c : o.corners) corners.push_back(position(site, c));
     json entry = {{"corners", corners},
-                  {"centre", point(o.centre)},
+                  {"centre", position(site, o.centre)},
                   {"width", o.width},
                   {"height", o.height},
                   {"normal", point(o.outward)},
@@ -44,7 +47,7 @@ json openings_json(const std::vector<OpeningRectangle>& openings) {
                   {"elements", o.elements}};
     if (o.curved) {
       json points = json::array(), normals = json::array();
-      for (const Vec3& p : o.grid_points) points.push_back(point(p));
+      for (const Vec3& p : o.grid_points) points.push_back(position(site, p));
       for (const Vec3& n : o.grid_normals) normals.push_back(point(n));
       entry["surface_grid"] = {{"rows", o.grid_rows}, {"columns", o.grid_columns}, {"points", points}, {"normals", normals}};
     }
@@ -73,7 +76,7 @@ json tradeoffs_json(const Scene& scene, const SolveResult& r) {
                     {"glazing_area_m2", area},
                     {"error", error_json(t.error)},
                     {"predicted_by", t.cut ? "cutters" : "records"},
-                    {"openings", openings_json(t.openings)},
+                    {"openings", openings_json(scene.site, t.openings)},
                     {"predicted", std::vector<double>(t.predicted.data(), t.predicted.data() + t.predicted.size())},
                     {"predicted_stderr", std::vector<double>(t.predicted_stderr.data(),
                                                              t.predicted_stderr.data() + t.predicted_stderr.size())}});
@@ -145,7 +148,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
   json out = {
       {"units", "sensor values: luminance-weighted irradiance, lux for a sky in cd/m^2; corners in meters"},
       {"goal_units", scene.sensors.goal_units},
-      {"openings", openings_json(r.openings)},
+      {"openings", openings_json(scene.site, r.openings)},
       {"open_elements", open_list(r.open)},
       {"element_count", r.open.size()},
       {"element_size", scene.domain.element_size()},
@@ -173,7 +176,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
        }()},
       {"constraint_violations", r.constraint_violations},
       {"unconstrained", {{"open_elements", open_list(r.unconstrained_open)},
-                         {"openings", openings_json(r.unconstrained_openings)},
+                         {"openings", openings_json(scene.site, r.unconstrained_openings)},
                          {"error", error_json(r.unconstrained_error)}}},
       {"timings_s", timings},
       {"genetic", {{"generations", r.generations}, {"coarse_factors", r.coarse_factors}, {"history", history}}},

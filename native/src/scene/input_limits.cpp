@@ -19,6 +19,16 @@ std::string coordinate_requirement() {
   return s.str();
 }
 
+std::string local_range_problem(const Vec3d& origin) {
+  std::ostringstream limit, centre;
+  limit << limits::kMaxLocalCoordinate;
+  centre.precision(15);
+  centre << "[" << origin.x() << ", " << origin.y() << ", " << origin.z() << "]";
+  std::string s = "lies farther than " + limit.str() + " m from the model's local origin " + centre.str() +
+                  " (a scene must fit within +-" + limit.str() + " m of it)";
+  return s;
+}
+
 void check_input_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "math/vec.h"
+#include "scene/site_frame.h"
 
 namespace fenestra {
 
@@ -20,8 +21,15 @@ struct IntegerRange {
 
 namespace limits {
 
-// |x|, meters: sensor points, OBJ vertices, opening corners (also the largest normal component).
-inline constexpr double kMaxCoordinate = 1e6;
+// |x|, meters, in the coordinates the user gives (site coordinates, up to UTM northings): sensor
+// points, OBJ vertices, opening corners. Read in double.
+inline constexpr double kMaxCoordinate = 1e7;
+// |x - origin|, meters: how far any position may lie from the scene's local origin
+// (scene/site_frame.h), the centre of its model: a float keeps 0.06 m there.
+inline constexpr double kMaxLocalCoordinate = 1e6;
+// |x|: the components of a sensor normal (normalized in double), and sky.elevation in meters.
+inline constexpr double kMaxNormalComponent = 1e6;
+inline constexpr double kMaxElevation = 1e6;
 // cd/m^2: a uniform sky's radiance, an environment map's pixels times its scale, a CIE sky's
 // zenith luminance (the sun's disk is about 1.6e9 cd/m^2).
 inline constexpr double kMaxRadiance = 1e12;
@@ -56,8 +64,14 @@ inline bool coordinate_in_range(double v) { return v >= -limits::kMaxCoordinate 
 inline bool coordinates_in_range(const Vec3& p) {
   return coordinate_in_range(p.x()) && coordinate_in_range(p.y()) && coordinate_in_range(p.z());
 }
-// "must be finite and within +-1e+06 m"
+// "must be finite and within +-1e+07 m"
 std::string coordinate_requirement();
+// Whether a position relative to the local origin (meters) lies within +-limits::kMaxLocalCoordinate.
+inline bool local_coordinates_in_range(const Vec3d& p) {
+  return p.cwiseAbs().maxCoeff() <= limits::kMaxLocalCoordinate;
+}
+// "lies farther than 1e+06 m from the model's local origin [x, y, z] (a scene must fit within +-1e+06 m of it)"
+std::string local_range_problem(const Vec3d& origin);
 
 // Refuses (std::invalid_argument naming `what` and the path) a file that does not exist, is not
 // a regular file (a directory, a device such as /dev/zero, a FIFO), or is larger than max_bytes.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "math/vec.h"
+#include "scene/site_frame.h"
 
 namespace fenestra {
 
@@ -34,6 +35,9 @@ struct Mesh {
 // Reads a Wavefront OBJ (triangulated on load). `usemtl` names are resolved through
 // `material_index` (name -> index, -1 if unknown, which is an error naming the file);
 // `g`/`o` names become groups. Throws std::invalid_argument with the file name on bad input.
-Mesh load_obj(const std::string& path, const std::vector<std::string>& material_names);
+// Vertices are read in double. With `frame`, the loader chooses a local frame around them
+// (SiteFrame::around: the origin, or the model's centre in whole meters), stores the positions
+// relative to it and returns it there; without, positions are stored as given.
+Mesh load_obj(const std::string& path, const std::vector<std::string>& material_names, SiteFrame* frame = nullptr);
 
 }  // namespace fenestra

@@ -12,6 +12,7 @@
 #include "cost/load_checks.h"
 #include "scene/input_limits.h"
 #include "scene/mesh.h"
+#include "scene/site_frame.h"
 
 namespace fenestra {
 
@@ -47,7 +48,9 @@ std::string read_text(const std::string& path) {
 // tinyobjloader resolves `usemtl` only against materials read through `mtllib`; the scene
 // file, not an MTL file, defines Fenestra's materials, so we hand it one MTL naming them all.
 // tinyobjloader reads "nan" or "1e999" as some number; we refuse them with the line number.
-void check_vertex_line(const std::string& path, size_t line_number, std::istringstream& words) {
+void check_vertex_line(const std::string& path, size_t line_number, std::istringstream& words,
+                       std::vector<Vec3d>* vertices) {
+  Vec3d p;
   for (int k = 0; k < 3; ++k) {
     std::string token;
     words >> token;
@@ -60,7 +63,9 @@ void check_vertex_line(const std::string& path, size_t line_number, std::istring
       throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(line_number) +
                                   ": vertex coordinate " + token + " is out of range (coordinates " +
                                   coordinate_requirement() + ")");
+    p[k] = v;
   }
+  vertices->push_back(p);
 }
 
 // tinyobjloader reads indices with wrapping integer arithmetic (an index past 2^64 silently
@@ -104,7 +109,10 @@ void check_face_line(const std::string& path, size_t line_number, std::istringst
   }
 }
 
-std::string prepare_obj_text(const std::string& path, const std::string& text, std::set<std::string>* used) {
+// Also returns the vertices in double: tinyobjloader reads them in float, which keeps only 0.06 m of a
+// coordinate in the millions (site coordinates).
+std::string prepare_obj_text(const std::string& path, const std::string& text, std::set<std::string>* used,
+                             std::vector<Vec3d>* vertices) {
   std::istringstream in(text);
   std::ostringstream out;
   out << "mtllib fenestra_materials.mtl\n";
@@ -116,7 +124,7 @@ std::string prepare_obj_text(const std::string& path, const std::string& text, s
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
-    if (keyword == "v") check_vertex_line(path, line_number, words), ++kinds.so_far[0];
+    if (keyword == "v") check_vertex_line(path, line_number, words, vertices), ++kinds.so_far[0];
     if (keyword == "vt") ++kinds.so_far[1];
     if (keyword == "vn") ++kinds.so_far[2];
     if (keyword == "f") check_face_line(path, line_number, words, &kinds);
@@ -144,11 +152,28 @@ std::string prepare_obj_text(const std::string& path, const std::string& text, s
   return out.str();
 }
 
+// The local frame of the vertices (a site frame around them, or the origin), each vertex checked to
+// lie within range of it.
+SiteFrame frame_of(const std::string& path, const std::vector<Vec3d>& vertices, bool centre) {
+  if (vertices.empty() || !centre) return {};
+  Vec3d lo = vertices.front(), hi = vertices.front();
+  for (const Vec3d& v : vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const SiteFrame frame = SiteFrame::around(lo, hi);
+  for (size_t i = 0; i < vertices.size(); ++i)
+    if (!local_coordinates_in_range(frame.to_local_exact(vertices[i])))
+      throw std::invalid_argument("geometry '" + path + "': vertex " + std::to_string(i + 1) + " " +
+                                  local_range_problem(frame.origin));
+  return frame;
+}
+
 }  // namespace
 
-Mesh load_obj(const std::string& path, const std::vector<std::string>& material_names) {
+Mesh load_obj(const std::string& path, const std::vector<std::string>& material_names, SiteFrame* frame) {
   std::set<std::string> used;
-  const std::string obj_text = prepare_obj_text(path, read_text(path), &used);
+  std::vector<Vec3d> vertices;
+  const std::string obj_text = prepare_obj_text(path, read_text(path), &used, &vertices);
+  const SiteFrame local = frame_of(path, vertices, frame != nullptr);
+  if (frame) *frame = local;
   for (const auto& name : used) {
     if (std::find(material_names.begin(), material_names.end(), name) == material_names.end())
       throw std::invalid_argument("geometry '" + path + "' uses material '" + name +
@@ -169,17 +194,12 @@ Mesh load_obj(const std::string& path, const std::vector<std::string>& material_
   const auto& mtls = reader.GetMaterials();
 
   Mesh mesh;
-  const size_t vertex_count = attrib.vertices.size() / 3;
+  const size_t vertex_count = vertices.size();
+  if (attrib.vertices.size() != 3 * vertex_count)
+    throw std::invalid_argument("geometry '" + path + "': cannot read its vertices (" + std::to_string(vertex_count) +
+                                " 'v' lines, " + std::to_string(attrib.vertices.size() / 3) + " vertices read)");
   mesh.positions.reserve(vertex_count);
-  for (size_t i = 0; i < vertex_count; ++i) {
-    const Vec3 p(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
-    if (!is_finite(p)) {
-      std::ostringstream s;
-      s << "geometry '" << path << "': vertex " << i + 1 << " has a non-finite coordinate";
-      throw std::invalid_argument(s.str());
-    }
-    mesh.positions.push_back(p);
-  }
+  for (const Vec3d& v : vertices) mesh.positions.push_back(local.to_local(v));
   const size_t texcoord_count = attrib.texcoords.size() / 2;
   mesh.texcoords.reserve(texcoord_count);
   for (size_t i = 0; i < texcoord_count; ++i) {

@@ -8,6 +8,7 @@
 #include "scene/material.h"
 #include "scene/mesh.h"
 #include "scene/opening_domain.h"
+#include "scene/site_frame.h"
 #include "scene/sky.h"
 #include "scene/solver_settings.h"
 #include "scene/sun_lights.h"
@@ -49,6 +50,9 @@ bool parse_sampler(const std::string& name, RenderSettings::Sampler* out);
 
 struct Scene {
   std::string source;  // scene file, for messages
+  // Every position below (mesh, domain, sensors, openings) is in this local frame, meters; files and
+  // the Python API speak the input's (site) coordinates, converted on the way in and out.
+  SiteFrame site;
   Mesh mesh;
   std::vector<Material> materials;
   OpeningDomain domain;

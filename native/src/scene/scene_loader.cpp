@@ -91,21 +91,24 @@ Rgb colour(const ScenePath& sp, const json& j, const std::string& key) {
   return c;
 }
 
-// A position in meters: finite and within +-limits::kMaxCoordinate.
-Vec3 point(const ScenePath& sp, const json& j, const std::string& key) {
+// A position in meters, finite and within +-limits::kMaxCoordinate, read in double and returned in
+// the scene's local frame (within +-limits::kMaxLocalCoordinate of its origin).
+Vec3 point(const ScenePath& sp, const json& j, const std::string& key, const SiteFrame& frame) {
   if (!j.is_array() || j.size() != 3) sp.fail(key, "expected [x, y, z], got " + j.dump());
   const double x = number(sp, j[0], key), y = number(sp, j[1], key), z = number(sp, j[2], key);
   if (!coordinate_in_range(x) || !coordinate_in_range(y) || !coordinate_in_range(z))
     sp.fail(key, "coordinates " + coordinate_requirement() + ", got " + j.dump());
-  return Vec3(x, y, z);
+  const Vec3d site(x, y, z);
+  if (!local_coordinates_in_range(frame.to_local_exact(site))) sp.fail(key, j.dump() + " " + local_range_problem(frame.origin));
+  return frame.to_local(site);
 }
 
-// A direction, normalized in double precision: components within +-limits::kMaxCoordinate, not zero.
+// A direction, normalized in double precision: components within +-limits::kMaxNormalComponent, not zero.
 Vec3 direction(const ScenePath& sp, const json& j, const std::string& key) {
   if (!j.is_array() || j.size() != 3) sp.fail(key, "expected [x, y, z], got " + j.dump());
   const double x = number(sp, j[0], key), y = number(sp, j[1], key), z = number(sp, j[2], key);
-  if (!coordinate_in_range(x) || !coordinate_in_range(y) || !coordinate_in_range(z))
-    sp.fail(key, "components of a normal must lie within +-" + show(limits::kMaxCoordinate) + ", got " + j.dump());
+  if (Vec3d(x, y, z).cwiseAbs().maxCoeff() > limits::kMaxNormalComponent)
+    sp.fail(key, "components of a normal must lie within +-" + show(limits::kMaxNormalComponent) + ", got " + j.dump());
   const double n = std::sqrt(x * x + y * y + z * z);
   if (!(n > 1e-6)) sp.fail(key, "a normal must not be zero (length at least 1e-6), got " + j.dump());
   return Vec3(x / n, y / n, z / n);
@@ -224,7 +227,7 @@ Place parse_place(const ScenePath& sp, const json& j, Place place) {
     place.longitude_deg = number_in(sp, j, "longitude", "sky", 0.0, -180.0, 180.0, " degrees");
   }
   place.elevation_m =
-      number_in(sp, j, "elevation", "sky", place.elevation_m, -limits::kMaxCoordinate, limits::kMaxCoordinate, " m");
+      number_in(sp, j, "elevation", "sky", place.elevation_m, -limits::kMaxElevation, limits::kMaxElevation, " m");
   return place;
 }
 
@@ -455,13 +458,13 @@ void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* 
                           "' (uniform, envmap, preetham, cie_clear, cie_overcast, perez or climate)");
 }
 
-Sensors parse_sensors(const ScenePath& sp, const json& j) {
+Sensors parse_sensors(const ScenePath& sp, const json& j, const SiteFrame& frame) {
   if (!j.is_object()) sp.fail("sensors", "expected an object");
   Sensors s;
   if (!j.contains("points") || !j.at("points").is_array() || j.at("points").empty())
     sp.fail("sensors.points", "the scene has no sensors");
   for (size_t i = 0; i < j.at("points").size(); ++i)
-    s.points.push_back(point(sp, j.at("points")[i], "sensors.points[" + std::to_string(i) + "]"));
+    s.points.push_back(point(sp, j.at("points")[i], "sensors.points[" + std::to_string(i) + "]", frame));
   json normals = j.value("normals", json::array({json::array({0, 0, 1})}));
   if (normals.is_array() && normals.size() == 3 && normals[0].is_number()) normals = json::array({normals});
   if (!normals.is_array() || (normals.size() != 1 && normals.size() != s.points.size()))
@@ -876,7 +879,9 @@ std::string Scene::to_string() const {
   std::ostringstream s;
   s << "Scene('" << source << "', " << mesh.triangle_count() << " triangles, " << materials.size() << " materials, "
     << domain.panels().size() << " panels, " << domain.element_count() << " elements of " << domain.element_size()
-    << " m, " << sensors.size() << " sensors, " << (sky ? sky->to_string() : "no sky") << ")";
+    << " m, " << sensors.size() << " sensors, " << (sky ? sky->to_string() : "no sky");
+  if (site.shifted()) s << ", local origin at " << site.to_string();
+  s << ")";
   return s.str();
 }
 
@@ -900,7 +905,7 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
 
     if (!j.contains("geometry") || !j.at("geometry").is_string()) sp.fail("geometry", "expected the OBJ file name");
     try {
-      scene.mesh = load_obj((base / j.at("geometry").get<std::string>()).string(), scene.material_names());
+      scene.mesh = load_obj((base / j.at("geometry").get<std::string>()).string(), scene.material_names(), &scene.site);
       scene.input_files.push_back((base / j.at("geometry").get<std::string>()).string());
     } catch (const std::invalid_argument& e) {
       sp.fail("geometry", e.what());
@@ -926,7 +931,7 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     }
 
     if (!j.contains("sensors")) sp.fail("sensors", "the scene has no sensors");
-    scene.sensors = parse_sensors(sp, j.at("sensors"));
+    scene.sensors = parse_sensors(sp, j.at("sensors"), scene.site);
     scene.domain.orient(scene.sensors.points);
     try {
       scene.domain.build_walls(&scene.mesh);

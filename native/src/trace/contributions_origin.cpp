@@ -18,6 +18,7 @@ class Hash {
   void f(float v) { bytes(&v, sizeof v); }
   void i(int64_t v) { bytes(&v, sizeof v); }
   void vec(const Vec3& v) { f(v.x()), f(v.y()), f(v.z()); }
+  void d(double v) { bytes(&v, sizeof v); }
   void text(const std::string& s) { i(static_cast<int64_t>(s.size())), bytes(s.data(), s.size()); }
   uint64_t value() const { return h_ == 0 ? 1 : h_; }
 
@@ -33,6 +34,8 @@ ContributionsOrigin contributions_origin(const Scene& scene) {
   o.sensors = scene.sensors.size();
   o.elements = scene.domain.element_count();
   Hash layout;
+  // The same local layout elsewhere on the site is another scene (its outputs lie elsewhere).
+  if (scene.site.shifted()) layout.d(scene.site.origin.x()), layout.d(scene.site.origin.y()), layout.d(scene.site.origin.z());
   for (size_t i = 0; i < scene.sensors.size(); ++i) layout.vec(scene.sensors.points[i]), layout.vec(scene.sensors.normals[i]);
   for (const Element& e : scene.domain.elements()) {
     layout.i(e.panel), layout.i(e.row), layout.i(e.col);
