@@ -38,7 +38,7 @@ def test_openings_cut_through_the_walls(tmp_path):
     room with a 0.3 m solid south wall; rays beside them hit the wall."""
     r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_holes.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
-    assert "Ran 7 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+    assert "Ran 8 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 
 
 @pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")

@@ -131,3 +131,25 @@ def test_coordinates_beyond_the_utm_range_are_refused(tmp_path):
     with pytest.raises(ValueError, match=r"1e\+06 m from the model's local origin"):
         fenestra.evaluate(fenestra.load_scene(write_room(tmp_path / "near", UTM, paths=16)),
                           np.array([WINDOW]))  # room coordinates given for a model on the site
+
+
+def test_a_cluster_gives_one_process_numbers_at_utm_coordinates(tmp_path):
+    pytest.importorskip("distributed")
+    from fenestra import distributed
+
+    path = write_room(tmp_path / "site", UTM, paths=256)
+    window = np.array([WINDOW]) + UTM
+    scene = fenestra.load_scene(str(path))
+    one = fenestra.contributions(scene)
+    cut = fenestra.evaluate(scene, window)
+    with distributed.Cluster(workers=2, threads_per_worker=1, timeout=30) as cluster, \
+            distributed.contributions(str(path), cluster, shards=3) as many:
+        for name in ("E", "A", "T", "closed", "all_open", "all_open_stderr"):
+            assert np.array_equal(np.asarray(getattr(many, name)), np.asarray(getattr(one, name))), name
+        assert np.array_equal(many.evaluate_openings(window)[0], one.evaluate_openings(scene, window)[0])
+        sharded = distributed.evaluate(str(path), window, cluster, shards=3)
+        assert np.array_equal(sharded[0], cut[0]) and np.array_equal(sharded[1], cut[1])
+        many.save(str(tmp_path / "many"))
+    corners = np.load(tmp_path / "many.npz")["element_corners"]
+    np.testing.assert_allclose(corners, scene.element_corners, atol=0)
+    assert corners[..., 1].min() > 9e6  # in the input's coordinates

@@ -241,6 +241,37 @@ class Holes(unittest.TestCase):
         self.assertEqual(len([l for l in obj_text.splitlines() if l.startswith("f ")]), 12 + 10)  # uncut
 
 
+    def solve_at(self, offset, folder):
+        """A Preview solve of the closed room with every object moved by offset (meters); the result."""
+        walls, _ = setup(closed_room)
+        for obj in bpy.data.objects:
+            obj.location = offset
+        bpy.context.view_layer.update()
+        s = bpy.context.scene.fenestra.solve
+        s.element_size, s.quality, s.paths, s.generations, s.population = 0.5, 'CUSTOM', 256, 20, 16
+        s.constraints.max_openings = 1
+        s.study_directory = os.path.join(OUT, folder)
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        return json.load(open(os.path.join(OUT, folder, "result.json")))
+
+    def test_a_model_far_from_the_origin_is_solved_and_cut_where_it_lies(self):
+        """A model placed in site coordinates (tens of kilometres out, where Blender's floats still
+        keep millimetres): moved by whole meters, the solve is the same bit for bit, its openings
+        lie on the moved wall, and rays pass through the holes they cut."""
+        a, b = (61000.0, 32000.0, 150.0), (73000.0, 45000.0, 280.0)
+        first = self.solve_at(a, "site_a")
+        second = self.solve_at(b, "site_b")
+        self.assertGreaterEqual(len(second["openings"]), 1)
+        self.assertEqual([s["predicted"] for s in first["sensors"]], [s["predicted"] for s in second["sensors"]])
+        for o1, o2 in zip(first["openings"], second["openings"]):
+            np.testing.assert_allclose(np.array(o2["corners"]) - b, np.array(o1["corners"]) - a, atol=1e-6)
+            corners = np.array(o2["corners"]) - b
+            self.assertLess(np.abs(corners[:, 1]).max(), 1e-6)  # on the south wall's plane
+            self.assertTrue(np.all((corners[:, 0] > -1e-6) & (corners[:, 0] < W + 1e-6)))
+            n = np.array(o2["normal"])
+            self.assertIsNone(cast(np.array(o2["centre"]) - n, n), "no hole at the opening's centre")
+
+
 if __name__ == "__main__":
     os.makedirs(OUT, exist_ok=True)
     reset()
