@@ -79,8 +79,8 @@ POLAR = {"type": "preetham", "latitude": 78.0, "longitude": 15.0, "utc_offset": 
 # (case, edit of the scene dict, fragments the message must contain besides the file name)
 SCENE_CASES = [
     # Coordinates: 1e39 is infinite as a float, 2e18 aborted inside Embree.
-    ("sensor 1e39", set_in("sensors", "points", [ROOM_SENSOR, [1e39, 1, 1]]), ["sensors.points[1]", "1e+06 m"]),
-    ("sensor 2e18", set_in("sensors", "points", [[2e18, 1, 1]]), ["sensors.points[0]", "1e+06 m"]),
+    ("sensor 1e39", set_in("sensors", "points", [ROOM_SENSOR, [1e39, 1, 1]]), ["sensors.points[1]", "1e+07 m"]),
+    ("sensor 2e18", set_in("sensors", "points", [[2e18, 1, 1]]), ["sensors.points[0]", "1e+07 m"]),
     ("normal 1e30", set_in("sensors", "normals", [1e30, 0, 0]), ["sensors.normals[0]"]),
     ("normal 1e-30", set_in("sensors", "normals", [1e-30, 0, 0]), ["sensors.normals[0]", "zero"]),
     # Integers: read as int, 4294967297 was 1; the others wrapped.
@@ -148,7 +148,7 @@ def test_obj_indices_and_coordinates_are_checked_with_their_line(small_room):
         scene = edited(small_room, set_in("geometry", "bad.obj"))
         expect_cli_error(scene, ["bad.obj", *fragments])
         expect_python_error(scene, ["bad.obj", *fragments])
-    (small_room.parent / "bad.obj").write_text(room.replace("v 0 0 0", "v 0 0 2e+06", 1))
+    (small_room.parent / "bad.obj").write_text(room.replace("v 0 0 0", "v 0 0 2e+07", 1))
     scene = edited(small_room, set_in("geometry", "bad.obj"))
     expect_cli_error(scene, ["bad.obj", "line 3", "out of range"])
     expect_python_error(scene, ["bad.obj", "line 3", "out of range"])
@@ -168,7 +168,7 @@ def test_envmap_scale_and_rotation_must_stay_finite(small_room):
 
 def test_openings_out_of_range_are_refused(small_room):
     openings = write_openings(small_room.parent, [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1e39, 0, 2]])
-    expect_cli_error(small_room, ["openings.json", "opening 0", "corner 3", "1e+06 m"], command="evaluate",
+    expect_cli_error(small_room, ["openings.json", "opening 0", "corner 3", "1e+07 m"], command="evaluate",
                      extra=("--openings", openings))
     scene = fenestra.load_scene(small_room)
     with pytest.raises(ValueError, match="opening 0, corner 3"):
