@@ -236,3 +236,69 @@ def test_mutated_inputs_end_cleanly(tmp_path):
         results = list(pool.map(lambda s: check_case(s, tmp_path), range(CASES)))
     failures = [r for r in results if r]
     assert not failures, "%d of %d mutated runs failed:\n%s" % (len(failures), CASES, "\n".join(failures[:25]))
+
+
+# ---- site coordinates: the same room moved anywhere --------------------------------------------
+
+def offset_value(rng):
+    """One axis's offset, meters: small, fractional, UTM-sized, at the limit, just beyond it."""
+    kind = rng.randrange(6)
+    sign = rng.choice([-1.0, 1.0])
+    if kind == 0:
+        return sign * rng.uniform(0.0, 200.0)
+    if kind == 1:
+        return sign * rng.uniform(1e5, 1e7 - 10.0)
+    if kind == 2:
+        return sign * round(rng.uniform(1e5, 9.9e6)) + rng.choice([0.25, 0.5, 0.37])
+    if kind == 3:
+        return sign * (1e7 - 3.0)
+    if kind == 4:
+        return sign * (1e7 + rng.choice([1.0, 1e3, 1e6]))
+    return sign * 10.0 ** rng.uniform(-300, 2)
+
+
+def moved_room(folder, offset):
+    folder.mkdir(parents=True, exist_ok=True)
+    lines = []
+    for line in box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey").splitlines():
+        if line.startswith("v "):
+            line = "v " + " ".join(repr(float(x) + o) for x, o in zip(line.split()[1:], offset))
+        lines.append(line)
+    (folder / "room.obj").write_text("\n".join(lines) + "\n")
+    points = (np.array([[1.5, 1.0, 0.8], [0.5, 2.5, 0.8], [2.5, 0.5, 1.2]]) + offset).tolist()
+    scene = {"fenestra": 1, "geometry": "room.obj",
+             "materials": {"grey": {"reflectance": 0.6}, "facade": {"reflectance": 0.5}},
+             "opening_domain": {"materials": ["facade"], "element_size": 0.5},
+             "sensors": {"points": points, "normals": [0, 0, 1]},
+             "sky": {"type": "uniform", "radiance": 318.3}, "render": {"paths_per_sensor": 512, "seed": 5}}
+    (folder / "scene.json").write_text(json.dumps(scene))
+    return folder / "scene.json"
+
+
+@pytest.mark.skipif(not os.path.exists(CLI), reason="CLI not built")
+def test_a_room_moved_anywhere_gives_the_origins_numbers_or_is_refused(tmp_path):
+    from scipy import stats
+
+    bound = stats.t.isf(stats.norm.sf(4.0), 15)
+    home = moved_room(tmp_path / "home", (0.0, 0.0, 0.0))
+    subprocess.run([CLI, "contributions", str(home), "-o", str(tmp_path / "home.npz"), "--quiet"], check=True)
+    reference = np.load(tmp_path / "home.npz")
+    rng = random.Random(35)
+    for case in range(24):
+        offset = np.array([offset_value(rng) for _ in range(3)])
+        scene = moved_room(tmp_path / str(case), offset)
+        out = tmp_path / ("%d.npz" % case)
+        r = subprocess.run([CLI, "contributions", str(scene), "-o", str(out), "--quiet"], capture_output=True,
+                           text=True, timeout=120)
+        largest = np.abs(np.array([offset + p for p in ([0, 0, 0], [3, 3, 2.5])])).max()
+        if largest > 1e7:
+            assert r.returncode == 1 and "1e+07 m" in r.stderr, (offset, r.returncode, r.stderr)
+            assert not out.exists()
+            continue
+        assert r.returncode == 0, (offset, r.stderr)
+        moved = np.load(out)
+        assert np.all(moved["closed"] == 0.0), (offset, moved["closed"])
+        assert np.all(np.abs(moved["all_open"] - reference["all_open"])
+                      <= bound * np.hypot(moved["all_open_stderr"], reference["all_open_stderr"])), offset
+        np.testing.assert_allclose(moved["element_corners"] - offset, reference["element_corners"],
+                                   atol=1e-5)
