@@ -976,7 +976,9 @@ void PathTracer::check_sensors(SensorRange range) const {
     }
     if (inside) {
       std::ostringstream m;
-      m << "sensor " << i << " at (" << p.transpose() << ") is inside geometry: every direction from it meets the back "
+      const Vec3d at = scene_.site.to_site(p);  // where the user put it
+      m.precision(10);
+      m << "sensor " << i << " at (" << at.x() << ", " << at.y() << ", " << at.z() << ") is inside geometry: every direction from it meets the back "
         << "of a face";
       throw std::invalid_argument(m.str());
     }
