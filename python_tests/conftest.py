@@ -32,21 +32,34 @@ def box_obj(lo, hi, material_of):
     return "\n".join(lines) + "\n"
 
 
-@pytest.fixture
-def small_room(tmp_path):
-    """A grey 3 x 3 x 2.5 m room whose south wall (y = 0) is the opening domain; writes scene.json."""
-    (tmp_path / "room.obj").write_text(
-        box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey"))
+def write_small_room(folder, offset=(0.0, 0.0, 0.0), paths=4096, seed=3):
+    """A grey 3 x 3 x 2.5 m room whose south wall (y = offset's y) is the opening domain, moved by
+    `offset` (meters, written with every digit: site coordinates); writes room.obj and scene.json
+    in folder and returns the scene file's path."""
+    offset = np.asarray(offset, float)
+    obj = box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey")
+    if offset.any():
+        obj = "\n".join("v " + " ".join(repr(float(x) + o) for x, o in zip(line.split()[1:], offset))
+                        if line.startswith("v ") else line for line in obj.splitlines()) + "\n"
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "room.obj").write_text(obj)
+    points = np.array([[1.5, 1.0, 0.8], [0.5, 2.5, 0.8], [2.5, 0.5, 1.2]]) + offset
     scene = {
         "fenestra": 1,
         "geometry": "room.obj",
         "materials": {"grey": {"type": "diffuse", "reflectance": 0.6},
                       "facade": {"type": "diffuse", "reflectance": 0.5}},
         "opening_domain": {"materials": ["facade"], "element_size": 0.5},
-        "sensors": {"points": [[1.5, 1.0, 0.8], [0.5, 2.5, 0.8], [2.5, 0.5, 1.2]], "normals": [0, 0, 1]},
+        "sensors": {"points": points.tolist(), "normals": [0, 0, 1]},
         "sky": {"type": "uniform", "radiance": 1000 / np.pi},
-        "render": {"paths_per_sensor": 4096, "max_bounces": 8, "seed": 3},
+        "render": {"paths_per_sensor": paths, "max_bounces": 8, "seed": seed},
     }
-    path = tmp_path / "scene.json"
+    path = folder / "scene.json"
     path.write_text(json.dumps(scene))
     return path
+
+
+@pytest.fixture
+def small_room(tmp_path):
+    """A grey 3 x 3 x 2.5 m room whose south wall (y = 0) is the opening domain; writes scene.json."""
+    return write_small_room(tmp_path)

@@ -14,7 +14,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import CLI, EXAMPLES, box_obj
+from conftest import CLI, EXAMPLES, box_obj, write_small_room
 
 CASES = int(os.environ.get("FENESTRA_FUZZ_CASES", "200"))
 TIME_BUDGET_S = 60.0            # per run; valid runs take well under a second
@@ -257,36 +257,18 @@ def offset_value(rng):
     return sign * 10.0 ** rng.uniform(-300, 2)
 
 
-def moved_room(folder, offset):
-    folder.mkdir(parents=True, exist_ok=True)
-    lines = []
-    for line in box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey").splitlines():
-        if line.startswith("v "):
-            line = "v " + " ".join(repr(float(x) + o) for x, o in zip(line.split()[1:], offset))
-        lines.append(line)
-    (folder / "room.obj").write_text("\n".join(lines) + "\n")
-    points = (np.array([[1.5, 1.0, 0.8], [0.5, 2.5, 0.8], [2.5, 0.5, 1.2]]) + offset).tolist()
-    scene = {"fenestra": 1, "geometry": "room.obj",
-             "materials": {"grey": {"reflectance": 0.6}, "facade": {"reflectance": 0.5}},
-             "opening_domain": {"materials": ["facade"], "element_size": 0.5},
-             "sensors": {"points": points, "normals": [0, 0, 1]},
-             "sky": {"type": "uniform", "radiance": 318.3}, "render": {"paths_per_sensor": 512, "seed": 5}}
-    (folder / "scene.json").write_text(json.dumps(scene))
-    return folder / "scene.json"
-
-
 @pytest.mark.skipif(not os.path.exists(CLI), reason="CLI not built")
 def test_a_room_moved_anywhere_gives_the_origins_numbers_or_is_refused(tmp_path):
     from scipy import stats
 
     bound = stats.t.isf(stats.norm.sf(4.0), 15)
-    home = moved_room(tmp_path / "home", (0.0, 0.0, 0.0))
+    home = write_small_room(tmp_path / "home", paths=512, seed=5)
     subprocess.run([CLI, "contributions", str(home), "-o", str(tmp_path / "home.npz"), "--quiet"], check=True)
     reference = np.load(tmp_path / "home.npz")
     rng = random.Random(35)
     for case in range(24):
         offset = np.array([offset_value(rng) for _ in range(3)])
-        scene = moved_room(tmp_path / str(case), offset)
+        scene = write_small_room(tmp_path / str(case), offset, paths=512, seed=5)
         out = tmp_path / ("%d.npz" % case)
         r = subprocess.run([CLI, "contributions", str(scene), "-o", str(out), "--quiet"], capture_output=True,
                            text=True, timeout=120)

@@ -8,7 +8,7 @@ import pytest
 from scipy import stats
 
 import fenestra
-from conftest import CLI, box_obj
+from conftest import CLI, write_small_room
 
 # A t bound for a normal 4 sigma at 15 degrees of freedom per standard error (16 replicate groups).
 BOUND = stats.t.isf(stats.norm.sf(4.0), 15)
@@ -16,32 +16,15 @@ WINDOW = [[0.5, 0, 0.5], [2.5, 0, 0.5], [2.5, 0, 2.0], [0.5, 0, 2.0]]  # on the 
 
 
 def write_room(folder, offset, paths=2048, goals=None):
-    """The conftest's 3 x 3 x 2.5 m grey room moved by `offset` (meters), its scene file and OBJ
-    written with every digit; returns the scene file's path."""
-    offset = np.asarray(offset, float)
-    folder.mkdir(parents=True, exist_ok=True)
-    lines = []
-    for line in box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey").splitlines():
-        if line.startswith("v "):
-            line = "v " + " ".join(repr(float(x) + o) for x, o in zip(line.split()[1:], offset))
-        lines.append(line)
-    (folder / "room.obj").write_text("\n".join(lines) + "\n")
-    points = np.array([[1.5, 1.0, 0.8], [0.5, 2.5, 0.8], [2.5, 0.5, 1.2]]) + offset
-    scene = {
-        "fenestra": 1,
-        "geometry": "room.obj",
-        "materials": {"grey": {"type": "diffuse", "reflectance": 0.6},
-                      "facade": {"type": "diffuse", "reflectance": 0.5}},
-        "opening_domain": {"materials": ["facade"], "element_size": 0.5},
-        "sensors": {"points": points.tolist(), "normals": [0, 0, 1]},
-        "sky": {"type": "uniform", "radiance": 1000 / np.pi},
-        "render": {"paths_per_sensor": paths, "max_bounces": 8, "seed": 3},
-    }
+    """The conftest's small room moved by `offset` (meters), with goals in lux if given, and
+    window.json: WINDOW in the same coordinates; returns the scene file's path."""
+    path = write_small_room(folder, offset, paths=paths)
     if goals is not None:
+        scene = json.loads(path.read_text())
         scene["goals"] = {"per_sensor": goals, "units": "lux"}
-    (folder / "scene.json").write_text(json.dumps(scene))
+        path.write_text(json.dumps(scene))
     (folder / "window.json").write_text(json.dumps({"openings": [{"corners": (np.array(WINDOW) + offset).tolist()}]}))
-    return folder / "scene.json"
+    return path
 
 
 UTM = (499_993.0, 9_999_990.0, 187.0)  # an easting, a northing near the limit, an elevation
