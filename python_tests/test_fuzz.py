@@ -284,3 +284,55 @@ def test_a_room_moved_anywhere_gives_the_origins_numbers_or_is_refused(tmp_path)
                       <= bound * np.hypot(moved["all_open_stderr"], reference["all_open_stderr"])), offset
         np.testing.assert_allclose(moved["element_corners"] - offset, reference["element_corners"],
                                    atol=1e-5)
+
+def make_setup_case(seed, workdir):
+    """A small room with seeded misleading setups (sensors outdoors or facing down, a face left out,
+    goals 0 or none): (command line, output, strict)."""
+    rng = random.Random(1000 + seed)
+    faces = ["floor", "ceiling", "south", "north", "west", "east"]
+    missing = rng.choice([None, None, "ceiling", "north", "floor"])
+    text, skip = [], False
+    for line in box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey").splitlines():
+        if line.startswith("o "):
+            skip = line == "o %s" % missing
+        if not (skip and not line.startswith("v ")):
+            text.append(line)
+    assert missing is None or missing in faces
+    (workdir / "room.obj").write_text("\n".join(text) + "\n")
+    points = [[rng.uniform(-2, 5), rng.uniform(-2, 5), rng.uniform(0.1, 2.4)] for _ in range(rng.randint(1, 6))]
+    normals = [rng.choice([[0, 0, 1], [0, 0, -1], [1, 0, 0], [0, 0.6, -0.8]]) for _ in points]
+    scene = {"fenestra": 1, "geometry": "room.obj",
+             "materials": {"grey": {"reflectance": 0.5}, "facade": {"reflectance": 0.5}},
+             "opening_domain": {"materials": ["facade"], "element_size": 0.75},
+             "sensors": {"points": points, "normals": normals},
+             "sky": {"type": "uniform", "radiance": 100}, "render": {"paths_per_sensor": 16},
+             "solver": {"generations": 2, "population": 4, "improve_iterations": 10, "verify": False}}
+    goal = rng.choice([None, 0.0, 0.4])
+    if goal is not None:
+        scene["goals"] = {"uniform": [{"level": goal}]}
+    (workdir / "scene.json").write_text(json.dumps(scene))
+    command = rng.choice(["contributions", "solve"])
+    strict = rng.random() < 0.4
+    out = workdir / ("out.npz" if command == "contributions" else "out.json")
+    return [CLI, command, str(workdir / "scene.json"), "-o", str(out), "--quiet"] + (["--strict"] if strict else []), \
+        workdir / "out.json", strict
+
+
+@pytest.mark.skipif(not os.path.exists(CLI), reason="CLI not built")
+def test_misleading_setups_warn_or_refuse_cleanly(tmp_path):
+    """Seeded setups: a run warns on stderr and records the same warnings in its output, or (with
+    --strict, or a solve without goals) refuses with status 1 and writes nothing."""
+    for seed in range(12):
+        workdir = tmp_path / ("setup%02d" % seed)
+        workdir.mkdir()
+        args, summary, strict = make_setup_case(seed, workdir)
+        r = subprocess.run(args, capture_output=True, text=True, timeout=TIME_BUDGET_S)
+        warned = [line[len("fenestra: warning: "):] for line in r.stderr.splitlines()
+                  if line.startswith("fenestra: warning: ")]
+        if r.returncode == 0:
+            recorded = json.loads(summary.read_text())["warnings"]
+            assert set(recorded) <= set(warned), (seed, recorded, warned)
+        else:
+            assert r.returncode == 1, (seed, r.returncode, r.stderr)
+            assert r.stderr.startswith("fenestra: error: ") and "what():" not in r.stderr, (seed, r.stderr)
+            assert sorted(os.listdir(workdir)) == ["room.obj", "scene.json"], (seed, os.listdir(workdir))

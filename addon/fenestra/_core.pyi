@@ -70,6 +70,7 @@ class Contributions:
     seconds: float
     events: int
     memory_bytes: int
+    warnings: list[str]  # the setup checks' (fenestra.contributions sets them; save() writes them)
     def evaluate(self, open: npt.ArrayLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
     def evaluate_openings(self, scene: Scene, openings: npt.ArrayLike, progress: Optional[Progress] = None,
                           sensors: Optional[Tuple[int, int]] = None  # a shard's block of the scene's sensors
@@ -138,6 +139,8 @@ def sky_map(scene: Scene) -> npt.NDArray[np.float32]: ...  # (height, width, 3),
 def sky_warnings(scene: Scene) -> list[str]: ...  # a weather file's warnings, a place far from its station
 def sky_summary(scene: Scene) -> str: ...  # JSON: horizontal illuminances (lux), sun list
 def write_sky(scene: Scene, path: str) -> None: ...
+def check_setup(scene: Scene, command: str = "solve") -> list[dict]: ...  # "solve", "contributions", "evaluate"
+def require_goals(scene: Scene) -> None: ...  # ValueError when no sensor has a goal and there is no climate goal
 def rays_traced() -> int: ...  # rays traced by parallel computations since import
 
 # Daylight models (docs/sky.md). Directions: +Z up, +Y north, +X east; azimuth clockwise from north.

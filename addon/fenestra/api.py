@@ -151,13 +151,40 @@ def _warn_if_dark(scene):
         warnings.warn(message, RuntimeWarning, stacklevel=3)
 
 
-def contributions(scene, progress=None, callback=None, max_memory=None):
+def check_setup(scene, command="solve"):
+    """The setup checks for `command` ("solve", "contributions" or "evaluate"; docs/outputs.md,
+    "Setup warnings"): setups that run but do not mean what they seem (goals all 0, sensors outdoors
+    or facing down, a room open to the sky, domain panels seen from the side the solver does not
+    take for the room). A list of dicts, one per problem found: "kind", "message", "sensors" (their
+    indices), "checked" and "total" (sensors), and the kind's figures."""
+    return _core.check_setup(scene, command)
+
+
+def _setup_warnings(scene, command, strict):
+    """The setup checks before any work: raises ValueError listing them when strict, else issues
+    each as a RuntimeWarning; returns their messages."""
+    messages = [w["message"] for w in _core.check_setup(scene, command)]
+    if strict and messages:
+        raise ValueError("scene '%s': the setup checks found %d problem%s (strict); %s"
+                         % (scene.source, len(messages), "" if len(messages) == 1 else "s", "; ".join(messages)))
+    for message in messages:
+        warnings.warn(message, RuntimeWarning, stacklevel=3)
+    return messages
+
+
+def contributions(scene, progress=None, callback=None, max_memory=None, strict=False, checks=True):
     """One pass of paths per sensor: returns a Contributions with E, E_stderr, A, T, closed,
     all_open (and their standard errors) and evaluate(open_mask) for exact values of any set.
-    Warns (RuntimeWarning) when the scene's daylight sky gives no light (the sun never up)."""
+    Warns (RuntimeWarning) when the scene's daylight sky gives no light (the sun never up), and for
+    each setup check's warning (check_setup(scene, "contributions"), also in the result's
+    `warnings` and the summary its save() writes); strict=True makes those a ValueError before any
+    work; checks=False skips them (the add-on runs them itself)."""
     _warn_if_dark(scene)
     _cost.check_cost(scene, "contributions", max_memory)  # before any work (docs/cost.md)
-    return _run(lambda p: _core.compute_contributions(scene, p), progress, callback)
+    setup = _setup_warnings(scene, "contributions", strict) if checks else []
+    result = _run(lambda p: _core.compute_contributions(scene, p), progress, callback)
+    result.warnings = setup
+    return result
 
 
 def evaluate(scene, openings, progress=None, callback=None, max_memory=None):
@@ -196,7 +223,7 @@ def annual(scene, openings, contributions=None, output=None, progress=None, call
         if contributions is not None:
             raise ValueError("annual(cutters=True) traces its own paths with the openings cut: "
                              "leave contributions out")
-        _cost.check_cost(scene, "evaluate", max_memory)  # no records are kept
+        _cost.check_cost(scene, "annual_cutters", max_memory, paths=int(paths) or None)  # no records are kept
         out = "" if output is None else os.fspath(output)
         return _run(lambda p: _core.annual_with_cutters(scene, rects, int(paths), p, out), progress, callback)
     if paths:
@@ -240,7 +267,7 @@ def write_sky(scene, path, max_memory=None):
     _core.write_sky(scene, os.fspath(path))
 
 
-def solve(scene, contributions=None, progress=None, callback=None, max_memory=None):
+def solve(scene, contributions=None, progress=None, callback=None, max_memory=None, strict=False, checks=True):
     """Solves for the openings that meet the scene's goals (docs/solver.md). Computes the
     contributions first unless given. Returns the result as a dict, the same as `fenestra solve`
     writes: "openings" (rectangles, corners in meters, accepted by evaluate()), "open_elements",
@@ -250,11 +277,16 @@ def solve(scene, contributions=None, progress=None, callback=None, max_memory=No
     the path records and with real cutters, "unmet", glazing area in m^2, per-sensor DA; see
     docs/solver.md, "Climate goals") and "warnings" (each also issued as a RuntimeWarning: too
     few paths for the elements, a prediction the real-cutter check contradicts, a climate goal
-    not met). Refused (ValueError) before any work
-    when the cost model (docs/cost.md) says it will not fit in max_memory (bytes or "8G"; default
-    what the system has available) or a stage would exceed its time limit."""
+    not met; first the setup checks', check_setup(scene, "solve"), issued before any work).
+    Refused (ValueError) before any work when no sensor has a goal and there is no climate goal,
+    with strict=True when a setup check warns (checks=False skips them: the add-on runs them
+    itself), and when the cost model (docs/cost.md) says it will not fit in max_memory (bytes or
+    "8G"; default what the system has available) or a stage would exceed its time limit."""
+    _core.require_goals(scene)
     _cost.check_cost(scene, "solve" if contributions is None else "solver", max_memory)
+    setup = _setup_warnings(scene, "solve", strict) if checks else []
     result = json.loads(_run(lambda p: _core.solve(scene, contributions, p), progress, callback))
     for message in result.get("warnings", []):  # also in result["warnings"]
         warnings.warn(message, RuntimeWarning, stacklevel=2)
+    result["warnings"] = setup + result.get("warnings", [])
     return result

@@ -27,22 +27,24 @@ def available_memory():
     return _core.available_memory()
 
 
-def estimate_cost(scene, command="solve", max_memory=None):
+def estimate_cost(scene, command="solve", max_memory=None, paths=None):
     """The cost model's estimate for running `command` ("contributions", "evaluate", "solve",
-    "solver" (solve with contributions given) or "sky") on the scene: a dict with
+    "solver" (solve with contributions given), "sky" or "annual_cutters" (annual(cutters=True)))
+    on the scene, with `paths` per sensor instead of the scene's when given: a dict with
     "memory" (bytes per component: "E", "E_stderr", "A", "T", "path_records", ...),
     "memory_phase" ("" for what the result keeps, else the stage it exists in),
     "kept_bytes", "total_bytes" (the peak that must fit), "available_bytes" and "available_source",
     "seconds" (per stage, on the 2-core reference machine) and "seconds_limit",
     the sizes ("sensors", "elements", "triangles", "paths_per_sensor", "bytes_per_path"),
     "fits" and "problem" (the refusal message, or None)."""
-    return _core.estimate_cost(scene, command, memory_bytes(max_memory))
+    return _core.estimate_cost(scene, command, memory_bytes(max_memory), -1 if paths is None else paths)
 
 
-def check_cost(scene, command="solve", max_memory=None):
+def check_cost(scene, command="solve", max_memory=None, paths=None):
     """Raises ValueError, naming the figure and the setting to change, when `command` on the
-    scene would not fit in memory (or max_memory) or a stage would exceed its time limit."""
-    _core.check_cost(scene, command, memory_bytes(max_memory))
+    scene would not fit in memory (or max_memory) or a stage would exceed its time limit (with
+    `paths` per sensor instead of the scene's when given)."""
+    _core.check_cost(scene, command, memory_bytes(max_memory), -1 if paths is None else paths)
 
 
 def loading(max_memory=None, command="any"):

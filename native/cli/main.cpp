@@ -19,8 +19,10 @@
 #include "io/results.h"
 #include "io/sky_output.h"
 #include "io/solve_result.h"
+#include "solve/goals.h"
 #include "solve/prediction_check.h"
 #include "solve/solver.h"
+#include "study/setup_checks.h"
 #include "scene/input_limits.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
@@ -64,6 +66,9 @@ options:
                 has available, within ulimit -v); runs that would need more are refused
   --json PATH   (sky) also write the summary as JSON
   --cutters     (annual) trace the paths with the openings really cut
+  --strict      the setup checks' warnings are errors (status 1, nothing written): goals all 0,
+                sensors outdoors or facing down, a room open to the sky, domain panels seen
+                from the side the solver does not take for the room (docs/outputs.md)
   --quiet       no progress on stderr
   -h, --help    this text
 
@@ -84,6 +89,7 @@ struct Args {
   std::map<std::string, long long> overrides;
   bool quiet = false;
   bool cutters = false;
+  bool strict = false;
   uint64_t max_memory = 0;  // bytes; 0: detected (cost/memory_limit.h)
 };
 
@@ -142,6 +148,8 @@ Args parse_args(int argc, char** argv) {
       a.quiet = true;
     } else if (arg == "--cutters") {
       a.cutters = true;
+    } else if (arg == "--strict") {
+      a.strict = true;
     } else if (!arg.empty() && arg[0] == '-') {
       usage_error("unknown option '" + arg + "'");
     } else {
@@ -160,6 +168,7 @@ Args parse_args(int argc, char** argv) {
     usage_error(a.command + " needs --openings OPENINGS.json");
   if (a.command != "sky" && !a.summary.empty()) usage_error("--json belongs to the sky command");
   if (a.command != "annual" && a.cutters) usage_error("--cutters belongs to the annual command");
+  if (a.command == "sky" && a.strict) usage_error("--strict belongs to solve, contributions, evaluate and annual");
   return a;
 }
 
@@ -247,14 +256,16 @@ void print_climate_summary(const fenestra::Scene& scene, const fenestra::SolveRe
   std::printf("glazing %.2f m2 of %.2f m2 of opening domain\n", c.glazing_area_m2, c.domain_area_m2);
 }
 
-int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& progress) {
+int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& progress,
+               const std::vector<std::string>& setup) {
   using namespace fenestra;
   if (!scene.climate)
     throw std::invalid_argument("scene '" + a.scene + "': annual needs a sky of type \"climate\" (a weather file; " +
                                 "docs/scene-format.md)");
   if (a.cutters) {
-    const AnnualStudy study = with_progress(
+    AnnualStudy study = with_progress(
         progress, a.quiet, [&] { return annual_study_with_cutters(scene, read_openings(a.openings, scene.site), &progress); });
+    study.warnings = setup;
     const auto paths = write_annual(scene, study, a.output);
     const AnnualMetrics& m = study.metrics;
     std::printf("annual (openings cut): %zu sensors x %d hours (%d occupied), %d paths per sensor; %.2f s\n"
@@ -266,7 +277,8 @@ int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& 
   const OpenRegion region = region_of_openings(scene, read_openings(a.openings, scene.site));  // before the long pass
   const Contributions c =
       with_progress(progress, a.quiet, [&] { return compute_contributions(scene, &progress, /*transport=*/false); });
-  const AnnualStudy study = with_progress(progress, a.quiet, [&] { return annual_study(scene, c, region, &progress); });
+  AnnualStudy study = with_progress(progress, a.quiet, [&] { return annual_study(scene, c, region, &progress); });
+  study.warnings = setup;
   const auto paths = write_annual(scene, study, a.output);
   const AnnualMetrics& m = study.metrics;
   std::printf("annual: %zu sensors x %d hours (%d occupied), %d paths per sensor; contributions %.2f s, year %.3f s\n"
@@ -281,7 +293,7 @@ int run(const Args& a) {
   g_stage = "loading scene '" + a.scene + "'";
   // An annual study with the openings cut keeps no records: its paths cost what evaluate's do.
   const CostCommand cost =
-      cost_command(a.command == "annual" ? (a.cutters ? "evaluate" : "contributions") : a.command);
+      cost_command(a.command == "annual" ? (a.cutters ? "annual_cutters" : "contributions") : a.command);
   set_cost_context({a.max_memory, cost});  // the loader's cost checks see both
   // Outputs are checked before any work (docs/outputs.md): writable, regular files, not inputs.
   const std::vector<std::string> outputs = output_paths(a);
@@ -305,7 +317,18 @@ int run(const Args& a) {
     if (!dark.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", dark.c_str());
   }
 
+  if (a.command == "solve") require_goals(scene);  // before any work
   if (a.command != "solve") check_cost(scene, cost);  // docs/cost.md; solve below
+  // The setup checks (docs/outputs.md): warnings on stderr and in the output's "warnings", or
+  // with --strict an error before any work.
+  std::vector<std::string> setup;
+  if (a.command != "sky") {
+    const SetupStage stage = a.command == "solve"           ? SetupStage::Solve
+                             : a.command == "contributions" ? SetupStage::Contributions
+                                                            : SetupStage::Evaluate;
+    setup = setup_messages(scene, check_setup(scene, stage), a.strict);
+    for (const std::string& w : setup) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
+  }
   if (a.command == "sky") {
     const nlohmann::json summary = sky_summary(scene);
     const SkyImage image = sky_image(scene);
@@ -332,7 +355,9 @@ int run(const Args& a) {
     check_cost(scene, CostCommand::Solve);  // memory and time, before any work (docs/cost.md)
     if (!a.quiet)
       std::fprintf(stderr, "estimated memory: %s\n", memory_summary(scene, CostCommand::Solve, memory_limit()).c_str());
-    const SolveResult r = with_progress(progress, a.quiet, [&] { return solve_openings(scene, &progress); });
+    SolveResult r = with_progress(progress, a.quiet, [&] { return solve_openings(scene, &progress); });
+    const std::vector<std::string> own = r.warnings;  // the solver's (the setup's are printed above)
+    r.warnings.insert(r.warnings.begin(), setup.begin(), setup.end());
     write_json(a.output, solve_result_json(scene, r));
     double total = 0.0;
     for (const auto& t : r.timings) total = t.stage == "total" ? t.seconds : total;
@@ -349,14 +374,15 @@ int run(const Args& a) {
       std::printf("checked with real cutters: relative RMS error %.2f%%, worst sensor %.1f%%\n",
                   100 * r.verified_error.relative_rms, 100 * r.verified_error.max_relative);
     print_climate_summary(scene, r);
-    for (const std::string& w : r.warnings) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
+    for (const std::string& w : own) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
     return 0;
   }
   if (a.command == "contributions") {
     if (!a.quiet)
       std::fprintf(stderr, "estimated memory: %s\n",
                    memory_summary(scene, CostCommand::Contributions, memory_limit()).c_str());
-    const Contributions c = with_progress(progress, a.quiet, [&] { return compute_contributions(scene, &progress); });
+    Contributions c = with_progress(progress, a.quiet, [&] { return compute_contributions(scene, &progress); });
+    c.warnings = setup;
     const auto paths = write_contributions(scene, c, a.output);
     std::printf("contributions: %zu sensors x %zu elements, %d paths per sensor, %.2f s\n", c.sensor_count(),
                 c.element_count(), c.paths_per_sensor, c.seconds);
@@ -365,13 +391,13 @@ int run(const Args& a) {
     if (!sparse.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", sparse.c_str());
     return 0;
   }
-  if (a.command == "annual") return run_annual(a, scene, progress);
+  if (a.command == "annual") return run_annual(a, scene, progress, setup);
   const auto openings = read_openings(a.openings, scene.site);
   const auto start = std::chrono::steady_clock::now();
   const SensorValues v = with_progress(progress, a.quiet, [&] { return evaluate_openings(scene, openings, &progress); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_json(a.output, evaluation_json(v, openings.size(), scene.render.paths_per_sensor,
-                                       unobstructed_horizontal_illuminance(scene)));
+                                       unobstructed_horizontal_illuminance(scene), setup));
   std::printf("evaluate: %zu sensors, %zu openings, %.2f s\nwrote %s\n", scene.sensors.size(), openings.size(), seconds,
               a.output.c_str());
   return 0;

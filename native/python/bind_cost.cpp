@@ -49,9 +49,9 @@ void bind_cost(py::module_& m) {
       "What this process may still allocate: {'bytes', 'source'} (MemAvailable, ulimit -v / -d, cgroup).");
   m.def(
       "estimate_cost",
-      [](const Scene& scene, const std::string& command, uint64_t max_memory) {
+      [](const Scene& scene, const std::string& command, uint64_t max_memory, double paths) {
         const CostCommand c = cost_command(command);
-        const CostEstimate e = estimate_cost(scene, c);
+        const CostEstimate e = estimate_cost(scene, c, -1.0, paths);
         const MemoryLimit limit = limit_of(max_memory);
         py::dict memory, phases, seconds, limits;
         for (const MemoryItem& item : e.memory) {
@@ -78,7 +78,7 @@ void bind_cost(py::module_& m) {
         d["seconds"] = seconds;
         d["seconds_limit"] = limits;
         try {
-          check_cost(scene, c, limit);
+          check_cost(scene, c, limit, paths);
           d["fits"] = true;
           d["problem"] = py::none();
         } catch (const CostError& error) {
@@ -87,14 +87,15 @@ void bind_cost(py::module_& m) {
         }
         return d;
       },
-      py::arg("scene"), py::arg("command") = "solve", py::arg("max_memory") = 0,
-      "The cost model's estimate for running `command` on the scene (docs/cost.md).");
+      py::arg("scene"), py::arg("command") = "solve", py::arg("max_memory") = 0, py::arg("paths") = -1.0,
+      "The cost model's estimate for running `command` on the scene (docs/cost.md); `paths` per sensor "
+      "replaces the scene's when >= 0.");
   m.def(
       "check_cost",
-      [](const Scene& scene, const std::string& command, uint64_t max_memory) {
-        check_cost(scene, cost_command(command), limit_of(max_memory));
+      [](const Scene& scene, const std::string& command, uint64_t max_memory, double paths) {
+        check_cost(scene, cost_command(command), limit_of(max_memory), paths);
       },
-      py::arg("scene"), py::arg("command") = "solve", py::arg("max_memory") = 0,
+      py::arg("scene"), py::arg("command") = "solve", py::arg("max_memory") = 0, py::arg("paths") = -1.0,
       "Raises ValueError when `command` on the scene would not fit in memory or exceed a stage's time limit.");
   py::class_<PyCostScope>(m, "CostScope", "with CostScope(max_memory, command): scene loads on this thread use them.")
       .def(py::init<uint64_t, const std::string&>(), py::arg("max_memory") = 0, py::arg("command") = "any")

@@ -36,6 +36,7 @@ void bind_solver(py::module_& m);    // bind_solver.cpp
 void bind_cost(py::module_& m);      // bind_cost.cpp
 void bind_shards(py::module_& m);    // bind_shards.cpp
 void bind_record_queries(py::module_& m);  // bind_record_queries.cpp
+void bind_setup_checks(py::module_& m);    // bind_setup_checks.cpp
 py::tuple annual_parts_tuple(const fenestra::AnnualCoefficients& k, const fenestra::SensorValues& mean);  // bind_record_queries.cpp
 
 namespace {
@@ -197,6 +198,7 @@ PYBIND11_MODULE(_core, m) {
   bind_daylight(m);
   bind_solver(m);
   bind_cost(m);
+  bind_setup_checks(m);
   bind_shards(m);
   bind_record_queries(m);
   static py::exception<Cancelled> cancelled(m, "Cancelled");
@@ -370,6 +372,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("seconds", &Contributions::seconds)
       .def_readonly("events", &Contributions::events)
       .def_property_readonly("memory_bytes", &Contributions::memory_bytes)
+      .def_readwrite("warnings", &Contributions::warnings,
+                     "The setup checks' warnings (fenestra.contributions sets them; save() writes them).")
       .def(
           "evaluate",
           [](const Contributions& c, py::array_t<uint8_t, py::array::c_style | py::array::forcecast> open,

@@ -27,10 +27,10 @@ class FENESTRA_OT_check_setup(bpy.types.Operator):
     def execute(self, context):
         try:
             study = export.build(context)
+            warnings = setup_checks.run(context, study)
         except ValueError as exc:
             self.report({'ERROR'}, user_messages.for_user(exc))
             return {'CANCELLED'}
-        warnings = setup_checks.run(context, study)
         show(self, context, warnings)
         if not warnings:
             count = sum(n for _, n in study.sensor_objects)

@@ -52,10 +52,11 @@ class SolveJob:
             # Before anything large is allocated: what would not fit is refused here (docs/cost.md).
             fenestra.check_cost(scene, "solve")
             self.phase = "computing the contributions"
-            contributions = fenestra.contributions(scene, progress=self.progress)
+            # checks=False: the operator ran the setup checks and showed them in the user's words.
+            contributions = fenestra.contributions(scene, progress=self.progress, checks=False)
             self.computed_contributions = contributions
         self.phase = "solving"
-        result = fenestra.solve(scene, contributions=contributions, progress=self.progress)
+        result = fenestra.solve(scene, contributions=contributions, progress=self.progress, checks=False)
         if self.computed_contributions is not None:  # as `fenestra solve` reports a solve from scratch
             timings = result.setdefault("timings_s", {})
             timings["contributions"] = contributions.seconds

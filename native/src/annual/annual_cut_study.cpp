@@ -16,8 +16,6 @@ namespace {
 
 // Stream salt: independent of the contribution pass and of evaluate_openings.
 constexpr uint64_t kAnnualCutStream = 0x616e6e75616c6375ULL;
-// Per-task coefficient rows held at once (sensors are traced in batches within it).
-constexpr size_t kBatchBytes = size_t(64) << 20;
 
 }  // namespace
 
@@ -48,7 +46,7 @@ AnnualCutCoefficients annual_cut_coefficients(const Scene& scene, const std::vec
   const size_t sources = static_cast<size_t>(annual->sources.count());
   const int paths = paths_per_sensor > 0 ? paths_per_sensor : scene.render.paths_per_sensor;
   const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
-  const size_t batch = std::max<size_t>(1, kBatchBytes / (sizeof(double) * sources * tasks_per_sensor));
+  const size_t batch = std::max<size_t>(1, kAnnualCutBatchBytes / (sizeof(double) * sources * tasks_per_sensor));
   AnnualCutCoefficients out;
   out.paths_per_sensor = paths;
   out.annual = annual;

@@ -179,6 +179,7 @@ json annual_json(const AnnualStudy& s) {
       {"paths", s.cutters ? "traced with the openings cut" : "contribution records"},
       {"paths_per_sensor", s.paths_per_sensor},
       {"seconds", s.seconds},
+      {"warnings", s.warnings},
   };
 }
 

@@ -31,6 +31,7 @@ struct AnnualStudy {
   std::shared_ptr<const AnnualRecords> annual;
   int paths_per_sensor = 0;
   bool cutters = false;
+  std::vector<std::string> warnings;  // the setup checks' (study/setup_checks.h), set by the front end
 };
 
 // The metric settings of a climate scene: the standards' defaults, its occupied hours.

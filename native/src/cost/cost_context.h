@@ -14,6 +14,7 @@ enum class CostCommand {
   Solve,          // contributions, then the solver
   Solver,         // the solver alone, with contributions already computed
   Sky,            // the sky map only
+  AnnualCutters,  // an annual study traced with the openings cut (annual --cutters): no records
 };
 
 struct CostContext {

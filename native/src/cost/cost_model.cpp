@@ -1,5 +1,7 @@
 #include "cost/cost_model.h"
 
+#include "annual/annual_cut_study.h"
+#include "annual/annual_sources.h"
 #include "annual/hourly_flip_model.h"
 
 #include <algorithm>
@@ -15,6 +17,8 @@
 #include "daylight/sky_matrix.h"
 #include "scene/scene.h"
 #include "solve/genetic.h"
+#include "trace/parallel.h"
+#include "trace/replicates.h"
 
 namespace fenestra {
 namespace {
@@ -219,6 +223,42 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                      "fewer solver.improve_iterations (" + format_count(s.improve_iterations) + ")"});
 }
 
+// An annual study traced with the openings cut (annual/annual_cut_study.cpp): per sensor and task
+// of kPathsPerTask paths its replicate sums, while tracing a batch of sensors their tasks' rows of
+// coefficients (one double per source; batches of 64 MB unless one sensor's rows alone are larger),
+// and kept the coefficients (sensors x sources doubles, sensors x sun hours floats) and the sources'
+// day sky; the year's illuminance while it is written.
+void add_annual_cutters(const Scene& scene, CostEstimate* e) {
+  const double S = static_cast<double>(e->sensors), P = static_cast<double>(e->paths_per_sensor);
+  const SkyMatrix& sky = *scene.climate->sky;
+  const SunClusters suns = cluster_suns(sky);
+  double sun_hours = 0.0, day_hours = 0.0;
+  for (size_t h = 0; h < sky.hours.size(); ++h) {
+    const bool sunny = sky.sun_normal_illuminance[h] > 0.0f && suns.cluster_of_hour[h] >= 0;
+    sun_hours += sunny;
+    day_hours += sunny || sky.radiance.col(static_cast<Eigen::Index>(h)).maxCoeff() > 0.0f;
+  }
+  const double sources = static_cast<double>(sky.patches.count()) + static_cast<double>(suns.size());
+  const double tasks = std::ceil(P / kPathsPerTask);
+  const double row_bytes = sizeof(double) * sources * tasks;  // one sensor's rows
+  const double batch = std::min(S, std::max(1.0, std::floor(kAnnualCutBatchBytes / row_bytes)));
+  const std::string fewer_paths = "fewer paths (render.paths_per_sensor, --paths)";
+  e->memory.push_back({"task_sums", "the paths' replicate sums (sensors x tasks of " + std::to_string(kPathsPerTask) +
+                       " paths)", sizeof(ReplicateSums) * S * tasks, "tracing", fewer_paths});
+  e->memory.push_back({"task_rows", "the coefficients of a batch of sensors' tasks (tasks x sources)",
+                       row_bytes * batch, "tracing", fewer_paths});
+  e->memory.push_back({"annual_coefficients", "the sensors' daylight coefficients (sensors x sources and sun hours)",
+                       S * (8.0 * sources + 4.0 * sun_hours), "", "fewer sensors"});
+  e->memory.push_back({"annual_sources", "the sources' day sky (sky patches x day hours)",
+                       4.0 * static_cast<double>(sky.patches.count()) * day_hours, "", "fewer sky patches (sky.patches)"});
+  e->memory.push_back({"annual_illuminance", "the hourly illuminance of an annual study (sensors x hours, twice, and "
+                       "its file)", 4.0 * 4.0 * S * static_cast<double>(sky.hours.size()), "writing", "fewer sensors"});
+  e->time.push_back({"tracing", "tracing the year's paths with the openings cut",
+                     S * P * expected_vertices(scene) * kTraceSecondsPerVertex *
+                         (scene.domain.has_thick_walls() ? kThickWallTraceFactor : 1.0),
+                     0.0, fewer_paths});
+}
+
 // Writing OUT.npz: every array once more in the archive's buffers, plus one row-major copy.
 void add_output(CostEstimate* e) {
   const double S = static_cast<double>(e->sensors), N = static_cast<double>(e->elements);
@@ -231,6 +271,9 @@ std::string describe_sizes(const Scene& scene, const CostEstimate& e, const Memo
   if (item.key == "T" || item.key == "T_symmetrised" || item.key == "analysis")
     s << "opening_domain.element_size " << element_size_text(scene) << " m gives " << format_count(e.elements)
       << " elements";
+  else if (item.key.rfind("task_", 0) == 0)
+    s << format_count(static_cast<double>(e.paths_per_sensor)) << " paths per sensor for " << format_count(e.sensors)
+      << " sensors, in tasks of " << kPathsPerTask << " paths";
   else if (item.key.rfind("path_records", 0) == 0)
     s << format_count(static_cast<double>(e.paths_per_sensor)) << " paths per sensor for " << format_count(e.sensors)
       << " sensors (about " << std::lround(e.bytes_per_path) << " bytes of records per path)";
@@ -284,10 +327,12 @@ const MemoryItem* CostEstimate::largest_to_name() const {
 CostCommand cost_command(const std::string& name) {
   static const std::map<std::string, CostCommand> kNames = {
       {"any", CostCommand::Any},     {"contributions", CostCommand::Contributions}, {"evaluate", CostCommand::Evaluate},
-      {"solve", CostCommand::Solve}, {"solver", CostCommand::Solver},               {"sky", CostCommand::Sky}};
+      {"solve", CostCommand::Solve}, {"solver", CostCommand::Solver},               {"sky", CostCommand::Sky},
+      {"annual_cutters", CostCommand::AnnualCutters}};
   const auto it = kNames.find(name);
   if (it == kNames.end())
-    throw std::invalid_argument("unknown command '" + name + "' (contributions, evaluate, solve, solver, sky or any)");
+    throw std::invalid_argument("unknown command '" + name.substr(0, 80) +
+                                "' (contributions, evaluate, solve, solver, sky, annual_cutters or any)");
   return it->second;
 }
 
@@ -298,6 +343,7 @@ std::string cost_command_name(CostCommand command) {
     case CostCommand::Solve: return "solve";
     case CostCommand::Solver: return "solver";
     case CostCommand::Sky: return "sky";
+    case CostCommand::AnnualCutters: return "annual_cutters";
     default: return "any";
   }
 }
@@ -332,6 +378,10 @@ CostEstimate estimate_cost(const Scene& scene, CostCommand command, double eleme
                         static_cast<double>(e.sensors) * static_cast<double>(e.paths_per_sensor) *
                             expected_vertices(scene) * kTraceSecondsPerVertex,
                         0.0, "fewer paths (render.paths_per_sensor, --paths)"});
+      break;
+    case CostCommand::AnnualCutters:
+      e.memory.push_back({"ray_scene", "the ray-tracing scene (BVH)", ray_scene, "tracing", "fewer triangles"});
+      if (scene.climate && scene.climate->sky) add_annual_cutters(scene, &e);
       break;
     case CostCommand::Sky: {
       const double pixels = scene.daylight ? static_cast<double>(scene.daylight->width) * scene.daylight->height
@@ -369,6 +419,7 @@ std::string memory_summary(const Scene& scene, CostCommand command, const Memory
 // ": at most N per sensor fit" (N the most paths whose peak stays under the limit), or "" when
 // not even one path fits.
 std::string paths_that_fit(const Scene& scene, CostCommand command, const CostEstimate& e, const MemoryLimit& limit) {
+  if (e.paths_per_sensor <= 1) return "";
   auto fits = [&](double n) { return estimate_cost(scene, command, -1.0, n).peak_bytes() <= static_cast<double>(limit.bytes); };
   double lo = 1.0, hi = static_cast<double>(e.paths_per_sensor);
   if (!fits(lo)) return "";
@@ -379,8 +430,8 @@ std::string paths_that_fit(const Scene& scene, CostCommand command, const CostEs
   return ": at most " + format_count(lo) + " per sensor fit";
 }
 
-void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limit) {
-  const CostEstimate e = estimate_cost(scene, command);
+void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limit, double paths) {
+  const CostEstimate e = estimate_cost(scene, command, -1.0, paths);
   const std::string prefix = "scene '" + scene.source + "': ";
   const double peak = e.peak_bytes();
   if (peak > static_cast<double>(limit.bytes)) {
@@ -390,7 +441,7 @@ void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limi
     if (generic != std::string::npos) {  // name the element size that fits
       const double fits = element_size_that_fits(
           scene.domain.element_size(), static_cast<double>(e.elements),
-          [&](double n) { return estimate_cost(scene, command, n).peak_bytes(); }, static_cast<double>(limit.bytes),
+          [&](double n) { return estimate_cost(scene, command, n, paths).peak_bytes(); }, static_cast<double>(limit.bytes),
           kMaxElements);
       setting.replace(generic, std::string(kLargerElementSize).size(), larger_element_size(fits));
     }

@@ -57,7 +57,8 @@ struct CostEstimate {
 // the actual on the example scenes; docs/cost.md).
 double path_record_bytes(const Scene& scene);
 
-CostCommand cost_command(const std::string& name);  // "contributions", "evaluate", "solve", "solver", "sky", "any"
+// "contributions", "evaluate", "solve", "solver", "sky", "annual_cutters", "any"
+CostCommand cost_command(const std::string& name);
 std::string cost_command_name(CostCommand command);
 
 // `elements` >= 0 stands in for the domain's element count (what another element size would give).
@@ -69,7 +70,8 @@ CostEstimate estimate_cost(const Scene& scene, CostCommand command, double eleme
 std::string memory_summary(const Scene& scene, CostCommand command, const MemoryLimit& limit);
 
 // Throws CostError when the estimate's peak exceeds `limit` or a stage exceeds its time limit.
-void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limit);
+// `paths` (per sensor) replaces the scene's when >= 0 (annual(cutters=True, paths=N) in Python).
+void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limit, double paths = -1.0);
 // With the limit in force (memory_limit()).
 void check_cost(const Scene& scene, CostCommand command);
 

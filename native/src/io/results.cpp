@@ -100,6 +100,7 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
       {"all_open", to_vector(c.all_open.value)},
       {"panels", panels},
       {"elements", elements_json(scene)},
+      {"warnings", c.warnings},
   };
   // The pair appears together or not at all (io/atomic_file.h); the summary, which names the
   // arrays, is renamed into place last.
@@ -208,7 +209,7 @@ std::vector<OpeningInput> read_openings(const std::string& path, const SiteFrame
 }
 
 json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor,
-                     double horizontal_illuminance) {
+                     double horizontal_illuminance, const std::vector<std::string>& warnings) {
   json sensors = json::array();
   for (Eigen::Index i = 0; i < values.value.size(); ++i) {
     json s = {{"value", values.value[i]}, {"stderr", values.standard_error[i]}};
@@ -220,7 +221,8 @@ json evaluation_json(const SensorValues& values, size_t openings, int paths_per_
           {"openings", openings},
           {"paths_per_sensor", paths_per_sensor},
           {"horizontal_illuminance", horizontal_illuminance},
-          {"sensors", sensors}};
+          {"sensors", sensors},
+          {"warnings", warnings}};
 }
 
 void write_json(const std::string& path, const json& j) {

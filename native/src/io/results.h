@@ -28,9 +28,10 @@ std::vector<OpeningInput> parse_openings(const nlohmann::json& j, const std::str
 SiteFrame openings_file_frame(const std::string& path);
 
 // `horizontal_illuminance`: the sky's (and sun's) on an unobstructed horizontal surface, for
-// daylight factors (sensors get "daylight_factor" in percent when it is positive).
+// daylight factors (sensors get "daylight_factor" in percent when it is positive). `warnings`: the
+// setup checks' (study/setup_checks.h).
 nlohmann::json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor,
-                               double horizontal_illuminance = 0.0);
+                               double horizontal_illuminance = 0.0, const std::vector<std::string>& warnings = {});
 void write_json(const std::string& path, const nlohmann::json& j);
 
 }  // namespace fenestra

@@ -9,21 +9,42 @@
 namespace fenestra {
 
 int SolverGoals::count() const { return static_cast<int>((weight.array() > 0.0).count()); }
+int GivenGoals::count() const { return static_cast<int>((weight.array() > 0.0).count()); }
+
+GivenGoals given_goals(const Scene& scene) {
+  const Sensors& s = scene.sensors;
+  const Eigen::Index n = static_cast<Eigen::Index>(s.size());
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  GivenGoals g;
+  g.level = Eigen::VectorXd::Constant(n, nan);
+  g.lower = Eigen::VectorXd::Constant(n, -inf);
+  g.upper = Eigen::VectorXd::Constant(n, inf);
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(s.goals.size()); ++i) g.level[i] = s.goals[i];
+  for (const UniformGoal& u : s.uniform_goals)
+    for (int i : u.sensors) {
+      g.level[i] = u.level;
+      g.lower[i] = u.min;
+      g.upper[i] = u.max;
+    }
+  g.weight.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    g.weight[i] = std::isnan(g.level[i]) ? 0.0 : (s.weights.empty() ? 1.0 : s.weights[i]);
+  return g;
+}
+
+void require_goals(const Scene& scene) {
+  if (scene.sensors.climate_goals.empty() && given_goals(scene).count() == 0)
+    throw std::invalid_argument("scene '" + scene.source +
+                                "': no sensor has a goal (give sensors.goals, goals.uniform or goals.climate, and "
+                                "weights above 0): a solve would have nothing to aim for");
+}
 
 SolverGoals resolve_goals(const Scene& scene, const Contributions& c) {
   const Sensors& s = scene.sensors;
   const Eigen::Index n = static_cast<Eigen::Index>(s.size());
-  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const GivenGoals given = given_goals(scene);
   SolverGoals g;
-  g.given = Eigen::VectorXd::Constant(n, nan);
-  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(s.goals.size()); ++i) g.given[i] = s.goals[i];
-  Eigen::VectorXd given_lower = Eigen::VectorXd::Constant(n, -inf), given_upper = Eigen::VectorXd::Constant(n, inf);
-  for (const UniformGoal& u : s.uniform_goals)
-    for (int i : u.sensors) {
-      g.given[i] = u.level;
-      given_lower[i] = u.min;
-      given_upper[i] = u.max;
-    }
+  g.given = given.level;
 
   // Goal units -> the sensors' units.
   const double horizontal = s.goal_units == "daylight_factor" ? unobstructed_horizontal_illuminance(scene) : 0.0;
@@ -36,17 +57,13 @@ SolverGoals resolve_goals(const Scene& scene, const Contributions& c) {
   g.target.resize(n);
   g.lower.resize(n);
   g.upper.resize(n);
-  g.weight.resize(n);
+  g.weight = given.weight;
   for (Eigen::Index i = 0; i < n; ++i) {
     g.target[i] = absolute(i, g.given[i]);
-    g.lower[i] = absolute(i, given_lower[i]);
-    g.upper[i] = absolute(i, given_upper[i]);
-    const double w = s.weights.empty() ? 1.0 : s.weights[i];
-    g.weight[i] = std::isnan(g.given[i]) ? 0.0 : w;
+    g.lower[i] = absolute(i, given.lower[i]);
+    g.upper[i] = absolute(i, given.upper[i]);
   }
-  if (g.count() == 0 && scene.sensors.climate_goals.empty())
-    throw std::invalid_argument("scene '" + scene.source +
-                                "': no sensor has a goal (give sensors.goals or goals.uniform, and weights above 0)");
+  require_goals(scene);
   return g;
 }
 

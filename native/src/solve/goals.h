@@ -16,6 +16,19 @@ struct SolverGoals {
   int count() const;             // sensors with a goal
 };
 
+// The goals as the scene writes them, per sensor, before any tracing (goal units): a uniform goal
+// overrides the per-sensor goal of its sensors; NaN level and weight 0 where a sensor has none.
+struct GivenGoals {
+  Eigen::VectorXd level, lower, upper;  // lower / upper: -inf / +inf where unbounded
+  Eigen::VectorXd weight;
+  int count() const;                    // sensors with a goal
+};
+GivenGoals given_goals(const Scene& scene);
+
+// Throws std::invalid_argument (naming the scene) when no sensor has a goal and there is no climate
+// goal: a solve would trace for nothing. Checked before any tracing.
+void require_goals(const Scene& scene);
+
 // Normalized goals scale each sensor's all-open value; daylight factors the sky's unobstructed
 // horizontal illuminance. A uniform goal overrides the per-sensor goal of its sensors. Throws
 // std::invalid_argument (naming the scene) when no sensor has a goal.

@@ -855,6 +855,7 @@ SolveResult solve_openings(const Scene& scene, RecordQueries& records, Progress*
 
 SolveResult solve_openings(const Scene& scene, Progress* progress) {
   refuse_dark_sky(scene);
+  require_goals(scene);  // before tracing
   Scene traced = scene;
   if (scene.solver.paths_per_sensor > 0) traced.render.paths_per_sensor = scene.solver.paths_per_sensor;
   const auto t = Clock::now();

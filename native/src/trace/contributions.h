@@ -2,6 +2,7 @@
 // The opening contribution matrix and everything kept with it, from one set of paths per sensor.
 #include <Eigen/Core>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "scene/scene.h"
@@ -39,6 +40,9 @@ struct Contributions {
   // A climate scene's annual pass: the records' events name their sources (sky patches, sun
   // clusters) and carry their coefficients; values are the mean of the occupied hours.
   std::shared_ptr<const AnnualRecords> annual;
+  // The setup checks' warnings (study/setup_checks.h), set by the front end that ran them; written
+  // to the summary's "warnings".
+  std::vector<std::string> warnings;
 
   size_t sensor_count() const { return records.size(); }
   size_t element_count() const { return static_cast<size_t>(E.cols()); }
