@@ -5,6 +5,7 @@ Python raises ValueError with the same text."""
 
 import json
 import os
+import re
 import subprocess
 import warnings
 
@@ -298,3 +299,135 @@ def test_out_of_memory_is_reported_in_words(small_room):
     assert r.returncode == 1, r.stderr
     assert "memory" in r.stderr and "bad.json" in r.stderr and "std::bad_alloc" not in r.stderr
     assert not (small_room.parent / "sky.exr").exists()
+
+
+# ---- Python inputs: open masks, openings, goals, the sun -----------------------------------------
+
+
+@pytest.fixture
+def small_contributions(small_room):
+    scene = fenestra.load_scene(small_room)
+    scene.render.paths_per_sensor = 64
+    return scene, fenestra.contributions(scene)
+
+
+@pytest.mark.parametrize("bad, shown", [(0.5, "0.5"), (np.nan, "nan"), (np.inf, "inf"), (2.0, "2.0"), (-1, "-1"),
+                                        (2, "2"), (1 + 0j, "(1+0j)"), (0.5j, "0.5j"), ("1", "'1'"), (None, "None")])
+def test_open_masks_hold_only_zero_and_one(small_contributions, bad, shown):
+    """A mask value that is neither closed nor open was read as one of them (0.5 as closed, NaN as
+    open, ...): it is refused, naming the first bad entry and its value."""
+    scene, c = small_contributions
+    mask = [1, 0, 1, 0] + [0] * (scene.element_count - 4)
+    mask[3] = bad
+    with pytest.raises(ValueError, match=r"open mask entry 3 is %s: an open mask holds bools, or integers or floats "
+                                         r"that are exactly 0 \(closed\) or 1 \(open\)" % re.escape(shown)):
+        c.evaluate(mask)
+    with pytest.raises(ValueError, match="open mask entry 3 is"):
+        c.annual(mask)  # checked before anything else
+    if isinstance(bad, (int, float)):  # in an array of numbers too (complex ones are all refused: entry 0)
+        with pytest.raises(ValueError, match="open mask entry 3 is"):
+            c.evaluate(np.array(mask))
+
+
+def test_open_masks_of_bools_integers_and_floats_agree(small_contributions):
+    scene, c = small_contributions
+    n = scene.element_count
+    chosen = np.zeros(n, dtype=bool)
+    chosen[[0, 2, n - 1]] = True
+    expected = c.evaluate(chosen)
+    for mask in (chosen.astype(np.int64), chosen.astype(np.uint8), chosen.astype(np.float32), chosen.astype(float),
+                 [int(x) for x in chosen], [bool(x) for x in chosen], np.where(chosen, 1.0, -0.0),
+                 np.array([int(x) for x in chosen], dtype=object)):
+        v, e = c.evaluate(mask)
+        assert np.array_equal(v, expected[0]) and np.array_equal(e, expected[1])
+    with pytest.raises(ValueError, match=r"open mask has %d entries; the contributions have %d elements" % (n - 1, n)):
+        c.evaluate(chosen[:-1])
+    with pytest.raises(ValueError, match=r"open mask must have shape \(%d,\)" % n):
+        c.evaluate(np.ones((2, n), dtype=bool))
+    with pytest.raises(ValueError, match="open mask: expected an array"):
+        c.evaluate([[1, 0], [1]])
+
+
+def test_evaluate_openings_takes_every_form_of_an_openings_file(small_contributions):
+    """Contributions.evaluate_openings refused {"panel", "parameter_rectangle"} openings, which an
+    openings file and fenestra.evaluate take: it now takes the same forms, converted in one place."""
+    scene, c = small_contributions
+    a = scene.element_size
+    grid, corners = scene.element_grid, scene.element_corners
+    # Elements of panel 0, rows 1..2 and columns 1..3 (the rectangle [a, 4a] x [a, 3a]).
+    inside = (grid[:, 0] == 0) & (grid[:, 1] >= 1) & (grid[:, 1] <= 2) & (grid[:, 2] >= 1) & (grid[:, 2] <= 3)
+    assert inside.sum() == 6
+    rectangle = {"u0": a, "u1": 4 * a, "v0": a, "v1": 3 * a}
+    by_parameter = [{"panel": 0, "parameter_rectangle": rectangle}]
+    box = corners[inside].reshape(-1, 3)
+    lo, hi = box.min(axis=0), box.max(axis=0)
+    assert lo[1] == hi[1] == 0.0  # the south wall
+    by_corners = [[[lo[0], 0.0, lo[2]], [hi[0], 0.0, lo[2]], [hi[0], 0.0, hi[2]], [lo[0], 0.0, hi[2]]]]
+    expected = c.evaluate(inside)
+    for openings in (by_parameter, {"openings": by_parameter}, by_corners, np.array(by_corners),
+                     [{"corners": by_corners[0]}], {"openings": [{"corners": by_corners[0]}]},
+                     [{"corners": by_corners[0], "panel": 0, "parameter_rectangle": rectangle, "width": 3 * a}]):
+        v, e = c.evaluate_openings(scene, openings)
+        np.testing.assert_allclose(v, expected[0], rtol=1e-12, err_msg=repr(openings))
+        np.testing.assert_allclose(e, expected[1], rtol=1e-12, err_msg=repr(openings))
+    # Both forms in one list: the union.
+    other = (grid[:, 0] == 0) & (grid[:, 1] == 3) & (grid[:, 2] == 0)
+    cell = corners[other][0]
+    mixed = [{"corners": cell.tolist()}, {"panel": 0, "parameter_rectangle": rectangle}]
+    np.testing.assert_allclose(c.evaluate_openings(scene, mixed)[0], c.evaluate(inside | other)[0], rtol=1e-12)
+    with pytest.raises(ValueError, match=r"a dict must be an openings file's \{\"openings\": \[...\]\}"):
+        c.evaluate_openings(scene, {"panel": 0, "parameter_rectangle": rectangle})
+    with pytest.raises(ValueError, match=r"opening 0: parameter_rectangle: v1 is nan, not a finite number"):
+        c.evaluate_openings(scene, [{"panel": 0, "parameter_rectangle": dict(rectangle, v1=float("nan"))}])
+    with pytest.raises(ValueError, match=r"opening 1: corners is inf, not a finite number"):
+        c.evaluate_openings(scene, [by_parameter[0], {"corners": [[float("inf"), 0, 1]] + by_corners[0][1:]}])
+
+
+def test_goal_error_refuses_what_it_cannot_measure():
+    goals, values = np.array([100.0, np.nan, 50.0]), np.array([90.0, 5.0, 50.0])
+    assert fenestra.goal_error(goals, values)["worst_sensor"] == 0  # NaN: no goal, as null in a scene file
+    for bad_goals, message in (([np.nan] * 3, "no sensor has a goal"), ([-1.0, np.nan, -5.0], "no sensor has a goal"),
+                               ([100.0, np.inf, 50.0], r"goals\[1\] is inf: a goal is a number of lux up to 1e12"),
+                               ([-np.inf, 1.0, 50.0], r"goals\[0\] is -inf"),
+                               ([100.0, 1e300, 50.0], r"goals\[1\] is 1e\+300")):
+        with pytest.raises(ValueError, match=message):
+            fenestra.goal_error(np.array(bad_goals), values)
+    for bad in (np.nan, np.inf, -np.inf, 1e300):
+        with pytest.raises(ValueError, match=r"values\[1\] is .*: every value must be a finite number of lux"):
+            fenestra.goal_error(goals, np.array([90.0, bad, 50.0]))
+    with pytest.raises(ValueError, match="no sensor has a goal"):
+        fenestra.goal_error(goals, values, weights=[0.0, 1.0, 0.0])
+    for bad in (np.nan, -1.0, np.inf, 1e7):
+        with pytest.raises(ValueError, match=r"weights\[2\] is .*: a weight is a number from 0 to 1e6"):
+            fenestra.goal_error(goals, values, weights=[1.0, 1.0, bad])
+
+
+def test_absurd_times_and_places_of_the_sun_are_refused():
+    from fenestra import _core
+
+    first = _core.utc_seconds("0001-01-01", "00:00", utc_offset=14)
+    last = _core.utc_seconds("9999-12-31", "24:00", utc_offset=-14)
+    for t in (first, last, 0.0):  # the instants a scene's dates can give
+        zenith, azimuth = fenestra.solar_position(t, 45.0, 7.0)
+        assert np.isfinite(zenith) and 0.0 <= azimuth < 360.0
+    for t in (1e300, -1e300, np.nan, np.inf, first - 1, last + 1):
+        with pytest.raises(ValueError, match=r"utc_seconds is .*: expected POSIX seconds of a date in the years 0001 "
+                                             r"to 9999"):
+            fenestra.solar_position(t, 45.0, 7.0)
+    for kwargs, message in (({"latitude_deg": 90.5}, r"latitude_deg is 90.5: expected -90 to 90 degrees"),
+                            ({"latitude_deg": np.nan}, "latitude_deg is nan"),
+                            ({"longitude_deg": 181.0}, r"longitude_deg is 181: expected -180 to 180 degrees"),
+                            ({"longitude_deg": -np.inf}, "longitude_deg is -inf"),
+                            ({"elevation_m": 1e7}, r"elevation_m is 1e\+07: expected -1e\+06 to 1e\+06 m"),
+                            ({"pressure_hpa": -1.0}, r"pressure_hpa is -1: expected 0 to 2000 hPa"),
+                            ({"temperature_c": -300.0}, r"temperature_c is -300: expected -90 to 60 degrees C"),
+                            ({"temperature_c": np.nan}, "temperature_c is nan")):
+        args = dict({"utc_seconds": 1.7e9, "latitude_deg": 45.0, "longitude_deg": 7.0}, **kwargs)
+        with pytest.raises(ValueError, match=message):
+            fenestra.solar_position(**args)
+    with pytest.raises(ValueError, match="latitude_deg is 91"):
+        fenestra.sunrise_sunset("2024-06-21", 91.0, 0.0, utc_offset=0)
+    with pytest.raises(ValueError, match="longitude_deg is 1000"):
+        fenestra.sunrise_sunset("2024-06-21", 45.0, 1000.0, utc_offset=0)
+    with pytest.raises(ValueError, match="zenith_deg is nan"):
+        _core.sun_direction(np.nan, 0.0)

@@ -61,22 +61,42 @@ def _plain(value):
 
 
 def openings_argument(openings):
-    """What the native module takes for openings: an (n, 4, 3) array of corners, or, when any
-    opening is given by "panel" and "parameter_rectangle" (the form of openings on curved panels),
-    the JSON text of an openings file."""
-    listed = openings.get("openings", []) if isinstance(openings, dict) else openings
+    """What the native module takes for openings, from any form an openings file takes: an
+    openings file's dict {"openings": [...]}, a list of openings (each {"corners": [...]},
+    {"panel": ..., "parameter_rectangle": {...}}, both, or four corners), or an (n, 4, 3) array of
+    corners. Returns an (n, 4, 3) array of corners, or, when any opening is given by "panel" and
+    "parameter_rectangle" (the form of openings on curved panels), the JSON text of an openings
+    file. Every native call that takes openings converts them here."""
+    if isinstance(openings, dict):
+        if "openings" not in openings:
+            raise ValueError("openings: a dict must be an openings file's {\"openings\": [...]} (docs/scene-format.md); "
+                             "for one opening, pass a list holding it")
+        listed = openings["openings"]
+    elif isinstance(openings, (str, bytes)):
+        raise TypeError("openings: expected an openings file's dict, a list of openings or an (n, 4, 3) array of "
+                        "corners, not a string (read a file with fenestra.read_openings)")
+    else:
+        listed = openings
     if not isinstance(listed, np.ndarray) and any(isinstance(o, dict) and "parameter_rectangle" in o for o in listed):
-        for i, o in enumerate(listed):  # JSON has no NaN: name the value here
-            rect = o.get("parameter_rectangle") if isinstance(o, dict) else None
-            for key, value in (rect.items() if isinstance(rect, dict) else ()):
-                if isinstance(value, (float, np.floating)) and not np.isfinite(value):
-                    raise ValueError("opening %d: parameter_rectangle %s is %s, not a finite number of meters"
-                                     % (i, key, value))
         chosen = [{k: o[k] for k in ("panel", "parameter_rectangle") if k in o} if "parameter_rectangle" in o
                   else ({"corners": o["corners"]} if isinstance(o, dict) and "corners" in o else {"corners": o})
                   for o in listed]
+        for i, o in enumerate(chosen):  # JSON has no NaN or inf: name the value here
+            _check_finite(o, "opening %d" % i)
         return json.dumps({"openings": _plain(chosen)})
     return openings_array(openings)
+
+
+def _check_finite(value, where):
+    """Raises ValueError naming the first number in `value` (dicts and lists) that is not finite."""
+    if isinstance(value, dict):
+        for key, item in value.items():
+            _check_finite(item, "%s: %s" % (where, key))
+    elif isinstance(value, (list, tuple, np.ndarray)):
+        for item in value:
+            _check_finite(item, where)
+    elif isinstance(value, (float, np.floating)) and not np.isfinite(value):
+        raise ValueError("%s is %s, not a finite number of meters" % (where, value))
 
 
 def openings_array(openings):

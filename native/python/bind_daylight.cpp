@@ -5,12 +5,14 @@
 
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "daylight/local_time.h"
 #include "daylight/sky_models.h"
 #include "daylight/solar_position.h"
+#include "scene/input_limits.h"
 
 namespace py = pybind11;
 using namespace fenestra;
@@ -28,9 +30,36 @@ TimeZone zone_from(const std::optional<double>& utc_offset, const std::optional<
   throw std::invalid_argument("give utc_offset (hours, e.g. -7) or timezone (IANA name, e.g. \"Europe/Athens\")");
 }
 
-Place place_from(double latitude_deg, double longitude_deg, double elevation_m) {
-  return Place{latitude_deg, longitude_deg, elevation_m};
+// A number as Python shows it (nan, inf, 1e+300).
+std::string shown(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::ostringstream s;
+  s << v;
+  return s.str();
 }
+
+// `name` in [lo, hi] (NaN refused), else ValueError naming it, its value and the range.
+double within(const char* name, double v, double lo, double hi, const char* unit) {
+  if (!(v >= lo && v <= hi)) {
+    std::ostringstream s;
+    s << name << " is " << shown(v) << ": expected " << lo << " to " << hi << unit;
+    throw std::invalid_argument(s.str());
+  }
+  return v;
+}
+
+// The place as a scene's sky takes it (docs/scene-format.md, "Accepted ranges").
+Place place_from(double latitude_deg, double longitude_deg, double elevation_m) {
+  return Place{within("latitude_deg", latitude_deg, -90.0, 90.0, " degrees"),
+               within("longitude_deg", longitude_deg, -180.0, 180.0, " degrees"),
+               within("elevation_m", elevation_m, -limits::kMaxCoordinate, limits::kMaxCoordinate, " m")};
+}
+
+// The instants of the dates a scene may give (years 0001 to 9999, "YYYY-MM-DD") in any UTC offset
+// (+-14 h): POSIX seconds of 0001-01-01 00:00 at UTC+14 and of 10000-01-01 00:00 at UTC-14.
+constexpr double kFirstInstant = -62135596800.0 - 14 * 3600.0;
+constexpr double kLastInstant = 253402300800.0 + 14 * 3600.0;
 
 py::object minutes_or_none(double minutes) { return std::isnan(minutes) ? py::none() : py::cast(minutes); }
 
@@ -47,7 +76,13 @@ void bind_solar(py::module_& m) {
       "solar_position",
       [](double utc_seconds, double latitude_deg, double longitude_deg, double elevation_m, bool refraction,
          double pressure_hpa, double temperature_c) {
+        if (!(utc_seconds >= kFirstInstant && utc_seconds <= kLastInstant))
+          throw std::invalid_argument("utc_seconds is " + shown(utc_seconds) +
+                                      ": expected POSIX seconds of a date in the years 0001 to 9999 (-6.2e10 to 2.5e11), "
+                                      "as fenestra.utc_seconds gives them");
         const Place place = place_from(latitude_deg, longitude_deg, elevation_m);
+        within("pressure_hpa", pressure_hpa, 0.0, 2000.0, " hPa");
+        within("temperature_c", temperature_c, -90.0, 60.0, " degrees C");
         const SunPosition p = refraction ? solar_position(utc_seconds, place, Atmosphere{pressure_hpa, temperature_c})
                                          : solar_position(utc_seconds, place, false);
         return py::make_tuple(p.zenith_deg, p.azimuth_deg);
@@ -56,10 +91,13 @@ void bind_solar(py::module_& m) {
       py::arg("refraction") = true, py::arg("pressure_hpa") = 1010.0, py::arg("temperature_c") = 10.0,
       "Apparent topocentric (zenith_deg, azimuth_deg) of the sun at POSIX seconds UTC; azimuth clockwise from "
       "north. Refraction (standard atmosphere unless pressure and temperature are given) lifts the sun near the "
-      "horizon.");
+      "horizon. ValueError outside the accepted ranges: an instant of the years 0001 to 9999, latitude -90..90, "
+      "longitude -180..180, elevation within +-1e6 m, pressure 0..2000 hPa, temperature -90..60 degrees C.");
   m.def(
       "sun_direction",
       [](double zenith_deg, double azimuth_deg) {
+        within("zenith_deg", zenith_deg, 0.0, 180.0, " degrees");
+        within("azimuth_deg", azimuth_deg, -360.0, 360.0, " degrees");
         const Vec3 d = sun_direction(SunPosition{zenith_deg, azimuth_deg});
         py::array_t<double> out(3);
         auto w = out.mutable_unchecked<1>();

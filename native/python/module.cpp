@@ -27,6 +27,7 @@
 #include "trace/evaluate.h"
 #include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
+#include "open_masks.h"
 
 namespace py = pybind11;
 using namespace fenestra;
@@ -77,6 +78,15 @@ long long render_integer(py::handle value, const IntegerRange& range) {
     throw std::invalid_argument(std::string(range.key) + " " + range.requirement() + ", got " +
                                 std::string(py::str(py::repr(value))));
   return v;
+}
+
+// A number as Python shows it (nan, inf, 1e+300), not std::to_string's 300 digits.
+std::string number_text(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::ostringstream s;
+  s << v;
+  return s.str();
 }
 
 // A read-only NumPy view of an Eigen matrix owned by `owner` (no copy).
@@ -138,10 +148,18 @@ std::vector<Rectangle> rectangles_from(py::array_t<double, py::array::c_style | 
   return out;
 }
 
-// Openings from Python: an (n, 4, 3) array of corners, or the JSON text of an openings file
-// ({"openings": [...]}, with "corners" or "panel" and "parameter_rectangle" each), in the input
-// coordinates of a scene whose local frame is `frame`.
+// This package's Python API module ("fenestra.api"), set when the module is loaded.
+std::string api_module_name;
+
+// Openings from Python: an (n, 4, 3) array of corners, the JSON text of an openings file
+// ({"openings": [...]}, with "corners" or "panel" and "parameter_rectangle" each), or any form
+// fenestra.api.openings_argument takes (an openings file's dict, a list of openings), turned into
+// one of those two by it: every call that takes openings takes the same forms. Corners are in the
+// input coordinates of a scene whose local frame is `frame`.
 std::vector<OpeningInput> openings_from(const py::object& openings, const SiteFrame& frame) {
+  if (!py::isinstance<py::str>(openings) && !py::isinstance<py::array>(openings)) {
+    return openings_from(py::module_::import(api_module_name.c_str()).attr("openings_argument")(openings), frame);
+  }
   if (py::isinstance<py::str>(openings)) {
     nlohmann::json j;
     try {
@@ -195,6 +213,10 @@ py::dict annual_dict(const AnnualStudy& s) {
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Fenestra native core: opening-contribution path tracing on Embree.";
+  {
+    const std::string name = py::str(m.attr("__name__"));  // "fenestra._core"
+    api_module_name = name.substr(0, name.rfind('.') + 1) + "api";
+  }
   bind_daylight(m);
   bind_solver(m);
   bind_cost(m);
@@ -376,13 +398,9 @@ PYBIND11_MODULE(_core, m) {
                      "The setup checks' warnings (fenestra.contributions sets them; save() writes them).")
       .def(
           "evaluate",
-          [](const Contributions& c, py::array_t<uint8_t, py::array::c_style | py::array::forcecast> open,
-             std::shared_ptr<Progress> progress) {
-            if (open.ndim() != 1) throw std::invalid_argument("open mask must be one-dimensional");
-            std::vector<uint8_t> mask(open.data(), open.data() + open.size());
-            if (mask.size() != c.element_count())
-              throw std::invalid_argument("open mask has " + std::to_string(mask.size()) + " entries; the contributions have " +
-                                          std::to_string(c.element_count()) + " elements");
+          [](const Contributions& c, const py::object& open, std::shared_ptr<Progress> progress) {
+            const auto checked = open_masks(open, static_cast<py::ssize_t>(c.element_count()), false, "open mask");
+            const std::vector<uint8_t> mask(checked.data(), checked.data() + checked.size());
             SensorValues v;
             {
               py::gil_scoped_release release;
@@ -433,10 +451,9 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("has_annual", [](const Contributions& c) { return c.annual != nullptr; })
       .def(
           "annual",
-          [](const Contributions& c, py::array_t<uint8_t, py::array::c_style | py::array::forcecast> open,
-             std::shared_ptr<Progress> progress) {
-            if (open.ndim() != 1) throw std::invalid_argument("open mask must be one-dimensional");
-            const std::vector<uint8_t> mask(open.data(), open.data() + open.size());
+          [](const Contributions& c, const py::object& open, std::shared_ptr<Progress> progress) {
+            const auto checked = open_masks(open, static_cast<py::ssize_t>(c.element_count()), false, "open mask");
+            const std::vector<uint8_t> mask(checked.data(), checked.data() + checked.size());
             AnnualStudy study;
             {
               py::gil_scoped_release release;
@@ -631,11 +648,31 @@ PYBIND11_MODULE(_core, m) {
       [](const Eigen::VectorXd& goals, const Eigen::VectorXd& values, std::optional<Eigen::VectorXd> weights) {
         if (values.size() != goals.size() || (weights && weights->size() != goals.size()))
           throw std::invalid_argument("goal_error: goals, values (and weights) must have one entry per sensor");
+        // NaN is a sensor without a goal (a scene file's null), as is a negative goal; anything else
+        // that is not a finite number would make the measure NaN or silently 0.
+        // Past 1e12 lux (as goals in a scene file) the squares overflow and the measure reads 0 or inf.
+        const double most = limits::kMaxIlluminance;
+        for (Eigen::Index i = 0; i < goals.size(); ++i)
+          if (!std::isnan(goals[i]) && !(std::abs(goals[i]) <= most))
+            throw std::invalid_argument("goal_error: goals[" + std::to_string(i) + "] is " + number_text(goals[i]) +
+                                        ": a goal is a number of lux up to 1e12, or NaN (or negative) for a sensor "
+                                        "without one");
+        for (Eigen::Index i = 0; i < values.size(); ++i)
+          if (!(std::abs(values[i]) <= most))
+            throw std::invalid_argument("goal_error: values[" + std::to_string(i) + "] is " + number_text(values[i]) +
+                                        ": every value must be a finite number of lux, at most 1e12 in size");
         SolverGoals g;
         g.target = goals;
         g.weight = weights ? *weights : Eigen::VectorXd::Ones(goals.size());
-        for (Eigen::Index i = 0; i < goals.size(); ++i)
-          if (!std::isfinite(goals[i]) || goals[i] < 0.0) g.weight[i] = 0.0;  // no goal
+        for (Eigen::Index i = 0; i < goals.size(); ++i) {
+          if (!(g.weight[i] >= 0.0 && g.weight[i] <= limits::kMaxWeight))
+            throw std::invalid_argument("goal_error: weights[" + std::to_string(i) + "] is " + number_text(g.weight[i]) +
+                                        ": a weight is a number from 0 to 1e6, as sensors.weights");
+          if (std::isnan(goals[i]) || goals[i] < 0.0) g.weight[i] = 0.0;  // no goal
+        }
+        if (!(g.weight.array() > 0.0).any())
+          throw std::invalid_argument("goal_error: no sensor has a goal (every goal is NaN or negative, or its weight 0): "
+                                      "there is nothing to measure");
         const GoalError e = goal_error(g, values);
         py::dict d;
         d["relative_rms"] = e.relative_rms;
@@ -645,7 +682,17 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("goals"), py::arg("values"), py::arg("weights") = py::none(),
       "The solver's error measure of values against goals (lux; NaN or negative: no goal): relative RMS "
-      "sqrt(sum w (v - g)^2 / sum w g^2), the largest relative error and its sensor.");
+      "sqrt(sum w (v - g)^2 / sum w g^2), the largest relative error and its sensor. Raises ValueError for "
+      "a goal or value that is not finite or beyond 1e12 lux (NaN goals aside), a weight outside [0, 1e6], or no "
+      "sensor with a goal.");
+  m.def(
+      "check_open_masks",
+      [](const py::object& masks, py::ssize_t elements, bool batch) {
+        return open_masks(masks, elements, batch, batch ? "masks" : "open mask");
+      },
+      py::arg("masks"), py::arg("elements"), py::arg("batch") = false,
+      "An open mask (shape (elements,)), or with batch=True masks (sets, elements), as a uint8 array of 0 and 1; "
+      "ValueError naming the first entry that is not a bool, or an integer or float equal to 0 or 1.");
   m.def("rays_traced", &rays_traced, "Rays traced by parallel computations since the module was loaded.");
   m.def("read_openings", [](const std::string& path) -> py::object {
     // Corners as the file gives them (site coordinates too): read into a frame near them, then back.

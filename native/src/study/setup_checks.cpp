@@ -64,7 +64,9 @@ std::string number(double x, const char* format = "%.2f") {
   return s;
 }
 
-std::string point_text(const Vec3& p) {
+// A position as the user gave it (the scene's input coordinates).
+std::string point_text(const Scene& scene, const Vec3& local) {
+  const Vec3d p = scene.site.to_site(local);
   return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ")";
 }
 
@@ -73,7 +75,7 @@ std::string sensors_text(const Scene& scene, const std::vector<int>& sensors) {
   std::ostringstream s;
   s << (sensors.size() == 1 ? "sensor " : "sensors ");
   for (size_t k = 0; k < std::min(sensors.size(), kNamedSensors); ++k)
-    s << (k ? ", " : "") << sensors[k] << (sensors.size() == 1 ? " at " : " ") << point_text(scene.sensors.points[sensors[k]]);
+    s << (k ? ", " : "") << sensors[k] << (sensors.size() == 1 ? " at " : " ") << point_text(scene, scene.sensors.points[sensors[k]]);
   if (sensors.size() > kNamedSensors) s << " and " << sensors.size() - kNamedSensors << " more";
   return s.str();
 }
@@ -254,7 +256,7 @@ void domain_sides(const Scene& scene, const RayScene& rays, std::vector<SetupWar
     }
     if (area > 0.0) centre /= static_cast<float>(area);
     parts << (w.panels.empty() ? "" : "; ") << "panel " << index << " ('" << panel.label << "', "
-          << number(panel.area, "%.3g") << " m2 about " << point_text(centre) << ") is seen by "
+          << number(panel.area, "%.3g") << " m2 about " << point_text(scene, centre) << ") is seen by "
           << flagged.seen_from_outside << " sensors from one side, but " << flagged.on_room_side << " of "
           << scene.sensors.size() << " sensors lie on the other side of its plane, which the solver takes for the room";
     w.panels.push_back(std::move(flagged));
