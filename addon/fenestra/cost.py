@@ -3,6 +3,7 @@ scene's sizes and settings before anything large is allocated, and the `max_memo
 of the API's functions (no bpy here)."""
 
 from . import _core
+from . import arguments as _arg
 
 MAX_MEMORY_BYTES = 2 ** 63  # the native side counts bytes in 64 bits
 
@@ -36,13 +37,18 @@ def estimate_cost(scene, command="solve", max_memory=None):
     "seconds" (per stage, on the 2-core reference machine) and "seconds_limit",
     the sizes ("sensors", "elements", "triangles", "paths_per_sensor", "bytes_per_path"),
     "fits" and "problem" (the refusal message, or None)."""
-    return _core.estimate_cost(scene, command, memory_bytes(max_memory))
+    return _core.estimate_cost(*_scene_and_command(scene, command), memory_bytes(max_memory))
 
 
 def check_cost(scene, command="solve", max_memory=None):
     """Raises ValueError, naming the figure and the setting to change, when `command` on the
     scene would not fit in memory (or max_memory) or a stage would exceed its time limit."""
-    _core.check_cost(scene, command, memory_bytes(max_memory))
+    _core.check_cost(*_scene_and_command(scene, command), memory_bytes(max_memory))
+
+
+def _scene_and_command(scene, command):
+    _arg.instance(scene, _core.Scene, "scene", "a fenestra.Scene (from load_scene or scene_from_dict)")
+    return scene, _arg.text(command, "command")
 
 
 def loading(max_memory=None, command="any"):
