@@ -270,3 +270,5 @@ def test_a_pair_beside_a_fifo_or_directory_is_refused(small_room):
     with pytest.raises(ValueError, match="a FIFO"):
         c.save(scene, str(d / "fifo"))
     assert listing(d) == before
+    c.save(scene, str(d / "folder.npz"))  # beside a directory of that name, as asked
+    assert (d / "folder.npz").is_file() and (d / "folder.json").is_file()

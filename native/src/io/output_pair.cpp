@@ -26,7 +26,8 @@ std::pair<std::string, std::string> npz_json_pair(const std::string& out) {
   std::pair<std::string, std::string> pair{stem + ".npz", stem + ".json"};
   for (const std::string& named : {out, stem}) {
     const std::string kind = non_file_kind(named);
-    if (!kind.empty())
+    // A directory `results` beside an explicit `results.npz` is no mistake; as `-o results` it is.
+    if (!kind.empty() && !(named != out && kind == "a directory"))
       throw std::invalid_argument("cannot write '" + pair.first + "' and '" + pair.second + "': the output '" + out +
                                   "' names " + kind + (named == out ? "" : " ('" + named + "')") +
                                   ", and its .npz and .json would be created beside it; name a new or regular "

@@ -6,9 +6,9 @@
 
 namespace fenestra {
 
-// {OUT.npz, OUT.json} for OUT or OUT.npz. Throws std::invalid_argument when OUT as given, or
-// without its .npz, is a device, FIFO, socket or directory: the pair would be created beside it
-// (`-o /dev/null` would write /dev/null.npz), not where the user meant.
+// {OUT.npz, OUT.json} for OUT or OUT.npz. Throws std::invalid_argument when OUT as given is a
+// device, FIFO, socket or directory, or OUT.npz's OUT a device, FIFO or socket: the pair would be
+// created beside it (`-o /dev/null` would write /dev/null.npz), not where the user meant.
 std::pair<std::string, std::string> npz_json_pair(const std::string& out);
 
 }  // namespace fenestra
