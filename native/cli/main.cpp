@@ -55,8 +55,9 @@ const char* kUsage = R"(usage:
       the openings really cut (no records: the ground truth, and edges anywhere in thick walls).
       See docs/annual.md.
   fenestra sky SCENE.json -o SKY.exr [--json SUMMARY.json]
-      Writes the scene's sky as an equirectangular map (.exr or .hdr, cd/m^2, Blender's convention)
-      and prints the horizontal illuminances and the sun list (also as JSON with --json).
+      Writes the scene's sky as an equirectangular map (.exr or .hdr, cd/m^2, Blender's convention;
+      other formats cannot keep the values and are refused) and prints the horizontal illuminances
+      and the sun list (also as JSON with --json).
 
 options:
   --paths N     paths per sensor, 1 to 1073741824 (overrides render.paths_per_sensor)
