@@ -158,9 +158,12 @@ def make_case(seed, workdir):
     obj = box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey")
     openings = {"openings": [{"corners": [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1, 0, 2]]}]}
     command = rng.choices(["contributions", "evaluate", "sky", "solve"], weights=[5, 2, 1, 2])[0]
-    target = rng.choices(["json", "text", "obj", "openings", "args"], weights=[6, 2, 3, 1, 1])[0]
+    target = rng.choices(["json", "text", "obj", "openings", "args", "output", "memory"],
+                         weights=[6, 2, 3, 1, 1, 1, 1])[0]
     if target == "openings" and command != "evaluate":
         target = "json"
+    if target == "output":  # a sky map in a format that keeps cd/m^2 or not
+        command = "sky"
     scene_bytes = None
     if target == "json":
         scene = mutate_json(rng, scene)
@@ -177,27 +180,33 @@ def make_case(seed, workdir):
     (workdir / "openings.json").write_text(json.dumps(openings))
     if kind == "envmap":
         shutil.copy(os.path.join(EXAMPLES, "reference_room", "sky.exr"), workdir / "sky.exr")
-    out = workdir / ("out.exr" if command == "sky" else "out.npz" if command == "contributions" else "out.json")
+    sky_name = "out." + (rng.choice(["png", "jpg", "tif", "hdr", "HDR", "exr", "bmp", "pfm"]) if target == "output"
+                         else "exr")
+    out = workdir / (sky_name if command == "sky" else "out.npz" if command == "contributions" else "out.json")
     args = [CLI, command, str(workdir / "scene.json"), "-o", str(out), "--quiet"]
     if command == "evaluate":
         args += ["--openings", str(workdir / "openings.json")]
     if target == "args":
         args = mutate_args(rng, args)
+    cap = MEMORY_CAP
+    if target == "memory":  # an address-space limit anywhere from too small to start to enough
+        cap = rng.randrange(96, 1536) * 1024 ** 2  # below about 64 MiB the program's libraries cannot be mapped
+        args += ["--max-memory", "100G"]  # past the cost checks: the allocations themselves fail
     outputs = [out] + ([workdir / "out.json"] if command == "contributions" else [])
-    return args, outputs, "%s sky, %s, %s mutated" % (kind, command, target)
+    return args, outputs, cap, "%s sky, %s, %s mutated" % (kind, command, target)
 
 
-def cap_memory():
-    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_CAP, MEMORY_CAP))
+def cap_memory(cap):
+    return lambda: resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
 
 
 def check_case(seed, root):
     workdir = root / ("case%04d" % seed)
     workdir.mkdir()
-    args, outputs, what = make_case(seed, workdir)
+    args, outputs, cap, what = make_case(seed, workdir)
     inputs = set(os.listdir(workdir))
     try:
-        r = subprocess.run(args, capture_output=True, timeout=TIME_BUDGET_S, preexec_fn=cap_memory)
+        r = subprocess.run(args, capture_output=True, timeout=TIME_BUDGET_S, preexec_fn=cap_memory(cap))
     except subprocess.TimeoutExpired:
         return "seed %d (%s): still running after %.0f s" % (seed, what, TIME_BUDGET_S)
     stderr = r.stderr.decode("utf-8", "replace")
@@ -213,6 +222,8 @@ def check_case(seed, root):
             problem = "no message naming the problem"
         elif set(os.listdir(workdir)) != inputs:
             problem = "left %s behind" % sorted(set(os.listdir(workdir)) - inputs)
+    elif outputs[0].suffix.lower() not in (".exr", ".hdr", ".npz", ".json"):
+        problem = "exit 0 writing %s, which cannot keep cd/m^2" % outputs[0].name
     else:
         missing = [str(p) for p in outputs if not p.exists()]
         leftovers = [f for f in os.listdir(workdir) if ".tmp" in f]

@@ -195,3 +195,80 @@ def test_python_writes_are_checked_and_leave_nothing(small_room):
     c.save(scene, str(d / "ok"))
     fenestra.write_sky(scene, d / "ok.exr")
     assert set(listing(d)) == set(before) | {"ok.npz", "ok.json", "ok.exr"}
+
+
+# ---- Outputs keep their values ----------------------------------------------------------------
+
+
+@pytest.mark.parametrize("name", ["sky.png", "sky.jpg", "sky.tif", "sky.PNG", "sky"])
+def test_a_sky_map_in_a_format_that_cannot_keep_cd_per_m2_is_refused_before_any_work(small_room, name):
+    d = small_room.parent
+    before = listing(d)
+    r = run("sky", small_room, "-o", d / name, "--json", d / "summary.json", "--quiet")
+    assert_refused(r, before, d, name, ".exr", ".hdr", "cd/m^2")
+    (d / "broken.json").write_text("{")  # refused before the scene is read: its error never shows
+    before = listing(d)
+    r = run("sky", d / "broken.json", "-o", d / name, "--quiet")
+    assert_refused(r, before, d, name, ".exr", ".hdr")
+
+
+@pytest.mark.parametrize("name", ["sky.png", "sky.jpg", "sky.tif", "sky.tiff", "sky.bmp"])
+def test_python_refuses_maps_that_cannot_keep_cd_per_m2(small_room, name):
+    d = small_room.parent
+    scene = fenestra.load_scene(small_room)
+    before = listing(d)
+    with pytest.raises(ValueError, match=r"\.exr and \.hdr"):
+        fenestra.write_sky(scene, d / name)
+    with pytest.raises(ValueError, match=r"\.exr and \.hdr"):
+        fenestra.write_image(str(d / name), np.full((4, 8, 3), 318.0, np.float32))
+    assert listing(d) == before
+
+
+def test_maps_written_as_exr_and_hdr_keep_their_values(small_room):
+    """The formats that are accepted give back the cd/m^2 they were given (a uniform 318 sky)."""
+    d = small_room.parent
+    scene = json.loads(small_room.read_text())
+    scene["sky"] = {"type": "uniform", "radiance": 318.0, "ground_radiance": 318.0}
+    path = d / "bright.json"
+    path.write_text(json.dumps(scene))
+    for name in ("sky.exr", "sky.HDR"):
+        r = run("sky", path, "-o", d / name, "--quiet")
+        assert r.returncode == 0, r.stderr
+        env = json.loads(small_room.read_text())
+        env["sky"] = {"type": "envmap", "file": name}
+        (d / "env.json").write_text(json.dumps(env))
+        pixels = fenestra.sky(fenestra.load_scene(d / "env.json"))["map"]
+        assert np.allclose(pixels, 318.0, rtol=1e-2), (name, pixels.min(), pixels.max())
+
+
+# ---- A device as the stem of a pair -----------------------------------------------------------
+
+
+@pytest.mark.parametrize("out", ["/dev/null", "/dev/null.npz", "/dev/zero"])
+def test_a_pair_beside_a_device_is_refused(small_room, out):
+    """`contributions -o /dev/null` used to create /dev/null.npz and /dev/null.json."""
+    for suffix in (".npz", ".json"):
+        assert not os.path.exists(out.replace(".npz", "") + suffix)
+    r = run("contributions", small_room, "-o", out, "--paths", "16", "--quiet")
+    assert r.returncode == 1, (r.returncode, r.stdout, r.stderr)
+    assert "fenestra: error:" in r.stderr and "a device" in r.stderr and out in r.stderr, r.stderr
+    for suffix in (".npz", ".json"):
+        assert not os.path.exists(out.replace(".npz", "") + suffix)
+
+
+def test_a_pair_beside_a_fifo_or_directory_is_refused(small_room):
+    d = small_room.parent
+    os.mkfifo(d / "fifo")
+    (d / "folder").mkdir()
+    before = listing(d)
+    for out, kind in (("fifo", "a FIFO"), ("fifo.npz", "a FIFO"), ("folder", "a directory")):
+        r = run("contributions", small_room, "-o", d / out, "--paths", "16", "--quiet")
+        assert_refused(r, before, d, kind, out)
+    scene = fenestra.load_scene(small_room)
+    scene.render.paths_per_sensor = 16
+    c = fenestra.contributions(scene)
+    with pytest.raises(ValueError, match="a FIFO"):
+        c.save(scene, str(d / "fifo"))
+    assert listing(d) == before
+    c.save(scene, str(d / "folder.npz"))  # beside a directory of that name, as asked
+    assert (d / "folder.npz").is_file() and (d / "folder.json").is_file()

@@ -25,10 +25,7 @@ bl_info = {
 import sys  # noqa: E402
 
 try:
-    from ._core import (
-        automatic_constraints,
-        catalogues,
-        goal_error,
+    from .daylight import (
         preetham_radiance,
         preetham_sun,
         solar_position,
@@ -39,6 +36,9 @@ try:
     from .api import (
         Cancelled,
         annual,
+        automatic_constraints,
+        catalogues,
+        goal_error,
         Contributions,
         Progress,
         Scene,

@@ -100,6 +100,7 @@ def contributions_from_arrays(scene: Scene, paths_per_sensor: int, E: npt.ArrayL
                               events: int = 0) -> Contributions: ...  # no path records
 def keep_records_only(contributions: Contributions) -> None: ...  # frees E, E_stderr and A
 def check_output_paths(outputs: list[str], inputs: list[str]) -> None: ...
+def npz_json_pair(out: str) -> Tuple[str, str]: ...  # (OUT.npz, OUT.json); ValueError beside a device
 def write_json_text(path: str, text: str) -> None: ...
 # The solver's queries of path records (solve/record_queries.h); rectangles are (n, 5) float64
 # arrays [panel, u0, u1, v0, v1], meters in the panel's parameter domain.

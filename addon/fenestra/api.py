@@ -1,15 +1,15 @@
 """NumPy-level API over the native core (no bpy here)."""
 
 import json
-import os
 import threading
 import time
 import warnings
 
 import numpy as np
 
-from ._core import Cancelled, Contributions, Progress, Scene, read_openings, write_image
+from ._core import Cancelled, Contributions, Progress, Scene
 from . import _core
+from . import arguments as _arg
 from . import cost as _cost
 from .cost import available_memory, check_cost, estimate_cost
 
@@ -21,7 +21,8 @@ def load_scene(path, progress=None, callback=None, max_memory=None):
     GIL, a daylight sky's build reporting to `progress` / `callback` and stopping on cancel
     (raises Cancelled). A weather file's warnings (and a scene place more than 100 km from its
     station) are issued as RuntimeWarnings."""
-    path = os.fspath(path)
+    path = _arg.path(path)
+    _check_run(progress, callback, max_memory)  # here, on the caller's thread
 
     def work(p):
         with _cost.loading(max_memory):  # on the thread that loads
@@ -33,13 +34,81 @@ def load_scene(path, progress=None, callback=None, max_memory=None):
 def scene_from_dict(scene, base_dir=".", progress=None, callback=None, max_memory=None):
     """Builds a scene from a dict in the scene-file format; relative paths resolve against base_dir.
     progress and callback as for load_scene()."""
-    text, base_dir = json.dumps(scene), os.fspath(base_dir)
+    text, base_dir = _scene_json(scene), _arg.path(base_dir, "base_dir")
+    _check_run(progress, callback, max_memory)
 
     def work(p):
         with _cost.loading(max_memory):
             return Scene.from_json(text, base_dir, "<dict>", p)
 
     return _warn_sky(_run(work, progress, callback))
+
+
+def _json_value(value):
+    """json.dumps' fallback: NumPy numbers and arrays as plain numbers and lists."""
+    if isinstance(value, (np.generic, np.ndarray)):
+        return value.tolist()
+    raise TypeError("%s has no form in a scene file (numbers, strings, true/false, null, lists and dicts)"
+                    % _arg.shown(value))
+
+
+def _scene_json(scene):
+    """The scene-file text of a dict, NumPy values (np.float32, arrays) included."""
+    _arg.instance(scene, dict, "scene", "a dict in the scene-file format")
+    try:
+        return json.dumps(scene, default=_json_value, allow_nan=False)
+    except TypeError as exc:
+        raise TypeError("scene: %s" % exc) from None
+    except ValueError:
+        raise ValueError("scene: a number is NaN or infinite; the scene format takes finite numbers only") from None
+
+
+def _scene(scene):
+    return _arg.instance(scene, Scene, "scene", "a fenestra.Scene (from load_scene or scene_from_dict)")
+
+
+def _contributions(contributions):
+    return _arg.optional_instance(contributions, Contributions, "contributions",
+                                  "a fenestra.Contributions (from contributions(scene)) or None")
+
+
+def _check_run(progress, callback, max_memory):
+    """The arguments every long call shares, checked before any work."""
+    _arg.optional_instance(progress, Progress, "progress", "a fenestra.Progress or None")
+    _arg.callback(callback)
+    _cost.memory_bytes(max_memory)
+
+
+def read_openings(path):
+    """The openings of an openings file (or a solve result): an (n, 4, 3) array of corners, or a
+    list of dicts when any opening is given by "panel" and "parameter_rectangle"."""
+    return _core.read_openings(_arg.path(path))
+
+
+def write_image(path, image):
+    """Writes a linear float image (height, width, channels), top row first, e.g. an environment
+    map: .exr or .hdr, the formats that keep the values (others are refused, ValueError)."""
+    _core.write_image(_arg.path(path), _arg.array(image, "image", "of shape (height, width, channels)", ndim=3))
+
+
+def goal_error(goals, values, weights=None):
+    """The solver's error measure of values against goals (lux; NaN or negative: no goal):
+    {"relative_rms", "max_relative", "worst_sensor"}."""
+    return _core.goal_error(_arg.array(goals, "goals", "(one per sensor)", ndim=1),
+                            _arg.array(values, "values", "(one per sensor)", ndim=1),
+                            None if weights is None else _arg.array(weights, "weights", "(one per sensor)", ndim=1))
+
+
+def catalogues():
+    """The built-in window catalogues (solver.constraints.catalogue by name): {name: {"walls":
+    [(width, height), ...], "roofs": [...]}}, meters; walls' widths are horizontal."""
+    return _core.catalogues()
+
+
+def automatic_constraints(full_height=False):
+    """The solver.constraints keys that take an automatic value when not given: {key: (value,
+    explanation)}, lengths in meters. full_height: doors and floor-to-ceiling glazing allowed."""
+    return _core.automatic_constraints(_arg.flag(full_height, "full_height"))
 
 
 def _warn_sky(scene):
@@ -77,6 +146,9 @@ def openings_argument(openings):
                         "corners, not a string (read a file with fenestra.read_openings)")
     else:
         listed = openings
+    if isinstance(listed, (str, bytes)) or not hasattr(listed, "__iter__"):
+        raise TypeError("openings must be rectangles (an (n, 4, 3) array, a list of corner lists or of dicts), an "
+                        "openings-file dict or read_openings(path), got %s" % _arg.shown(openings))
     if not isinstance(listed, np.ndarray) and any(isinstance(o, dict) and "parameter_rectangle" in o for o in listed):
         chosen = [{k: o[k] for k in ("panel", "parameter_rectangle") if k in o} if "parameter_rectangle" in o
                   else ({"corners": o["corners"]} if isinstance(o, dict) and "corners" in o else {"corners": o})
@@ -106,9 +178,16 @@ def openings_array(openings):
         openings = openings.get("openings", [])
     if isinstance(openings, np.ndarray):
         rects = openings
+    elif isinstance(openings, (str, bytes)) or not hasattr(openings, "__iter__"):
+        raise TypeError("openings must be rectangles (an (n, 4, 3) array, a list of corner lists or of dicts) or an "
+                        "openings-file dict, got %s" % _arg.shown(openings))
     else:
-        rects = [o["corners"] if isinstance(o, dict) else o for o in openings]
-    arr = np.asarray(rects, dtype=np.float64)
+        rects = [o.get("corners") if isinstance(o, dict) else o for o in openings]
+    try:
+        arr = np.asarray(rects, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError("openings must be rectangles of four [x, y, z] corners (numbers), got %s"
+                         % _arg.shown(openings)) from None
     if arr.size == 0:
         return np.zeros((0, 4, 3))
     if arr.ndim != 3 or arr.shape[1:] != (4, 3):
@@ -199,6 +278,10 @@ def contributions(scene, progress=None, callback=None, max_memory=None, strict=F
     each setup check's warning (check_setup(scene, "contributions"), also in the result's
     `warnings` and the summary its save() writes); strict=True makes those a ValueError before any
     work; checks=False skips them (the add-on runs them itself)."""
+    _scene(scene)
+    _check_run(progress, callback, max_memory)
+    _arg.flag(strict, "strict")
+    _arg.flag(checks, "checks")
     _warn_if_dark(scene)
     _cost.check_cost(scene, "contributions", max_memory)  # before any work (docs/cost.md)
     setup = _setup_warnings(scene, "contributions", strict) if checks else []
@@ -210,6 +293,8 @@ def contributions(scene, progress=None, callback=None, max_memory=None, strict=F
 def evaluate(scene, openings, progress=None, callback=None, max_memory=None):
     """Path-traces the scene with the openings really cut. Returns (value, stderr) arrays.
     Warns (RuntimeWarning) when the scene's daylight sky gives no light (the sun never up)."""
+    _scene(scene)
+    _check_run(progress, callback, max_memory)
     rects = openings_argument(openings)
     _warn_if_dark(scene)
     _cost.check_cost(scene, "evaluate", max_memory)
@@ -232,6 +317,11 @@ def annual(scene, openings, contributions=None, output=None, progress=None, call
     (`fenestra annual --cutters`): the ground truth of the records' study, and openings with edges
     anywhere in a thick wall. `paths` per sensor (0: the scene's render.paths_per_sensor); the
     contributions are not used."""
+    _scene(scene)
+    _contributions(contributions)
+    _check_run(progress, callback, max_memory)
+    _arg.flag(cutters, "cutters")
+    out = None if output is None else _arg.path(output, "output")
     rects = openings_argument(openings)
     if not scene.has_climate:
         raise ValueError("annual needs a scene whose sky is \"climate\" (a weather file, docs/scene-format.md); "
@@ -244,8 +334,7 @@ def annual(scene, openings, contributions=None, output=None, progress=None, call
             raise ValueError("annual(cutters=True) traces its own paths with the openings cut: "
                              "leave contributions out")
         _cost.check_cost(scene, "annual_cutters", max_memory, paths=int(paths) or None)  # no records are kept
-        out = "" if output is None else os.fspath(output)
-        return _run(lambda p: _core.annual_with_cutters(scene, rects, int(paths), p, out), progress, callback)
+        return _run(lambda p: _core.annual_with_cutters(scene, rects, int(paths), p, out or ""), progress, callback)
     if paths:
         raise ValueError("paths belongs to annual(cutters=True); the records' study has the contributions' paths "
                          "(render.paths_per_sensor)")
@@ -253,15 +342,15 @@ def annual(scene, openings, contributions=None, output=None, progress=None, call
         _cost.check_cost(scene, "contributions", max_memory)
         contributions = _run(lambda p: _core.compute_contributions(scene, p), progress, callback)
     result = _run(lambda p: contributions.annual_openings(scene, rects, p), progress, callback)
-    if output is not None:
-        contributions.save_annual(scene, rects, str(output))
+    if out is not None:
+        contributions.save_annual(scene, rects, out)
     return result
 
 
 def constraint_violations(scene, openings):
     """What the openings (as for evaluate) break of the scene's solver.constraints: a list of
     lines, empty when every opening is admissible."""
-    return list(_core.constraint_violations(scene, openings_argument(openings)))
+    return list(_core.constraint_violations(_scene(scene), openings_argument(openings)))
 
 
 def sky(scene, max_memory=None):
@@ -274,6 +363,7 @@ def sky(scene, max_memory=None):
       +Y north), "zenith_deg", "azimuth_deg" (clockwise from north), "weight" (share of the
       interval) and "normal_illuminance" (lux at that instant);
     - for daylight skies also "steps", "steps_with_sun", "map" size and "build_seconds"."""
+    _scene(scene)
     _cost.check_cost(scene, "sky", max_memory)
     summary = json.loads(_core.sky_summary(scene))
     summary["map_size"] = summary.pop("map", None)
@@ -282,9 +372,12 @@ def sky(scene, max_memory=None):
 
 
 def write_sky(scene, path, max_memory=None):
-    """Writes the scene's sky map to path (.exr or .hdr, cd/m^2)."""
+    """Writes the scene's sky map to path (.exr or .hdr, cd/m^2; other formats cannot keep the
+    values and are refused with ValueError, before any work)."""
+    _scene(scene)
+    path = _arg.path(path)
     _cost.check_cost(scene, "sky", max_memory)
-    _core.write_sky(scene, os.fspath(path))
+    _core.write_sky(scene, path)
 
 
 def solve(scene, contributions=None, progress=None, callback=None, max_memory=None, strict=False, checks=True):
@@ -302,6 +395,11 @@ def solve(scene, contributions=None, progress=None, callback=None, max_memory=No
     with strict=True when a setup check warns (checks=False skips them: the add-on runs them
     itself), and when the cost model (docs/cost.md) says it will not fit in max_memory (bytes or
     "8G"; default what the system has available) or a stage would exceed its time limit."""
+    _scene(scene)
+    _contributions(contributions)
+    _check_run(progress, callback, max_memory)
+    _arg.flag(strict, "strict")
+    _arg.flag(checks, "checks")
     _core.require_goals(scene)
     _cost.check_cost(scene, "solve" if contributions is None else "solver", max_memory)
     setup = _setup_warnings(scene, "solve", strict) if checks else []

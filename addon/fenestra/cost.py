@@ -3,6 +3,7 @@ scene's sizes and settings before anything large is allocated, and the `max_memo
 of the API's functions (no bpy here)."""
 
 from . import _core
+from . import arguments as _arg
 
 MAX_MEMORY_BYTES = 2 ** 63  # the native side counts bytes in 64 bits
 
@@ -37,14 +38,24 @@ def estimate_cost(scene, command="solve", max_memory=None, paths=None):
     "seconds" (per stage, on the 2-core reference machine) and "seconds_limit",
     the sizes ("sensors", "elements", "triangles", "paths_per_sensor", "bytes_per_path"),
     "fits" and "problem" (the refusal message, or None)."""
-    return _core.estimate_cost(scene, command, memory_bytes(max_memory), -1 if paths is None else paths)
+    return _core.estimate_cost(*_scene_and_command(scene, command), memory_bytes(max_memory), _paths(paths))
 
 
 def check_cost(scene, command="solve", max_memory=None, paths=None):
     """Raises ValueError, naming the figure and the setting to change, when `command` on the
     scene would not fit in memory (or max_memory) or a stage would exceed its time limit (with
     `paths` per sensor instead of the scene's when given)."""
-    _core.check_cost(scene, command, memory_bytes(max_memory), -1 if paths is None else paths)
+    _core.check_cost(*_scene_and_command(scene, command), memory_bytes(max_memory), _paths(paths))
+
+
+def _paths(paths):
+    """Paths per sensor for the native estimate: -1 for the scene's own."""
+    return -1 if paths is None else _arg.integer(paths, "paths", 1, 1 << 30)
+
+
+def _scene_and_command(scene, command):
+    _arg.instance(scene, _core.Scene, "scene", "a fenestra.Scene (from load_scene or scene_from_dict)")
+    return scene, _arg.text(command, "command")
 
 
 def loading(max_memory=None, command="any"):

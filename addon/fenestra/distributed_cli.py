@@ -81,9 +81,8 @@ def parse(argv):
 
 def output_paths(a):
     if a["command"] == "contributions":
-        out = a["output"]
-        stem = out[:-4] if out.endswith(".npz") else out
-        return [stem + ".npz", stem + ".json"]
+        from fenestra import _core
+        return list(_core.npz_json_pair(a["output"]))
     return [a["output"]]
 
 

@@ -14,6 +14,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image_writer.h"
+#include "io/output_pair.h"
 #include "cost/byte_size.h"
 #include "cost/cost_model.h"
 #include "io/results.h"
@@ -27,6 +28,7 @@
 #include "scene/scene.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
+#include "util/out_of_memory.h"
 #include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
 #include "cluster_handoff.h"
@@ -55,8 +57,9 @@ const char* kUsage = R"(usage:
       the openings really cut (no records: the ground truth, and edges anywhere in thick walls).
       See docs/annual.md.
   fenestra sky SCENE.json -o SKY.exr [--json SUMMARY.json]
-      Writes the scene's sky as an equirectangular map (.exr or .hdr, cd/m^2, Blender's convention)
-      and prints the horizontal illuminances and the sun list (also as JSON with --json).
+      Writes the scene's sky as an equirectangular map (.exr or .hdr, cd/m^2, Blender's convention;
+      other formats cannot keep the values and are refused) and prints the horizontal illuminances
+      and the sun list (also as JSON with --json).
 
 options:
   --paths N     paths per sensor, 1 to 1073741824 (overrides render.paths_per_sensor)
@@ -224,9 +227,8 @@ void install_signal_handlers() {
 // Every file the command writes, in the order written.
 std::vector<std::string> output_paths(const Args& a) {
   if (a.command == "contributions" || a.command == "annual") {  // as write_contributions / write_annual name them
-    const bool npz = a.output.size() > 4 && a.output.compare(a.output.size() - 4, 4, ".npz") == 0;
-    const std::string stem = npz ? a.output.substr(0, a.output.size() - 4) : a.output;
-    return {stem + ".npz", stem + ".json"};
+    const auto [npz, json] = fenestra::npz_json_pair(a.output);
+    return {npz, json};
   }
   if (!a.summary.empty()) return {a.output, a.summary};
   return {a.output};
@@ -423,6 +425,9 @@ int main(int argc, char** argv) {
   } catch (const fenestra::Cancelled&) {
     std::fprintf(stderr, "fenestra: interrupted by %s; no output written\n", signal_name(g_signal));
     return g_signal ? 128 + g_signal : 1;
+  } catch (const fenestra::OutOfMemory& e) {  // what was being read or done
+    std::fprintf(stderr, "fenestra: error: %s\n", e.what());
+    return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr,
                  "fenestra: error: out of memory while %s: lower render.paths_per_sensor (--paths), the number of "

@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <memory>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -19,40 +20,23 @@ void set_error(char* error, size_t capacity, const std::string& message) {
   error[capacity - 1] = '\0';
 }
 
-}  // namespace
-
-extern "C" {
-
-int fenestra_image_abi_version() { return FENESTRA_IMAGE_ABI_VERSION; }
-
-void* fenestra_image_open(const char* path, int* width, int* height, int* channels, char* error, size_t capacity) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    set_error(error, capacity, OIIO::geterror());
-    return nullptr;
+// Runs `work`, returning `failed` with FENESTRA_IMAGE_OUT_OF_MEMORY in `error` when an allocation
+// fails, or with the text of any other exception: none may cross the C interface.
+template <typename R, typename F>
+R guarded(R failed, char* error, size_t capacity, F&& work) {
+  try {
+    return work();
+  } catch (const std::bad_alloc&) {
+    set_error(error, capacity, FENESTRA_IMAGE_OUT_OF_MEMORY);
+  } catch (const std::exception& e) {
+    set_error(error, capacity, e.what());
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  *width = spec.width, *height = spec.height, *channels = spec.nchannels;
-  return in.release();
+  return failed;
 }
 
-int fenestra_image_read(void* handle, float* pixels, char* error, size_t capacity) {
-  auto* in = static_cast<OIIO::ImageInput*>(handle);
-  const int channels = in->spec().nchannels;
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels)) {
-    set_error(error, capacity, in->geterror());
-    return 0;
-  }
-  return 1;
-}
-
-void fenestra_image_close(void* handle) {
-  std::unique_ptr<OIIO::ImageInput> in(static_cast<OIIO::ImageInput*>(handle));
-  if (in) in->close();
-}
-
-int fenestra_image_encode(const char* path, int width, int height, int channels, const float* pixels,
-                          fenestra_image_bytes_sink sink, void* context, char* error, size_t capacity) {
+// The image in the format the path's extension names, handed to `sink`.
+int encode(const char* path, int width, int height, int channels, const float* pixels, fenestra_image_bytes_sink sink,
+           void* context, char* error, size_t capacity) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) {
     set_error(error, capacity, OIIO::geterror());
@@ -75,6 +59,48 @@ int fenestra_image_encode(const char* path, int width, int height, int channels,
   }
   sink(context, reinterpret_cast<const char*>(bytes.data()), bytes.size());
   return 1;
+}
+
+}  // namespace
+
+extern "C" {
+
+int fenestra_image_abi_version() { return FENESTRA_IMAGE_ABI_VERSION; }
+
+void* fenestra_image_open(const char* path, int* width, int* height, int* channels, char* error, size_t capacity) {
+  return guarded<void*>(nullptr, error, capacity, [&]() -> void* {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+      set_error(error, capacity, OIIO::geterror());
+      return nullptr;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    *width = spec.width, *height = spec.height, *channels = spec.nchannels;
+    return in.release();
+  });
+}
+
+int fenestra_image_read(void* handle, float* pixels, char* error, size_t capacity) {
+  return guarded(0, error, capacity, [&] {
+    auto* in = static_cast<OIIO::ImageInput*>(handle);
+    const int channels = in->spec().nchannels;
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels)) {
+      set_error(error, capacity, in->geterror());
+      return 0;
+    }
+    return 1;
+  });
+}
+
+void fenestra_image_close(void* handle) {
+  std::unique_ptr<OIIO::ImageInput> in(static_cast<OIIO::ImageInput*>(handle));
+  if (in) in->close();
+}
+
+int fenestra_image_encode(const char* path, int width, int height, int channels, const float* pixels,
+                          fenestra_image_bytes_sink sink, void* context, char* error, size_t capacity) {
+  return guarded(0, error, capacity,
+                 [&] { return encode(path, width, height, channels, pixels, sink, context, error, capacity); });
 }
 
 }  // extern "C"

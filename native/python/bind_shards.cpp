@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/output_pair.h"
 #include "io/results.h"
 #include "io/sky_output.h"
 #include "scene/scene.h"
@@ -134,6 +135,9 @@ void bind_shards(py::module_& m) {
       py::arg("outputs"), py::arg("inputs"),
       "Raises ValueError unless every output can be written whole (docs/outputs.md): a regular file or a new "
       "one, not an input, a symbolic link or a device.");
+  m.def(
+      "npz_json_pair", [](const std::string& out) { return npz_json_pair(out); }, py::arg("out"),
+      "(OUT.npz, OUT.json) for OUT or OUT.npz; ValueError when OUT is a device, FIFO, socket or directory.");
   m.def(
       "write_json_text",
       [](const std::string& path, const std::string& text) {

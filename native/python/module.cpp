@@ -25,6 +25,7 @@
 #include "trace/contributions.h"
 #include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
+#include "util/out_of_memory.h"
 #include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
 #include "open_masks.h"
@@ -42,20 +43,13 @@ py::tuple annual_parts_tuple(const fenestra::AnnualCoefficients& k, const fenest
 
 namespace {
 
-// std::bad_alloc, with what was being done: MemoryError("out of memory while ...").
-struct OutOfMemory : std::runtime_error {
-  explicit OutOfMemory(const std::string& stage)
-      : std::runtime_error("out of memory while " + stage +
-                           ": lower render.paths_per_sensor, the number of sensors or elements (a larger "
-                           "opening_domain.element_size), or the sky's resolution") {}
-};
+// std::bad_alloc, with what was being done: MemoryError("out of memory while ..."). A reader's
+// own OutOfMemory (naming the file) passes through.
 template <typename F>
 auto while_doing(const std::string& stage, F&& work) {
-  try {
-    return work();
-  } catch (const std::bad_alloc&) {
-    throw OutOfMemory(stage);
-  }
+  return fenestra::out_of_memory_while(stage + ": lower render.paths_per_sensor, the number of sensors or elements "
+                                               "(a larger opening_domain.element_size), or the sky's resolution",
+                                       std::forward<F>(work));
 }
 
 // Native text as a Python str: bytes that are not UTF-8 (e.g. from a file name) are replaced,
@@ -590,7 +584,8 @@ PYBIND11_MODULE(_core, m) {
                     static_cast<int>(image.shape(2)), pixels);
       },
       py::arg("path"), py::arg("image"),
-      "Writes a linear float image (height, width, channels), top row first, e.g. an environment map (.exr/.hdr).");
+      "Writes a linear float image (height, width, channels), top row first, e.g. an environment map: .exr or .hdr "
+      "(formats that keep the values; others are refused).");
   m.def(
       "solve",
       [](const Scene& scene, std::shared_ptr<Contributions> contributions, std::shared_ptr<Progress> progress) {
@@ -627,6 +622,7 @@ PYBIND11_MODULE(_core, m) {
       "write_sky",
       [](const Scene& scene, const std::string& path) {
         check_output_path(path, scene.input_files);  // before the map is made; never over an input
+        check_value_image_path(path);                 // a format that keeps cd/m^2
         write_sky_image(path, sky_image(scene));
       },
       py::arg("scene"), py::arg("path"), "Writes the scene's sky map (.exr or .hdr).");

@@ -6,6 +6,7 @@
 
 #include "io/atomic_file.h"
 #include "io/npz_writer.h"
+#include "io/output_pair.h"
 #include "scene/scene.h"
 #include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
@@ -184,9 +185,7 @@ json annual_json(const AnnualStudy& s) {
 }
 
 std::pair<std::string, std::string> write_annual(const Scene& scene, const AnnualStudy& s, const std::string& out) {
-  const bool has_ext = out.size() > 4 && out.compare(out.size() - 4, 4, ".npz") == 0;
-  const std::string stem = has_ext ? out.substr(0, out.size() - 4) : out;
-  const std::string npz_path = stem + ".npz", json_path = stem + ".json";
+  const auto [npz_path, json_path] = npz_json_pair(out);
   check_output_paths({npz_path, json_path}, scene.input_files);
   const size_t sensors = static_cast<size_t>(s.illuminance.total.rows()), hours = s.hours.size();
   NpzWriter npz;

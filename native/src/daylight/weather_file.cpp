@@ -1,6 +1,8 @@
 #include "daylight/weather_file.h"
 
 #include "daylight/perez_all_weather.h"
+#include "util/out_of_memory.h"
+#include "util/whole_file.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,7 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -264,15 +265,15 @@ std::vector<std::string> read_lines(const std::string& path) {
   if (error || !std::filesystem::exists(status))
     throw std::invalid_argument(path + ": cannot be read: no such file");
   if (std::filesystem::is_directory(status)) throw std::invalid_argument(path + ": cannot be read: it is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path + ": cannot be opened for reading");
   std::vector<std::string> lines;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    lines.push_back(std::move(line));
-  }
-  if (in.bad()) throw std::invalid_argument(path + ": read error");
+  out_of_memory_while("reading weather file '" + path + "'", [&] {
+    const std::string text = read_whole_file(path, "weather file");
+    for (size_t start = 0; start < text.size();) {
+      const size_t end = std::min(text.find('\n', start), text.size());
+      lines.emplace_back(text, start, end - start - (end > start && text[end - 1] == '\r' ? 1 : 0));
+      start = end + 1;
+    }
+  });
   if (!lines.empty() && lines[0].rfind("\xEF\xBB\xBF", 0) == 0) lines[0].erase(0, 3);
   while (!lines.empty() && trim(lines.back()).empty()) lines.pop_back();
   return lines;

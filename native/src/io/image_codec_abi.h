@@ -1,9 +1,11 @@
 #pragma once
 // The C interface of the image module (native/images/oiio_codec.cpp, loaded by io/image_library).
-// Functions return 0 or null on failure and then write a message into `error`.
+// Functions return 0 or null on failure and then write a message into `error`: exactly
+// FENESTRA_IMAGE_OUT_OF_MEMORY when an allocation failed (no exception crosses this interface).
 #include <cstddef>
 
-#define FENESTRA_IMAGE_ABI_VERSION 1
+#define FENESTRA_IMAGE_ABI_VERSION 2
+#define FENESTRA_IMAGE_OUT_OF_MEMORY "out of memory"
 
 extern "C" {
 typedef void (*fenestra_image_bytes_sink)(void* context, const char* bytes, size_t size);

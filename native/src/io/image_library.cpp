@@ -1,19 +1,28 @@
 #include "io/image_library.h"
 
 #include <dlfcn.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <climits>
 #include <cstdlib>
+#include <cstring>
+#include <new>
 #include <stdexcept>
 #include <vector>
 
 #include "io/image_codec_abi.h"
+#include "util/out_of_memory.h"
 
 namespace fenestra {
 namespace {
 
 constexpr const char* kModuleFile = "fenestra_images.so";
+// OpenImageIO's libraries take about 600 MB of address space as they load (measured: 601 MB), and
+// their static initialisers abort the process when an allocation fails there (the exception has
+// nowhere to go): under an address-space limit (ulimit -v) that leaves less, refuse first.
+constexpr size_t kModuleAddressSpace = 640ull << 20;
 constexpr size_t kErrorCapacity = 1024;
 
 struct ImageModule {
@@ -79,10 +88,29 @@ ImageModule load_module() {
   return m;
 }
 
+// Whether kModuleAddressSpace can be reserved now (and is released at once).
+bool room_to_load_module() {
+  void* p = mmap(nullptr, kModuleAddressSpace, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+  if (p == MAP_FAILED) return false;
+  munmap(p, kModuleAddressSpace);
+  return true;
+}
+
 const ImageModule& module() {
+  static std::atomic<bool> loaded{false};
+  if (!loaded && !room_to_load_module())
+    throw OutOfMemory("out of memory while loading the image module " + std::string(kModuleFile) +
+                      " (OpenImageIO needs about " + std::to_string(kModuleAddressSpace >> 20) +
+                      " MB of address space, more than the process's limit leaves: see ulimit -v)");
   static const ImageModule m = load_module();
+  loaded = true;
   if (!m.open) throw ImageError(m.failure, m.failure);
   return m;
+}
+
+// An allocation that failed inside the module (which lets no exception out) fails here again.
+void throw_if_out_of_memory(const char* error) {
+  if (std::strcmp(error, FENESTRA_IMAGE_OUT_OF_MEMORY) == 0) throw std::bad_alloc();
 }
 
 }  // namespace
@@ -102,14 +130,17 @@ ImageHeader open_image(const std::string& path) {
   char error[kErrorCapacity] = {};
   ImageHeader h;
   h.handle = m.open(path.c_str(), &h.width, &h.height, &h.channels, error, sizeof(error));
+  if (!h.handle) throw_if_out_of_memory(error);
   if (!h.handle) throw ImageError("cannot read image '" + path + "': " + error, error);
   return h;
 }
 
 void read_image(const std::string& path, const ImageHeader& header, float* pixels) {
   char error[kErrorCapacity] = {};
-  if (!module().read(header.handle, pixels, error, sizeof(error)))
+  if (!module().read(header.handle, pixels, error, sizeof(error))) {
+    throw_if_out_of_memory(error);
     throw ImageError("cannot read image '" + path + "': " + error, error);
+  }
 }
 
 void close_image(const ImageHeader& header) {
@@ -123,8 +154,10 @@ std::string encode_float_image(const std::string& path, int width, int height, i
   char error[kErrorCapacity] = {};
   std::string bytes;
   auto sink = [](void* context, const char* data, size_t size) { static_cast<std::string*>(context)->assign(data, size); };
-  if (!m.encode(path.c_str(), width, height, channels, pixels, sink, &bytes, error, sizeof(error)))
+  if (!m.encode(path.c_str(), width, height, channels, pixels, sink, &bytes, error, sizeof(error))) {
+    throw_if_out_of_memory(error);
     throw ImageError("cannot write image '" + path + "': " + error, error);
+  }
   return bytes;
 }
 

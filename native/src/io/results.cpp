@@ -3,15 +3,17 @@
 #include <cmath>
 #include <functional>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "io/atomic_file.h"
 #include "io/json_input.h"
 #include "io/npz_writer.h"
+#include "io/output_pair.h"
 #include "scene/input_limits.h"
 #include "trace/contributions_origin.h"
+#include "util/out_of_memory.h"
+#include "util/whole_file.h"
 
 namespace fenestra {
 
@@ -47,9 +49,7 @@ json elements_json(const Scene& scene) {
 
 std::pair<std::string, std::string> write_contributions(const Scene& scene, const Contributions& c,
                                                         const std::string& out) {
-  const bool has_ext = out.size() > 4 && out.compare(out.size() - 4, 4, ".npz") == 0;
-  const std::string stem = has_ext ? out.substr(0, out.size() - 4) : out;
-  const std::string npz_path = stem + ".npz", json_path = stem + ".json";
+  const auto [npz_path, json_path] = npz_json_pair(out);
   check_output_paths({npz_path, json_path}, scene.input_files);  // before the arrays are copied
   check_contributions_match(scene, c, "saving '" + npz_path + "'");
 
@@ -174,11 +174,8 @@ namespace {
 
 json openings_file_json(const std::string& path) {
   check_input_file(path, "openings file", limits::kMaxSceneFileBytes);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument("cannot open openings file '" + path + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_json_text(text.str(), "openings", path);
+  return out_of_memory_while("reading openings file '" + path + "'",
+                             [&] { return parse_json_text(read_whole_file(path, "openings file"), "openings", path); });
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -13,6 +12,8 @@
 #include "scene/input_limits.h"
 #include "scene/mesh.h"
 #include "scene/site_frame.h"
+#include "util/out_of_memory.h"
+#include "util/whole_file.h"
 
 namespace fenestra {
 
@@ -38,11 +39,7 @@ namespace {
 std::string read_text(const std::string& path) {
   check_input_file(path, "geometry file", limits::kMaxGeometryFileBytes);
   check_geometry_file_cost(path);  // before reading: about 12x its size in memory
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument("cannot open geometry file '" + path + "'");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return read_whole_file(path, "geometry file");
 }
 
 // tinyobjloader resolves `usemtl` only against materials read through `mtllib`; the scene
@@ -115,6 +112,10 @@ std::string prepare_obj_text(const std::string& path, const std::string& text, s
                              std::vector<Vec3d>* vertices) {
   std::istringstream in(text);
   std::ostringstream out;
+  // A failed allocation in a stream only sets badbit, which would end the loop below as if the
+  // file had ended: the streams throw it instead.
+  in.exceptions(std::ios::badbit);
+  out.exceptions(std::ios::badbit);
   out << "mtllib fenestra_materials.mtl\n";
   std::string line;
   size_t line_number = 0;
@@ -166,9 +167,7 @@ SiteFrame frame_of(const std::string& path, const std::vector<Vec3d>& vertices, 
   return frame;
 }
 
-}  // namespace
-
-Mesh load_obj(const std::string& path, const std::vector<std::string>& material_names, SiteFrame* frame) {
+Mesh read_obj(const std::string& path, const std::vector<std::string>& material_names, SiteFrame* frame) {
   std::set<std::string> used;
   std::vector<Vec3d> vertices;
   const std::string obj_text = prepare_obj_text(path, read_text(path), &used, &vertices);
@@ -277,6 +276,13 @@ Mesh load_obj(const std::string& path, const std::vector<std::string>& material_
   }
   if (mesh.triangles.empty()) throw std::invalid_argument("geometry '" + path + "' has no faces");
   return mesh;
+}
+
+}  // namespace
+
+Mesh load_obj(const std::string& path, const std::vector<std::string>& material_names, SiteFrame* frame) {
+  return out_of_memory_while("reading geometry file '" + path + "'",
+                             [&] { return read_obj(path, material_names, frame); });
 }
 
 }  // namespace fenestra

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,6 +16,7 @@
 #include "scene/scene.h"
 #include "solve/catalogue_snap.h"
 #include "solve/composition.h"
+#include "util/whole_file.h"
 
 namespace fenestra {
 
@@ -965,12 +965,9 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
 
 Scene load_scene(const std::string& path, Progress* progress) {
   check_input_file(path, "scene file", limits::kMaxSceneFileBytes);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument("cannot open scene file '" + path + "'");
-  std::ostringstream s;
-  s << in.rdbuf();
+  const std::string text = read_whole_file(path, "scene file");
   const fs::path p(path);
-  Scene scene = parse_scene(s.str(), p.parent_path().string().empty() ? "." : p.parent_path().string(), path, progress);
+  Scene scene = parse_scene(text, p.parent_path().string().empty() ? "." : p.parent_path().string(), path, progress);
   scene.input_files.insert(scene.input_files.begin(), path);
   return scene;
 }

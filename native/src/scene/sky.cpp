@@ -9,6 +9,7 @@
 #include "io/image_library.h"
 #include "sampling/warp.h"
 #include "scene/input_limits.h"
+#include "util/out_of_memory.h"
 
 namespace fenestra {
 
@@ -74,9 +75,11 @@ std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, fl
   FloatImage image;
   try {
     // The size is checked from the header, before the pixels are allocated.
-    image = read_float_image(path, [&](int width, int height, int channels) {
-      if (width < 2 || height < 1) throw std::invalid_argument("environment map '" + path + "' is empty");
-      check_image_cost(path, width, height, channels);
+    image = out_of_memory_while("reading environment map '" + path + "'", [&] {
+      return read_float_image(path, [&](int width, int height, int channels) {
+        if (width < 2 || height < 1) throw std::invalid_argument("environment map '" + path + "' is empty");
+        check_image_cost(path, width, height, channels);
+      });
     });
   } catch (const ImageError& e) {
     throw std::invalid_argument("cannot read environment map '" + path + "': " + e.reason());
