@@ -123,7 +123,7 @@ def test_annual_needs_a_climate_sky(small_room, tmp_path):
 def test_bad_openings_and_masks_are_refused_naming_them(small_room, tmp_path):
     scene = fenestra.load_scene(climate_room(small_room))
     c = fenestra.contributions(scene)
-    with pytest.raises(ValueError, match="mask has 2 entries, expected 30"):
+    with pytest.raises(ValueError, match="open mask has 2 entries; the contributions have 30 elements"):
         c.annual(np.ones(2, bool))
     off = {"openings": [{"corners": [[0.5, 5, 1.0], [2.5, 5, 1.0], [2.5, 5, 2.0], [0.5, 5, 2.0]]}]}
     with pytest.raises(ValueError, match="opening 0"):

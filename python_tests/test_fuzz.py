@@ -10,11 +10,14 @@ import random
 import resource
 import shutil
 import subprocess
+import warnings
 
 import numpy as np
 import pytest
 
 from conftest import CLI, EXAMPLES, box_obj, write_small_room
+
+import fenestra
 
 CASES = int(os.environ.get("FENESTRA_FUZZ_CASES", "200"))
 TIME_BUDGET_S = 60.0            # per run; valid runs take well under a second
@@ -347,3 +350,100 @@ def test_misleading_setups_warn_or_refuse_cleanly(tmp_path):
             assert r.returncode == 1, (seed, r.returncode, r.stderr)
             assert r.stderr.startswith("fenestra: error: ") and "what():" not in r.stderr, (seed, r.stderr)
             assert sorted(os.listdir(workdir)) == ["room.obj", "scene.json"], (seed, os.listdir(workdir))
+
+
+# ---- Python inputs: open masks and cluster options -------------------------------------------------
+
+MASK_VALUES = [0, 1, True, False, 0.0, 1.0, -0.0, 0.5, -1, 2, 255, 256, np.nan, np.inf, -np.inf, 1e-300, 1 + 0j, 1j,
+               None, "1", "", [], np.float32(1.0), np.int64(1), np.uint8(0), np.float16(0.5), 2 ** 64]
+
+
+def test_fuzzed_open_masks_are_read_as_given_or_refused(small_room):
+    """Seeded masks of every dtype: accepted only when every entry is a bool or a number exactly 0 or
+    1, and then equal to the bool mask; otherwise ValueError naming an entry that is neither."""
+    scene = fenestra.load_scene(small_room)
+    scene.render.paths_per_sensor = 16
+    c = fenestra.contributions(scene)
+    n = scene.element_count
+    rng = random.Random(35)
+    outcomes = {"read": 0, "refused": 0}
+    for _ in range(200):
+        base = [rng.random() < 0.5 for _ in range(n)]
+        mask = list(base)
+        for _ in range(rng.choice([0, 0, 1, 2])):
+            mask[rng.randrange(n)] = rng.choice(MASK_VALUES)
+        form = rng.choice(["list", "array", "float", "int8", "object"])
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # NumPy's own about casts (256 to int8, complex to float)
+                given = {"list": lambda: mask, "array": lambda: np.array(mask), "float": lambda: np.array(mask, float),
+                         "int8": lambda: np.array(mask, np.int8), "object": lambda: np.array(mask, dtype=object)}[form]()
+        except (ValueError, TypeError, OverflowError):
+            continue  # NumPy itself cannot make that array
+        flat = list(np.array(given, dtype=object).ravel()) if not isinstance(given, list) else given
+        clean = all(isinstance(v, (bool, np.bool_)) or (isinstance(v, (int, float, np.integer, np.floating))
+                                                        and not isinstance(v, complex) and v in (0, 1)) for v in flat)
+        try:
+            values, _ = c.evaluate(given)
+        except ValueError as exc:
+            assert not clean, (form, mask, exc)
+            assert "open mask" in str(exc) and len(str(exc)) < 400, str(exc)
+            outcomes["refused"] += 1
+            continue
+        assert clean, (form, mask)
+        assert np.array_equal(values, c.evaluate(np.array([bool(v) for v in flat]))[0])
+        outcomes["read"] += 1
+    assert min(outcomes.values()) >= 30, outcomes  # both kinds well exercised
+
+
+def test_fuzzed_cluster_options_are_refused_before_connecting_or_accepted(monkeypatch):
+    """Seeded options of distributed.Cluster: each is refused at once (ValueError naming it) or
+    reaches Dask with well-formed values; Dask is replaced here, so nothing connects."""
+    dask_distributed = pytest.importorskip("distributed")
+    from fenestra import distributed
+
+    reached = []
+
+    def connect(*args, **kwargs):
+        reached.append((args, kwargs))
+        raise OSError("not connecting in this test")
+
+    monkeypatch.setattr(dask_distributed, "Client", connect)
+    monkeypatch.setattr(dask_distributed, "LocalCluster", connect)
+    addresses = ["tcp://127.0.0.1:8786", "tls://h:1", "ucx://h:1", "ws://h:1", "inproc://x", "tcp://h:0",
+                 "tcp://h:65536", "tcp://" + "a" * 300 + ":1", "tcp://[::1]:8786", "tcp://[zz]:1", "h:8786",
+                 "tcp://a..b:1", "tcp://é:1", "tcp://a b:1", ""]
+    rng = random.Random(36)
+    outcomes = {"reached": 0, "refused": 0}
+    pick = lambda good, bad: rng.choice(good if rng.random() < 0.6 else bad)  # noqa: E731
+    for _ in range(300):
+        options = {}
+        if rng.random() < 0.5:
+            options["scheduler"] = pick(addresses[:1] + ["tcp://[::1]:8786", "tcp://h.example.org:1"],
+                                        addresses + NASTY)
+        else:
+            options["workers"] = pick([1, 2, 1024], NASTY)
+            if rng.random() < 0.5:
+                options["threads_per_worker"] = pick([None, 1, 8], NASTY)
+            if rng.random() < 0.5:
+                options["memory_limit"] = pick(["auto", None, "4GB", 10 ** 9], ["x", "-1GB"] + NASTY)
+        if rng.random() < 0.7:
+            options["timeout"] = pick([10, 0.5, 86400], NASTY + [float("nan"), float("inf"), -1e-9])
+        del reached[:]
+        try:
+            distributed.Cluster(**options)
+        except ValueError as exc:
+            assert not reached and len(str(exc)) < 400, (options, exc)
+            outcomes["refused"] += 1
+            continue
+        except distributed.ClusterError as exc:  # reached Dask, which "failed to connect"
+            assert "cannot reach" in str(exc) or "not connecting" in str(exc), (options, exc)
+        except OSError:
+            pass
+        assert len(reached) == 1, options
+        timeout = options.get("timeout", 10.0)
+        assert not isinstance(timeout, bool) and 0 < timeout <= 86400, options
+        if options.get("scheduler") is not None:
+            assert options["scheduler"].startswith("tcp://"), options
+        outcomes["reached"] += 1
+    assert min(outcomes.values()) >= 20, outcomes

@@ -71,8 +71,8 @@ class Contributions:
     events: int
     memory_bytes: int
     warnings: list[str]  # the setup checks' (fenestra.contributions sets them; save() writes them)
-    def evaluate(self, open: npt.ArrayLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
-    def evaluate_openings(self, scene: Scene, openings: npt.ArrayLike, progress: Optional[Progress] = None,
+    def evaluate(self, open: npt.ArrayLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...  # bools or 0/1
+    def evaluate_openings(self, scene: Scene, openings: npt.ArrayLike | str | dict | list, progress: Optional[Progress] = None,
                           sensors: Optional[Tuple[int, int]] = None  # a shard's block of the scene's sensors
                           ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
     @property
@@ -136,6 +136,8 @@ def constraint_violations(scene: Scene, openings: npt.ArrayLike | str) -> list[s
 def write_image(path: str, image: npt.ArrayLike) -> None: ...
 def read_openings(path: str) -> npt.NDArray[np.float64] | list[dict]: ...  # a list when any opening is by parameter_rectangle
 def goal_error(goals: npt.ArrayLike, values: npt.ArrayLike, weights: npt.ArrayLike | None = None) -> dict: ...
+def check_open_masks(masks: npt.ArrayLike, elements: int, batch: bool = False
+                     ) -> npt.NDArray[np.uint8]: ...  # 0 and 1 only; ValueError naming the first other entry
 def sky_map(scene: Scene) -> npt.NDArray[np.float32]: ...  # (height, width, 3), cd/m^2, top row = zenith
 def sky_warnings(scene: Scene) -> list[str]: ...  # a weather file's warnings, a place far from its station
 def sky_summary(scene: Scene) -> str: ...  # JSON: horizontal illuminances (lux), sun list

@@ -7,16 +7,18 @@ the closed and all-open values, and T's entries, and assembles them bit for bit 
 would. Exact evaluations of any set of open elements map over the shards and concatenate.
 
     from fenestra import distributed
-    with distributed.Cluster(workers=2) as cluster:             # or scheduler="tcp://host:8786"
-        c = distributed.contributions("scene.json", cluster)
-        values, stderr = c.evaluate(open_mask)
-        batch, batch_stderr = c.evaluate_batch(masks)          # one genetic generation
-        c.save("contributions.npz")
+    if __name__ == "__main__":  # a local cluster's workers are new processes that import the script
+        with distributed.Cluster(workers=2) as cluster:         # or scheduler="tcp://host:8786"
+            c = distributed.contributions("scene.json", cluster)
+            values, stderr = c.evaluate(open_mask)             # bools, or 0 and 1
+            batch, batch_stderr = c.evaluate_batch(masks)      # one genetic generation
+            c.save("contributions.npz")
 
 docs/distributed.md explains running a cluster on several machines.
 """
 
 import hashlib
+import ipaddress
 import itertools
 import json
 import logging
@@ -61,45 +63,73 @@ def _worker_identity():
 
 class Cluster:
     """A Dask client with workers able to run Fenestra: an existing cluster (`scheduler`, an
-    address such as "tcp://host:8786") or a local one of `workers` processes (each with
-    `threads_per_worker` threads; `memory_limit` per worker, Dask's format, e.g. "4GB").
-    Raises ClusterError within `timeout` seconds when the scheduler cannot be reached, has no
-    worker, or a worker cannot import Fenestra or runs another version of it."""
+    address "tcp://HOST:PORT") or a local one of `workers` processes (each with
+    `threads_per_worker` threads; `memory_limit` per worker: "auto", None for no limit, bytes, or
+    Dask's format, e.g. "4GB"). Raises ClusterError within `timeout` seconds (a finite number
+    above 0, at most a day) when the scheduler cannot be reached, has no worker, or a worker
+    cannot import Fenestra or runs another version of it; while a study waits on the cluster, when
+    it has had no worker, or a worker has not been heard from, for `timeout` seconds (check())."""
 
     def __init__(self, scheduler=None, workers=None, threads_per_worker=None, memory_limit="auto", timeout=10.0):
+        timeout = _check_timeout(timeout)
+        if scheduler is not None and workers is not None:
+            raise ValueError("give either scheduler (an existing cluster) or workers (a local one), not both")
+        if scheduler is not None:
+            _check_address(scheduler)
+            if threads_per_worker is not None or not (isinstance(memory_limit, str) and memory_limit == "auto"):
+                raise ValueError("threads_per_worker and memory_limit set a local cluster's workers; a running "
+                                 "cluster's are set where its workers start ('dask worker --nthreads N --memory-limit "
+                                 "SIZE')")
+        else:
+            workers = (os.cpu_count() or 1) if workers is None else workers
+            if not _is_integer(workers) or not 1 <= workers <= 1024:
+                raise ValueError("workers must be an integer from 1 to 1024, got %s" % _shown(workers))
+            if threads_per_worker is not None and (not _is_integer(threads_per_worker)
+                                                   or not 1 <= threads_per_worker <= 4096):
+                raise ValueError("threads_per_worker must be None (the cores shared out) or an integer from 1 to "
+                                 "4096, got %s" % _shown(threads_per_worker))
+            memory_limit = _check_memory_limit(memory_limit)
         try:
             import distributed
         except ImportError as exc:
             raise ClusterError("Dask distributed is not installed (Debian: python3-distributed): %s" % exc) from None
-        if scheduler is not None and workers is not None:
-            raise ValueError("give either scheduler (an existing cluster) or workers (a local one), not both")
-        self._local = None
+        self.timeout = timeout
+        self._local, self._closed = None, False
+        self._checked, self._no_worker_since, self._heard = 0.0, None, {}
         if scheduler is not None:
-            _check_address(scheduler)
             try:
-                self.client = distributed.Client(scheduler, timeout=timeout, set_as_default=False)
+                self._client = distributed.Client(scheduler, timeout=timeout, set_as_default=False)
             except (OSError, TimeoutError) as exc:
                 raise ClusterError("cannot reach the Dask scheduler at %s within %g s: %s" % (scheduler, timeout, exc)) from None
         else:
-            workers = (os.cpu_count() or 1) if workers is None else workers
-            if not isinstance(workers, int) or isinstance(workers, bool) or not 1 <= workers <= 1024:
-                raise ValueError("workers must be an integer from 1 to 1024, got %r" % (workers,))
             threads = threads_per_worker or max(1, (os.cpu_count() or 1) // workers)
             path = os.pathsep.join(p for p in (_ADDON_DIR, os.environ.get("PYTHONPATH")) if p)
             self._local = distributed.LocalCluster(
                 n_workers=workers, threads_per_worker=threads, processes=True, protocol="tcp://",
                 host="127.0.0.1", dashboard_address=":0", memory_limit=memory_limit,
                 silence_logs=logging.ERROR, env={"PYTHONPATH": path})
-            self.client = distributed.Client(self._local, set_as_default=False)
+            self._client = distributed.Client(self._local, set_as_default=False)
         try:
             self._check_workers(timeout)
         except BaseException:
             self.close()
             raise
 
+    @property
+    def client(self):
+        """The Dask client; ClusterError once the cluster is closed."""
+        if self._closed:
+            raise ClusterError("this study's cluster was closed (Cluster.close(), or the end of its with block): "
+                               "start a new Cluster and compute the contributions again on it")
+        return self._client
+
+    @property
+    def closed(self):
+        return self._closed
+
     def _check_workers(self, timeout):
         try:
-            self.client.wait_for_workers(1, timeout=timeout)
+            self._client.wait_for_workers(1, timeout=timeout)
         except (TimeoutError, OSError):
             raise ClusterError("the Dask scheduler at %s has no worker after %g s: start some with "
                                "'dask worker %s' (docs/distributed.md)" % (self.address, timeout, self.address)) from None
@@ -119,14 +149,15 @@ class Cluster:
                 raise ClusterError("worker %s runs %s, this client %s: use the same Fenestra build on every machine"
                                    % (address, _describe(theirs), _describe(mine)))
 
-    def _run_within(self, timeout, function, **kwargs):
-        """client.run(function, **kwargs), or TimeoutError after `timeout` seconds (Dask's run has
-        no timeout: a stopped worker would hang it; the call is left to finish on its own thread)."""
+    def _run_within(self, timeout, function, *args, **kwargs):
+        """client.run(function, *args, **kwargs), or TimeoutError after `timeout` seconds (Dask's run
+        has no timeout: a stopped worker would hang it; the call is left to finish on its own thread)."""
+        client = self.client
         done, outcome = threading.Event(), {}
 
         def target():
             try:
-                outcome["value"] = self.client.run(function, **kwargs)
+                outcome["value"] = client.run(function, *args, **kwargs)
             except BaseException as exc:  # re-raised in the caller's thread
                 outcome["error"] = exc
             finally:
@@ -139,17 +170,82 @@ class Cluster:
             raise outcome["error"]
         return outcome["value"]
 
+    def _run_on_heard(self, function, *args):
+        """function(*args) on the workers the scheduler has heard from lately, by address; {} for
+        those that do not answer within the timeout (check() names a stopped worker)."""
+        self._observe()
+        workers = [w for w, (_, since) in self._heard.items() if time.monotonic() - since < self.timeout / 2]
+        if not workers:
+            return {}
+        try:
+            return self._run_within(self.timeout, function, *args, workers=workers)
+        except (TimeoutError, OSError):
+            return {}
+
     @property
     def address(self):
         return self.client.scheduler.address
 
+    def _scheduler_workers(self):
+        """The scheduler's record of each worker, by address."""
+        client = self.client
+        info = client.scheduler_info()
+        if "workers" not in info or client.status not in ("running", "connecting"):
+            raise ClusterError("lost the connection to the Dask scheduler at %s: restart it and its workers, then "
+                               "run the study again" % client.scheduler.address)
+        return info["workers"]
+
     def workers(self):
         """Addresses of the workers now connected."""
-        return sorted(self.client.scheduler_info()["workers"])
+        return sorted(self._scheduler_workers())
+
+    def _observe(self):
+        """Asks the scheduler for its workers and notes, per worker, when (on this client's clock)
+        its last heartbeat was seen to change, and since when there has been no worker."""
+        now = self._checked = time.monotonic()
+        workers = self._scheduler_workers()
+        if not workers:
+            self._no_worker_since = self._no_worker_since or now
+            return  # the workers last heard of are kept for the message
+        self._no_worker_since = None
+        heard = {}
+        for address, info in workers.items():
+            seen, before = info.get("last_seen"), self._heard.get(address)
+            heard[address] = (seen, now) if before is None or before[0] != seen else before
+        self._heard = heard
+
+    def check(self):
+        """Raises ClusterError when the cluster has had no worker for `timeout` seconds (the last one
+        killed, crashed or out of memory), or when a worker has not been heard from by the scheduler
+        for that long (workers report twice a second: stopped, e.g. by SIGSTOP, hung, or cut off).
+        Studies call it while they wait on the cluster; it asks the scheduler at most twice a second."""
+        self.client  # noqa: B018 -- a closed cluster is refused at once
+        if time.monotonic() - self._checked < 0.5:
+            return
+        self._observe()
+        now = time.monotonic()
+        if self._no_worker_since is not None:
+            if now - self._no_worker_since > self.timeout:
+                raise ClusterError(
+                    "the Dask cluster at %s has had no worker for %g s (%s): its work cannot go on; start workers "
+                    "with 'dask worker %s' and run the study again (docs/distributed.md)"
+                    % (self.address, self.timeout, "%s left: killed, crashed or out of memory"
+                       % ", ".join(sorted(self._heard)) if self._heard else "none joined", self.address))
+            return
+        for address, (_, since) in sorted(self._heard.items()):
+            if now - since > self.timeout:
+                raise ClusterError(
+                    "worker %s has not been heard from for %g s: it is stopped (e.g. by SIGSTOP), hung, or cut off "
+                    "from the scheduler at %s; resume or restart it (a worker that ends has its work moved to the "
+                    "others), then run the study again" % (address, self.timeout, self.address))
 
     def close(self):
+        """Closes the client (and a local cluster's workers); the cluster cannot be used after."""
+        if self._closed:
+            return
+        self._closed = True
         try:
-            self.client.close()
+            self._client.close()
         finally:
             if self._local is not None:
                 self._local.close()
@@ -161,16 +257,75 @@ class Cluster:
         self.close()
 
 
-_ADDRESS = re.compile(r"^(tcp|tls|ws|wss|ucx)://(\[[0-9A-Fa-f:.]+\]|[^:/\s\[\]]+):(\d{1,5})$")
+def _shown(value):
+    """A value as repr shows it, at most about 80 characters."""
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _is_integer(value):
+    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
+
+
+def _check_timeout(timeout):
+    """Seconds: a finite number above 0, at most a day (Dask reads others as its own strings or fails)."""
+    if isinstance(timeout, (bool, np.bool_)) or not isinstance(timeout, (int, float, np.integer, np.floating)) \
+            or not 0 < timeout <= 86400:
+        raise ValueError("timeout must be a finite number of seconds above 0 and at most 86400 (a day), got %s"
+                         % _shown(timeout))
+    return float(timeout)
+
+
+def _check_memory_limit(limit):
+    """A local worker's memory limit as Dask takes it: "auto", None (no limit), bytes, or a size
+    string such as "4GB" (Dask's format)."""
+    if limit is None or (isinstance(limit, str) and limit == "auto"):
+        return limit
+    if _is_integer(limit) and limit >= 0:
+        return int(limit)
+    if isinstance(limit, str):
+        from dask.utils import parse_bytes
+
+        try:
+            if parse_bytes(limit) > 0:
+                return limit
+        except (ValueError, OverflowError, TypeError):
+            pass
+    raise ValueError("memory_limit must be \"auto\" (the machine's memory shared out), None (no limit), a whole "
+                     "number of bytes or a size such as \"4GB\", got %s" % _shown(limit))
+
+
+# The address of a scheduler: tcp://HOST:PORT, HOST a host name, an IPv4 address or [an IPv6 one].
+_ADDRESS = re.compile(r"tcp://(\[[0-9A-Fa-f:.]+\]|[^:/\s\[\]]+):([0-9]{1,5})")
+_LABEL = re.compile(r"[A-Za-z0-9_]([A-Za-z0-9_-]{0,61}[A-Za-z0-9_])?")
 
 
 def _check_address(scheduler):
-    """A Dask address, SCHEME://HOST:PORT (checked here: Dask's own errors leave a client behind
-    that hangs the interpreter's exit)."""
-    match = _ADDRESS.match(scheduler) if isinstance(scheduler, str) else None
-    if not match or not 1 <= int(match.group(3)) <= 65535:
-        raise ValueError("scheduler address %r: expected SCHEME://HOST:PORT with SCHEME tcp, tls, ws, wss or ucx and "
-                         "PORT 1 to 65535, e.g. 'tcp://host:8786'" % (scheduler,))
+    """A scheduler address, tcp://HOST:PORT (checked here, without connecting: Dask's own errors for
+    other schemes and bad host names come late, in its words, and leave a client behind that hangs
+    the interpreter's exit)."""
+    if not isinstance(scheduler, str):
+        raise ValueError("scheduler address %s: expected a string 'tcp://HOST:PORT', e.g. 'tcp://host:8786'"
+                         % _shown(scheduler))
+    scheme, sep, _ = scheduler.partition("://")
+    if sep and scheme != "tcp" and "/" not in scheme:
+        raise ValueError("scheduler address %s: scheme %s:// is not supported: Fenestra's clusters connect over "
+                         "tcp:// only (tls, ucx, ws and inproc are not), e.g. 'tcp://host:8786'"
+                         % (_shown(scheduler), scheme[:20]))
+    match = _ADDRESS.fullmatch(scheduler)
+    if not match or not 1 <= int(match.group(2)) <= 65535:
+        raise ValueError("scheduler address %s: expected tcp://HOST:PORT with PORT 1 to 65535, e.g. 'tcp://host:8786'"
+                         % _shown(scheduler))
+    host = match.group(1)
+    if host.startswith("["):
+        try:
+            ipaddress.IPv6Address(host[1:-1])
+        except ValueError:
+            raise ValueError("scheduler address %s: %s is not an IPv6 address" % (_shown(scheduler), _shown(host))) from None
+    elif len(host) > 253 or not all(_LABEL.fullmatch(label) for label in host.split(".")):
+        raise ValueError("scheduler address %s: host %s (%d characters) is not a host name or IPv4 address: at most "
+                         "253 characters, in parts of 1 to 63 letters, digits, '-' or '_' between dots"
+                         % (_shown(scheduler), _shown(host), len(host)))
 
 
 def _describe(identity):
@@ -471,18 +626,20 @@ def _shard_keys(kind, spec, count):
 def _gather(cluster, futures, keys, callback, what):
     """Results of `futures` (the tasks of shards `keys`) in order. About once a second,
     callback(fraction, what) with the fraction of the work done over all workers (returning False
-    cancels). On any exception (Ctrl-C included) the shards still running are cancelled on their
-    workers, and their tasks on the cluster, before it propagates."""
+    cancels). A cluster left without workers, or with a worker not heard from, for its timeout is a
+    ClusterError (Cluster.check). On any exception (Ctrl-C included) the shards still running are
+    cancelled on their workers, and their tasks on the cluster, before it propagates."""
     try:
         last = 0.0
         while True:
             if any(f.status == "error" for f in futures) or all(f.done() for f in futures):
                 break  # gather returns the results or raises the shard's error
+            cluster.check()
             now = time.monotonic()
             if callback is not None and now - last >= 1.0:
                 last = now
                 running = {}
-                for fractions in cluster.client.run(_progress_of, keys).values():
+                for fractions in cluster._run_on_heard(_progress_of, keys).values():
                     running.update(fractions)
                 done = sum((1.0 if f.done() else running.get(k, 0.0)) for f, k in zip(futures, keys))
                 if callback(done / len(futures), what) is False:
@@ -490,12 +647,34 @@ def _gather(cluster, futures, keys, callback, what):
             time.sleep(0.02)
         return cluster.client.gather(futures)
     except BaseException:
-        cluster.client.cancel(futures)
-        try:
-            cluster.client.run(_cancel, keys)  # a cancelled task's native work stops only so
-        except Exception:
-            pass
+        _cancel_shards(cluster, futures, keys)
         raise
+
+
+def _cancel_shards(cluster, futures, keys):
+    """Cancels the shards' tasks and their native work on the workers that answer (a cancelled
+    task's native work stops only so); a closed cluster has none left."""
+    if cluster.closed:
+        return
+    try:
+        cluster.client.cancel(futures)
+        cluster._run_on_heard(_cancel, keys)
+    except Exception:
+        pass
+
+
+def _result(cluster, future, cancelled=None):
+    """future.result(), checking the cluster meanwhile (Cluster.check) and, when given, cancelled()
+    (True raises Cancelled)."""
+    while True:
+        try:
+            return future.result(timeout=0.25)
+        except TimeoutError:
+            pass
+        cluster.check()
+        if cancelled is not None and cancelled():
+            future.cancel()
+            raise api.Cancelled("cancelled while asking the shards")
 
 
 def _mib(n):
@@ -542,7 +721,7 @@ def contributions(scene, cluster, shards=None, base_dir=".", callback=None):
 def _contributions(spec, local, cluster, shards, callback):
     api._warn_if_dark(local)
     blocks = _blocks(local.sensor_count, shards if shards is not None else len(cluster.workers()))
-    workers = cluster.client.scheduler_info()["workers"]
+    workers = cluster._scheduler_workers()
     check_shards_fit(api.estimate_cost(local, "contributions"), blocks,
                      {w: info.get("memory_limit", 0) for w, info in workers.items()})
     keys = _shard_keys("contributions", spec, len(blocks))
@@ -576,6 +755,7 @@ class DistributedContributions:
         self.shard_memory_bytes = [p["memory_bytes"] for p in parts]
         self.memory_bytes = sum(self.shard_memory_bytes)
         self.recomputed_shards = 0
+        self._closed = False
 
     @property
     def shards(self):
@@ -586,6 +766,7 @@ class DistributedContributions:
         """function(key, (begin, end), *args) on every shard's worker, results in shard order. A
         shard whose worker is gone (or restarted) is recomputed on another worker, then asked again.
         cancelled(): polled while waiting; True raises Cancelled."""
+        self._check_open()
         client = self._cluster.client
         pending = {i: None for i in range(len(self._shards))}
         results = [None] * len(self._shards)
@@ -622,6 +803,7 @@ class DistributedContributions:
         while waiting:
             finished.wait(0.25)
             finished.clear()
+            self._cluster.check()
             if cancelled is not None and cancelled():
                 raise api.Cancelled("cancelled while asking the shards")
             alive = None
@@ -644,7 +826,7 @@ class DistributedContributions:
         s = self._shards[i]
         key = self._keys[i]
         future = self._cluster.client.submit(_compute_shard, self._spec, key, s["begin"], s["end"], pure=False)
-        part = future.result()
+        part = _result(self._cluster, future)
         if not np.array_equal(part["all_open"], s["all_open"]):
             raise ClusterError("shard %d (sensors %d..%d) came out different when recomputed" % (i, s["begin"], s["end"]))
         s["worker"] = part["worker"]
@@ -652,20 +834,20 @@ class DistributedContributions:
 
     def evaluate(self, open_mask):
         """Exact (value, stderr) per sensor with the elements where open_mask is true open."""
-        values, errors = self.evaluate_batch([open_mask])
+        mask = _core.check_open_masks(open_mask, self.E.shape[1])
+        values, errors = self.evaluate_batch(mask[np.newaxis])
         return values[0], errors[0]
 
     def evaluate_batch(self, masks):
         """Exact values of several sets at once (one genetic generation): arrays (sets, sensors)
         of values and standard errors."""
-        masks = np.asarray(masks, dtype=np.uint8)
-        if masks.ndim != 2 or masks.shape[1] != self.E.shape[1]:
-            raise ValueError("masks must have shape (sets, %d), got %s" % (self.E.shape[1], masks.shape))
+        masks = _core.check_open_masks(masks, self.E.shape[1], batch=True)  # 0 and 1 only, as Contributions
         parts = self._map(_evaluate_shard, masks)
         return np.concatenate([p[0] for p in parts], axis=1), np.concatenate([p[1] for p in parts], axis=1)
 
     def evaluate_openings(self, openings):
         """Exact (value, stderr) per sensor with `openings` open (as Contributions.evaluate_openings)."""
+        self._check_open()
         openings = api.openings_argument(openings)
         parts = self._map(_evaluate_openings_shard, self._spec, openings)
         return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
@@ -676,6 +858,7 @@ class DistributedContributions:
         walls' refined grid too, traced there) and, with climate goals, the hourly models' rows and
         the years of openings run on the shards; the linear and genetic stages in this process.
         callback(fraction, status) as for fenestra.solve; returning False cancels."""
+        self._check_open()
         summary = self.as_contributions()
         progress = progress if progress is not None else _core.Progress()
         records = _ShardedRecords(self, progress)
@@ -698,12 +881,24 @@ class DistributedContributions:
         """Writes PATH.npz and PATH.json as fenestra.Contributions.save does."""
         return self.as_contributions().save(self.scene, os.fspath(path))
 
+    def _check_open(self):
+        """ClusterError when the records are gone: these contributions, or their cluster, were closed.
+        The arrays (E, A, T, the values) stay, and so do save() and as_contributions()."""
+        if self._closed:
+            raise ClusterError("these contributions were closed (close(), or the end of their with block): their path "
+                               "records on the workers were freed; compute them again (distributed.contributions) to "
+                               "evaluate or solve (E, A, T, the values, save() and as_contributions() still work)")
+        if self._cluster.closed:
+            raise ClusterError("this study's cluster was closed (Cluster.close(), or the end of its with block): the "
+                               "path records went with it; start a new Cluster and compute the contributions again "
+                               "(E, A, T, the values, save() and as_contributions() still work)")
+
     def close(self):
-        """Frees the shards' records on the workers."""
-        keys, self._keys = self._keys, []
-        if keys:
+        """Frees the shards' records on the workers; evaluations and solves are refused after."""
+        keys, self._keys, self._closed = self._keys, [], True
+        if keys and not self._cluster.closed:
             try:
-                self._cluster.client.run(_release_shards, keys)
+                self._cluster._run_on_heard(_release_shards, keys)
             except Exception:  # the cluster is gone: nothing is held any more
                 pass
 
@@ -790,6 +985,7 @@ class _ShardedRecords:
                     raise
                 self._actors.pop(worker, None)
                 return None
+            self._study._cluster.check()
             if self._progress.cancelled:
                 raise api.Cancelled("cancelled while asking the shards")
             if worker not in self._study._cluster.workers():
@@ -809,6 +1005,7 @@ class _ShardedRecords:
                     break
                 except TimeoutError:
                     pass
+                self._study._cluster.check()
                 if self._progress.cancelled or worker not in self._study._cluster.workers():
                     future.cancel()
                     if self._progress.cancelled:
@@ -822,10 +1019,10 @@ class _ShardedRecords:
 
     def _replay(self, i):
         s = self._study
-        s._cluster.client.submit(
+        _result(s._cluster, s._cluster.client.submit(
             _session_replay, s._keys[i], (s._shards[i]["begin"], s._shards[i]["end"]), s._spec, self._session,
             self._log, dict(self._pending), workers=[s._shards[i]["worker"]], allow_other_workers=False,
-            pure=False).result()
+            pure=False))
 
     @staticmethod
     def _pairs(parts):
@@ -893,7 +1090,7 @@ class _ShardedRecords:
     def close(self):
         self._actors.clear()  # their futures released: the workers drop them
         try:
-            self._study._cluster.client.run(_end_session, self._session)
+            self._study._cluster._run_on_heard(_end_session, self._session)
         except Exception:  # the cluster is gone: so is the state
             pass
         if self._owns_study:

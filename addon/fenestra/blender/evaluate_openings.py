@@ -21,7 +21,10 @@ def goal_error(goals, values):
     """(relative RMS error, largest relative error) of values against goals (lux; negative: no
     goal): the solve's own measure, every weight 1 as the add-on exports no weights."""
     from .. import goal_error as solver_error
-    error = solver_error(np.asarray(goals, np.float64), np.asarray(values, np.float64))
+    goals = np.asarray(goals, np.float64)
+    if not np.any(goals >= 0):  # no sensor has a goal (goal_error refuses that): no error to show
+        return 0.0, 0.0
+    error = solver_error(goals, np.asarray(values, np.float64))
     return error["relative_rms"], error["max_relative"]
 
 
