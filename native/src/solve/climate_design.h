@@ -64,9 +64,10 @@ struct ClimateOutcome {
   // unless verified).
   std::vector<ClimateFigure> achieved, verified;
   std::shared_ptr<const AnnualStudy> study, verified_study;
-  // The two years disagree beyond the noise (a fraction figure by more than kHeadlineFractionGap,
-  // an annual mean by more than 3 combined standard errors): the figures shown are the real
-  // cutters', and a warning names the difference.
+  // The two years disagree beyond the noise (sDA by more than the share of its sensors whose DA is
+  // within its noise of the time fraction, and by more than kHeadlineFractionGap; another fraction
+  // figure by more than kHeadlineFractionGap; an annual mean by more than 3 combined standard
+  // errors): the figures shown are the real cutters', and a warning names the difference.
   bool headline_cutters = false;
   // Least glazing took a trade-off that meets the goals with less glass than the solver's answer.
   bool answer_from_tradeoffs = false;

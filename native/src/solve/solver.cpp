@@ -356,11 +356,40 @@ std::vector<std::string> unmet_climate_goals(const ClimateGoals& goals, const st
   return out;
 }
 
-// Whether a goal's figure from the path records and with real cutters differ beyond the noise: a
-// fraction by more than kHeadlineFractionGap, an annual mean (lux) by more than 3 combined standard
-// errors of the goal's sensors' mean.
+// Whether a goal's figure from the path records and with real cutters differ beyond the noise: sDA
+// by more than its noise (sda_noise) and kHeadlineFractionGap, another fraction by more than
+// kHeadlineFractionGap, an annual mean (lux) by more than 3 combined standard errors of the goal's
+// sensors' mean.
+// An sDA goal's noise: the share of its sensors whose DA, in either year, lies within its noise of
+// the time fraction (either side may be right for them). A sensor's DA is uncertain by the share of
+// occupied hours whose value lies within 3 combined relative standard errors r of the threshold
+// (the coefficients' errors move every hour by about r).
+double sda_noise(const ClimateGoal& goal, const AnnualStudy& a, const AnnualStudy& b) {
+  int uncertain = 0;
+  for (int i : goal.sensors) {
+    const double mean = std::max(1e-9, a.occupied_mean.value[i]);
+    const double r = std::hypot(a.occupied_mean.standard_error[i], b.occupied_mean.standard_error[i]) / mean;
+    int occupied = 0, near = 0, over_a = 0, over_b = 0;
+    for (size_t h = 0; h < a.occupied.size(); ++h) {
+      if (!a.occupied[h]) continue;
+      const double e = a.illuminance.total(i, static_cast<Eigen::Index>(h));
+      ++occupied;
+      near += std::abs(e - goal.illuminance_lux) <= 3.0 * r * e;
+      over_a += e >= goal.illuminance_lux;
+      over_b += b.illuminance.total(i, static_cast<Eigen::Index>(h)) >= goal.illuminance_lux;
+    }
+    if (occupied == 0) continue;
+    const double band = (near + 1.0) / occupied;
+    uncertain += std::abs(static_cast<double>(over_a) / occupied - goal.time_fraction) <= band ||
+                 std::abs(static_cast<double>(over_b) / occupied - goal.time_fraction) <= band;
+  }
+  return static_cast<double>(uncertain) / static_cast<double>(std::max<size_t>(1, goal.sensors.size()));
+}
+
 bool beyond_noise(const ClimateGoal& goal, double records, double cut, const AnnualStudy& records_year,
                   const AnnualStudy& cut_year) {
+  if (goal.metric == ClimateMetric::SpatialDaylightAutonomy)
+    return std::abs(records - cut) > std::max(kHeadlineFractionGap, sda_noise(goal, records_year, cut_year)) + 1e-9;
   if (goal.unit() != "lux") return std::abs(records - cut) > kHeadlineFractionGap;
   double variance = 0.0;
   for (int i : goal.sensors)
