@@ -9,6 +9,8 @@
 
 #include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
+#include "solve/edge_refinement.h"
+#include "solve/thick_wall_edges.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
 #include "trace/replicates.h"
@@ -23,20 +25,23 @@ const std::string kChicago = std::string(FENESTRA_EXAMPLES) + "/weather/USA_IL_C
 // On the 0.5 m element grid of the south wall (y = 0): x 0.5..2.5 m, z 1..2 m.
 const Rectangle kWindow = {Vec3(0.5f, 0, 1), Vec3(2.5f, 0, 1), Vec3(2.5f, 0, 2), Vec3(0.5f, 0, 2)};
 
-// A grey 3 x 3 x 2.5 m room whose thin south wall is the opening domain, under the Chicago year.
-Scene side_lit_room(const TempDir& dir, int paths, int threads = 0) {
+// A grey 3 x 3 x 2.5 m room whose south wall is the opening domain (`thickness` m thick, given),
+// under the Chicago year.
+Scene side_lit_room(const TempDir& dir, int paths, int threads = 0, float thickness = 0.0f, int seed = 3,
+                    float element_size = 0.5f) {
   ObjBuilder obj;
   obj.box({0, 0, 0}, {3, 3, 2.5f}, [](const std::string& f) { return f == "south" ? "facade" : "grey"; });
   dir.write("room.obj", obj.str());
   std::ostringstream s;
   s << R"({"fenestra": 1, "geometry": "room.obj",
            "materials": {"grey": {"reflectance": 0.6}, "facade": {"reflectance": 0.5}},
-           "opening_domain": {"materials": ["facade"], "element_size": 0.5},
+           "opening_domain": {"materials": ["facade"], "element_size": )"
+    << element_size << R"(, "thickness": )" << thickness << R"(},
            "sensors": {"points": [[1.5, 1.0, 0.8], [0.5, 2.5, 0.8], [2.5, 0.5, 1.2]], "normals": [0, 0, 1]},
            "sky": {"type": "climate", "weather": ")"
     << kChicago << R"(", "resolution": [64, 32]},
            "render": {"paths_per_sensor": )"
-    << paths << R"(, "max_bounces": 8, "seed": 3, "threads": )" << threads << "}}";
+    << paths << R"(, "max_bounces": 8, "seed": )" << seed << R"(, "threads": )" << threads << "}}";
   dir.write("scene.json", s.str());
   return load_scene(dir.file("scene.json"));
 }
@@ -142,6 +147,68 @@ TEST(AnnualCutStudy, SideLitRoomAgreesWithTheRecordsStudy) {
                 records.metrics.daylight_autonomy[i], tolerance, inside, edge);
   }
 }
+
+// In thick walls the records' year and the year traced with the openings really cut are two
+// estimates of the same year: per sensor the annual mean and DA300 agree within 3 combined
+// standard errors, sDA and ASE within 2 points. On the element grid, and on a grid refined about
+// the window with edges between the element grid's lines (the solver's edge refinement).
+struct ThickYear {
+  float thickness;
+  bool refined;
+  int seed;
+};
+
+class ThickWallYear : public ::testing::TestWithParam<ThickYear> {};
+
+TEST_P(ThickWallYear, RecordsAgreeWithTheOpeningsCut) {
+  const ThickYear w = GetParam();
+  TempDir dir;
+  const Scene scene = side_lit_room(dir, 4096, 0, w.thickness, w.seed, 0.25f);
+  ASSERT_NEAR(scene.domain.panels()[0].thickness, w.thickness, 1e-6);
+  PanelRectangle window = to_panel_rectangle(scene.domain, kWindow);
+  Scene traced = scene;
+  if (w.refined) {
+    traced.domain = scene.domain.refined(thick_wall_edge_regions(scene.domain, {window}, 0.0));
+    const double step = edge_steps(scene.domain.element_size(), 0.0, true).back();
+    ASSERT_LT(step, scene.domain.element_size());
+    window = {window.panel, window.u0 + step, window.u1 - 2 * step, window.v0 - step, window.v1 + 3 * step};
+  }
+  const Contributions c = compute_contributions(traced, nullptr, /*transport=*/false);
+  const OpenRegion region(traced.domain, {window});
+  const AnnualStudy records = annual_study(traced, c, region);
+  const AnnualStudy cut = annual_study_with_cutters(scene, {OpeningInput(window)}, nullptr, 16384);
+  const std::vector<double> records_se = records_stderr_without_direct(c, region);
+  const int occupied = cut.metrics.occupied_hours;
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    const double year = cut.metrics.mean_illuminance_lux[i], truth = records.metrics.mean_illuminance_lux[i];
+    const double se = cut.occupied_mean.standard_error[i];
+    EXPECT_TRUE(test::within_sigma(truth, records_se[i], year, se, 3.0)) << "sensor " << i;
+    // DA300 within 3 sigma: the hours whose value lies within 3 combined relative standard errors
+    // r of 300 lux may change sides (the coefficients' errors move every hour by about r), and
+    // one hour more.
+    const double r = std::hypot(se, records_se[i]) / truth;
+    int near = 0;
+    for (int h = 0; h < static_cast<int>(cut.hours.size()); ++h) {
+      if (!cut.occupied[h]) continue;
+      const double e = records.illuminance.total(i, h);
+      near += std::abs(e - 300.0) <= 3.0 * r * e;
+    }
+    const double da_tolerance = (near + 1.0) / occupied;
+    EXPECT_NEAR(records.metrics.daylight_autonomy[i], cut.metrics.daylight_autonomy[i], da_tolerance) << "sensor " << i;
+    std::printf("[ year     ] %.2f m wall%s, seed %d, sensor %ld: mean %.1f records (se %.1f), %.1f cut (se %.1f), "
+                "%+.2f %%; DA300 %.4f records, %.4f cut (tolerance %.4f)\n",
+                w.thickness, w.refined ? " refined" : "", w.seed, static_cast<long>(i), truth, records_se[i], year, se,
+                100.0 * (truth / year - 1.0), records.metrics.daylight_autonomy[i], cut.metrics.daylight_autonomy[i],
+                da_tolerance);
+  }
+  EXPECT_NEAR(records.metrics.spatial_daylight_autonomy, cut.metrics.spatial_daylight_autonomy, 0.02);
+  EXPECT_NEAR(records.metrics.annual_sunlight_exposure, cut.metrics.annual_sunlight_exposure, 0.02);
+}
+
+INSTANTIATE_TEST_SUITE_P(Walls, ThickWallYear,
+                         ::testing::Values(ThickYear{0.2f, false, 3}, ThickYear{0.3f, false, 3}, ThickYear{0.5f, false, 3},
+                                           ThickYear{0.3f, false, 4}, ThickYear{0.2f, true, 3}, ThickYear{0.3f, true, 4},
+                                           ThickYear{0.5f, true, 5}));
 
 // A 2 x 2 x 2 m black box whose roof is the opening domain, two sensors on the floor.
 Scene roof_box(const TempDir& dir, int paths) {

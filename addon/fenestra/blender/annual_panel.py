@@ -124,6 +124,8 @@ class FENESTRA_PT_annual(FenestraPanel, bpy.types.Panel):
             layout.prop(display, "false_colour", text="False Colour")
         elif display.annual_metric not in false_colour.SHARES_OF_TIME:
             layout.prop(display, "colour_max")
+        if annual.note:
+            draw_warning(layout, annual.note)
         draw_space_metrics(layout, annual)
         draw_run(layout, annual)
 

@@ -45,6 +45,8 @@ class FenestraAnnualResults(PropertyGroup):
     reused: BoolProperty(name="Contributions Reused",
                          description="The light paths of a previous run or solve were reused: only the "
                                      "openings changed")
+    note: StringProperty(name="Note", description="The native core's word on the figures, e.g. that they are the "
+                                                  "real cutters' year because the records' disagreed beyond the noise")
     study_path: StringProperty(name="Study", subtype='FILE_PATH',
                                description="The scene.json of the run (its folder also holds annual.json)")
 

@@ -60,6 +60,7 @@ def apply(scene, study, summary, openings, seconds, reused, study_path):
     annual.openings, annual.seconds, annual.reused = openings, seconds, reused
     annual.paths = int(summary.get("paths_per_sensor", 0))
     annual.study_path = study_path
+    annual.note = summary.get("note") or ""
     annual.mean_illuminance = _number(space.get("mean_illuminance_lux"))
     annual.daylight_autonomy = _number(space.get("daylight_autonomy"))
     annual.continuous_daylight_autonomy = _number(space.get("continuous_daylight_autonomy"))

@@ -157,6 +157,9 @@ class FenestraClimateResult(PropertyGroup):
     verified_all_met: BoolProperty(name="All Met, Verified")
     unmet: StringProperty(name="Unmet", description="Each goal not met, one per line (the native core's words)")
     least_glazing: BoolProperty(name="Least Glazing")
+    headline: StringProperty(name="Figures Of", description="Which year the Achieved figures are of: \"path records\", "
+                                                            "or \"real cutters\" where the two disagreed beyond the noise",
+                             default="path records")
     glazing_area: FloatProperty(name="Glazing Area", description="Open area of the openings, m²")
     domain_area: FloatProperty(name="Domain Area", description="Area of the opening domain's elements, m²")
 

@@ -119,7 +119,8 @@ class FENESTRA_PT_climate_results(FenestraPanel, bpy.types.Panel):
             box.label(text=goal.description, icon='CHECKMARK' if goal.has_achieved and goal.met else 'X')
             col = box.column(align=True)
             col.label(text="Required %s %s" % (SENSE.get(goal.sense, ""), _figure(goal, goal.required)))
-            col.label(text="Achieved %s (records)" % (_figure(goal, goal.achieved) if goal.has_achieved else "-"))
+            col.label(text="Achieved %s (%s)" % (_figure(goal, goal.achieved) if goal.has_achieved else "-",
+                                                 "records" if c.headline == "path records" else "real cutters"))
             if goal.has_verified:
                 col.label(text="Verified %s" % _figure(goal, goal.verified),
                           icon='CHECKMARK' if goal.verified_met else 'X')

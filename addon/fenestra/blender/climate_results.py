@@ -35,6 +35,7 @@ def apply(results, climate):
     target.verified_all_met = bool(climate.get("verified_all_met"))
     target.unmet = "\n".join(climate.get("unmet") or [])
     target.least_glazing = bool(climate.get("least_glazing"))
+    target.headline = climate.get("headline") or "path records"
     target.glazing_area = _number(climate.get("glazing_area_m2"))
     target.domain_area = _number(climate.get("domain_area_m2"))
     per_sensor = climate.get("per_sensor") or {}

@@ -279,6 +279,9 @@ def apply(context, study, result):
     if climate.get("space") and climate.get("per_sensor") and climate.get("year"):
         # The solved openings' year fills the Annual Daylight figures: its space metrics and maps.
         summary = dict(climate["year"], space=climate["space"], per_sensor=climate["per_sensor"])
+        if climate.get("headline") == "real cutters":  # the core's words: the records disagreed beyond the noise
+            summary["note"] = next((w for w in result.get("warnings", []) if "disagree beyond the noise" in w),
+                                   "figures of the year with real cutters")
         annual_results.apply(scene, study, summary, r.openings, r.seconds_total, False, study.scene_path)
     display = settings.display
     if r.climate.valid and display.false_colour != 'NONE' and display.false_colour not in climate_results.QUANTITIES:

@@ -47,16 +47,19 @@ json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
                     {"required", goal.required()},
                     {"unit", goal.unit()},
                     {"weight", goal.weight},
-                    {"achieved", figure_or_null(c.achieved, g)},
-                    {"met", met_or_null(goal, c.achieved, g)},
+                    {"achieved", figure_or_null(c.headline(), g)},
+                    {"met", met_or_null(goal, c.headline(), g)},
+                    {"records", figure_or_null(c.achieved, g)},
+                    {"records_met", met_or_null(goal, c.achieved, g)},
                     {"verified", figure_or_null(c.verified, g)},
                     {"verified_met", met_or_null(goal, c.verified, g)},
                     {"elements", figure_or_null(c.element_figures, g)},
                     {"all_open", figure_or_null(c.all_open_figures, g)}});
   }
-  json per_sensor = nullptr, space = nullptr, verified_space = nullptr;
-  if (c.study) {
-    const AnnualMetrics& m = c.study->metrics;
+  json per_sensor = nullptr, space = nullptr, verified_space = nullptr, records_space = nullptr;
+  const std::shared_ptr<const AnnualStudy>& shown = c.headline_study();
+  if (shown) {
+    const AnnualMetrics& m = shown->metrics;
     std::vector<int> ase(m.ase_sensor_hours.data(), m.ase_sensor_hours.data() + m.ase_sensor_hours.size());
     per_sensor = {{"daylight_autonomy", values(m.daylight_autonomy)},
                   {"continuous_daylight_autonomy", values(m.continuous_daylight_autonomy)},
@@ -65,9 +68,10 @@ json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
     space = annual_space_json(m);
   }
   if (c.verified_study) verified_space = annual_space_json(c.verified_study->metrics);
+  if (c.study) records_space = annual_space_json(c.study->metrics);
   json year = nullptr;  // what the year is, as `fenestra annual` names it
-  if (c.study && scene.climate) {
-    const AnnualStudy& st = *c.study;
+  if (shown && scene.climate) {
+    const AnnualStudy& st = *shown;
     year = {{"weather", scene.climate->settings.weather_path},
             {"hours", st.metrics.hours},
             {"occupied_hours", st.metrics.occupied_hours},
@@ -76,7 +80,10 @@ json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
             {"paths_per_sensor", st.paths_per_sensor}};
   }
   return {{"goals", list},
-          {"all_met", c.achieved.empty() ? json(nullptr) : json(all_met(goals, c.achieved))},
+          {"all_met", c.headline().empty() ? json(nullptr) : json(all_met(goals, c.headline()))},
+          {"records_all_met", c.achieved.empty() ? json(nullptr) : json(all_met(goals, c.achieved))},
+          {"headline", c.headline_cutters || c.achieved.empty() ? "real cutters" : "path records"},
+          {"answer_from_tradeoffs", c.answer_from_tradeoffs},
           {"verified_all_met", c.verified.empty() ? json(nullptr) : json(all_met(goals, c.verified))},
           {"unmet", c.unmet},
           {"least_glazing", goals.least_glazing},
@@ -85,6 +92,7 @@ json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
           {"per_sensor", per_sensor},
           {"space", space},
           {"verified_space", verified_space},
+          {"records_space", records_space},
           {"year", year},
           {"linearisations", c.linearisations},
           {"model_bytes", c.model_bytes},

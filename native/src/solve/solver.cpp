@@ -24,6 +24,7 @@
 #include "trace/evaluate.h"
 #include "trace/flip_effects.h"
 #include "solve/edge_refinement.h"
+#include "solve/least_glazing.h"
 #include "solve/record_queries.h"
 #include "solve/thick_wall_edges.h"
 #include "solve/tradeoffs.h"
@@ -355,6 +356,48 @@ std::vector<std::string> unmet_climate_goals(const ClimateGoals& goals, const st
   return out;
 }
 
+// Whether a goal's figure from the path records and with real cutters differ beyond the noise: sDA
+// by more than its noise (sda_noise) and kHeadlineFractionGap, another fraction by more than
+// kHeadlineFractionGap, an annual mean (lux) by more than 3 combined standard errors of the goal's
+// sensors' mean.
+// An sDA goal's noise: the share of its sensors whose DA, in either year, lies within its noise of
+// the time fraction (either side may be right for them). A sensor's DA is uncertain by the share of
+// occupied hours whose value lies within 3 combined relative standard errors r of the threshold
+// (the coefficients' errors move every hour by about r).
+double sda_noise(const ClimateGoal& goal, const AnnualStudy& a, const AnnualStudy& b) {
+  int uncertain = 0;
+  for (int i : goal.sensors) {
+    const double mean = std::max(1e-9, a.occupied_mean.value[i]);
+    const double r = std::hypot(a.occupied_mean.standard_error[i], b.occupied_mean.standard_error[i]) / mean;
+    int occupied = 0, near = 0, over_a = 0, over_b = 0;
+    for (size_t h = 0; h < a.occupied.size(); ++h) {
+      if (!a.occupied[h]) continue;
+      const double e = a.illuminance.total(i, static_cast<Eigen::Index>(h));
+      ++occupied;
+      near += std::abs(e - goal.illuminance_lux) <= 3.0 * r * e;
+      over_a += e >= goal.illuminance_lux;
+      over_b += b.illuminance.total(i, static_cast<Eigen::Index>(h)) >= goal.illuminance_lux;
+    }
+    if (occupied == 0) continue;
+    const double band = (near + 1.0) / occupied;
+    uncertain += std::abs(static_cast<double>(over_a) / occupied - goal.time_fraction) <= band ||
+                 std::abs(static_cast<double>(over_b) / occupied - goal.time_fraction) <= band;
+  }
+  return static_cast<double>(uncertain) / static_cast<double>(std::max<size_t>(1, goal.sensors.size()));
+}
+
+bool beyond_noise(const ClimateGoal& goal, double records, double cut, const AnnualStudy& records_year,
+                  const AnnualStudy& cut_year) {
+  if (goal.metric == ClimateMetric::SpatialDaylightAutonomy)
+    return std::abs(records - cut) > std::max(kHeadlineFractionGap, sda_noise(goal, records_year, cut_year)) + 1e-9;
+  if (goal.unit() != "lux") return std::abs(records - cut) > kHeadlineFractionGap;
+  double variance = 0.0;
+  for (int i : goal.sensors)
+    variance += std::pow(records_year.occupied_mean.standard_error[i], 2) + std::pow(cut_year.occupied_mean.standard_error[i], 2);
+  const double n = static_cast<double>(std::max<size_t>(1, goal.sensors.size()));
+  return std::abs(records - cut) > 3.0 * std::sqrt(variance) / n;
+}
+
 // The final openings' year and each climate goal's figure: from the path records, and with real
 // cutters when verification is on.
 void report_climate(const Scene& scene, RecordQueries& records, const ClimateProblem& problem,
@@ -377,15 +420,24 @@ void report_climate(const Scene& scene, RecordQueries& records, const ClimatePro
     climate.verified = climate_figures(problem, cut->illuminance.total, cut->illuminance.direct);
     climate.verified_study = std::move(cut);
   }
+  std::string apart;  // the goals whose two figures disagree beyond the noise
   for (size_t g = 0; g < climate.verified.size() && g < climate.achieved.size(); ++g) {
     const ClimateGoal& goal = scene.sensors.climate_goals.goals[g];
-    if (figure_meets(goal, climate.achieved[g].achieved) && !figure_meets(goal, climate.verified[g].achieved))
+    const double records = climate.achieved[g].achieved, cut = climate.verified[g].achieved;
+    if (beyond_noise(goal, records, cut, *climate.study, *climate.verified_study))
+      apart += std::string(apart.empty() ? "" : ", ") + goal.describe() + ": " + figure_text(goal, records) +
+               " from the path records, " + figure_text(goal, cut) + " with real cutters";
+    else if (figure_meets(goal, records) && !figure_meets(goal, cut))
       out->warnings.push_back("climate goals: " + goal.describe() + " is met from the path records (" +
-                              figure_text(goal, climate.achieved[g].achieved) + ") but not with real cutters (" +
-                              figure_text(goal, climate.verified[g].achieved) +
+                              figure_text(goal, records) + ") but not with real cutters (" + figure_text(goal, cut) +
                               "): a result at the edge of the goal; more paths per sensor tell which is right");
   }
-  const std::vector<ClimateFigure>& judged = climate.achieved.empty() ? climate.verified : climate.achieved;
+  if (!apart.empty()) {
+    climate.headline_cutters = true;
+    out->warnings.push_back("climate goals: the year from the path records and the year with real cutters disagree "
+                            "beyond the noise (" + apart + "): the figures shown are the real cutters'");
+  }
+  const std::vector<ClimateFigure>& judged = climate.headline();
   climate.unmet =
       unmet_climate_goals(scene.sensors.climate_goals, judged, climate.element_figures, climate.all_open_figures);
   for (const std::string& u : climate.unmet) out->warnings.push_back("climate goals: " + u);
@@ -431,7 +483,7 @@ SolverGoals raised_goals(SolverGoals goals, const std::vector<int>& rows, const 
 // A trade-off's climate figures: the answer's, or its openings' year from the path records.
 std::vector<ClimateFigure> tradeoff_climate(RecordQueries& records, const ClimateProblem& problem,
                                             const TradeoffResult& entry, const SolveResult& out) {
-  if (entry.answer) return out.climate.achieved;
+  if (entry.answer) return out.climate.headline();
   std::vector<PanelRectangle> rects;
   for (const OpeningRectangle& o : entry.openings) rects.push_back(o.parameter);
   try {
@@ -440,6 +492,47 @@ std::vector<ClimateFigure> tradeoff_climate(RecordQueries& records, const Climat
   } catch (const std::invalid_argument&) {
     return {};  // edges off the grid lines of a thick wall: the records cannot tell
   }
+}
+
+// Whether every climate goal is met by `figures` (false when they are unknown).
+bool all_climate_goals_met(const ClimateGoals& goals, const std::vector<ClimateFigure>& figures) {
+  if (figures.size() != goals.goals.size()) return false;
+  for (size_t g = 0; g < figures.size(); ++g)
+    if (!figure_meets(goals.goals[g], figures[g].achieved)) return false;
+  return true;
+}
+
+double glazing_area(const std::vector<OpeningRectangle>& openings) {
+  double area = 0.0;
+  for (const OpeningRectangle& o : openings) area += o.width * o.height;
+  return area;
+}
+
+// Least glazing: the entry of the trade-off list (the answer included) with the least glass among
+// those whose year meets every climate goal, from the path records and, with verification on,
+// with real cutters too. Fills each entry's `climate` (the answer's from `answer_figures`).
+// Returns its index, or -1 when none meets the goals.
+int least_glazing_entry(const Scene& scene, RecordQueries& records, const ClimateProblem& problem,
+                        const std::vector<ClimateFigure>& answer_figures, bool verify, int verify_paths,
+                        std::vector<TradeoffResult>* tradeoffs) {
+  const ClimateGoals& goals = scene.sensors.climate_goals;
+  std::vector<GlazingCandidate> candidates;
+  for (TradeoffResult& entry : *tradeoffs) {
+    entry.climate = entry.answer ? answer_figures : tradeoff_climate(records, problem, entry, SolveResult());
+    candidates.push_back({glazing_area(entry.openings), all_climate_goals_met(goals, entry.climate)});
+  }
+  for (size_t i : passing_by_glazing(candidates)) {
+    const TradeoffResult& entry = (*tradeoffs)[i];
+    if (verify && !entry.answer) {
+      std::vector<OpeningInput> cutters;
+      for (const OpeningRectangle& o : entry.openings) cutters.emplace_back(o.parameter);
+      const AnnualStudy cut = records.annual_cut(cutters, verify_paths);
+      if (!all_climate_goals_met(goals, climate_figures(problem, cut.illuminance.total, cut.illuminance.direct)))
+        continue;
+    }
+    return static_cast<int>(i);
+  }
+  return -1;
 }
 
 // The per-sensor goals the constraints stage follows after a climate search: each sensor the
@@ -827,6 +920,43 @@ SolveResult solve_openings(const Scene& scene, RecordQueries& records, Progress*
       out.tradeoffs.push_back(std::move(entry));
     }
     out.timings.push_back({"trade-offs", since(t)});
+    // Least glazing: a trade-off that meets every climate goal with less glass than the answer
+    // becomes the answer (the list is of designs the solver evaluated; none passing with less
+    // glass is shown beside it).
+    if (climate && scene.sensors.climate_goals.least_glazing) {
+      std::vector<ClimateFigure> answer_figures;
+      try {
+        const AnnualStudy year = records.annual_study(final_rects);
+        answer_figures = climate_figures(*climate_problem_of, year.illuminance.total, year.illuminance.direct);
+      } catch (const std::invalid_argument&) {
+        // Edges off the grid lines of a thick wall: the records cannot tell; the answer stays.
+      }
+      const int least = answer_figures.empty() ? -1
+                                                : least_glazing_entry(scene, records, *climate_problem_of, answer_figures,
+                                                                      settings.verify, settings.verify_paths, &out.tradeoffs);
+      if (least >= 0 && !out.tradeoffs[static_cast<size_t>(least)].answer) {
+        for (TradeoffResult& entry : out.tradeoffs) entry.answer = false;
+        TradeoffResult& chosen_entry = out.tradeoffs[static_cast<size_t>(least)];
+        chosen_entry.answer = true;
+        out.openings = chosen_entry.openings;
+        final_rects.clear();
+        for (const OpeningRectangle& o : out.openings) final_rects.push_back(o.parameter);
+        out.open = open_elements(scene.domain, final_rects);
+        out.predicted = chosen_entry.predicted;
+        out.predicted_stderr = chosen_entry.predicted_stderr;
+        out.linear = linear_prediction(c, out.open);
+        out.compensated = compensated_prediction(c, out.open);
+        out.error = chosen_entry.error;
+        out.linear_error = goal_error(out.goals, out.linear);
+        out.compensated_error = goal_error(out.goals, out.compensated);
+        out.warnings.erase(std::remove_if(out.warnings.begin(), out.warnings.end(),
+                                          [](const std::string& w) { return w.rfind("constraints: ", 0) == 0; }),
+                           out.warnings.end());
+        out.constraint_violations = all_violations(scene.domain, final_rects, constraints);
+        for (const std::string& v : out.constraint_violations) out.warnings.push_back("constraints: " + v);
+        out.climate.answer_from_tradeoffs = true;
+      }
+    }
   }
   if (settings.verify) {
     t = Clock::now();
@@ -842,7 +972,8 @@ SolveResult solve_openings(const Scene& scene, RecordQueries& records, Progress*
   if (climate) {
     t = Clock::now();
     report_climate(scene, records, *climate_problem_of, final_rects, settings.verify, settings.verify_paths, &out, progress);
-    for (TradeoffResult& entry : out.tradeoffs) entry.climate = tradeoff_climate(records, *climate_problem_of, entry, out);
+    for (TradeoffResult& entry : out.tradeoffs)
+      if (entry.answer || entry.climate.empty()) entry.climate = tradeoff_climate(records, *climate_problem_of, entry, out);
     out.timings.push_back({"climate figures", since(t)});
   }
   for (const std::string& w : {sparse_sampling_warning(c.paths_per_sensor, c.element_count()),

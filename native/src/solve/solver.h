@@ -26,7 +26,8 @@ struct TradeoffResult {
   Eigen::VectorXd predicted, predicted_stderr;  // per sensor
   GoalError error;
   bool cut = false;     // predicted by real cutters (thick walls), not the path records
-  bool answer = false;  // the solver's answer (the one with the most openings)
+  bool answer = false;  // the solver's answer (the one with the most openings, unless least glazing took a
+                        // trade-off that meets the climate goals with less glass)
   // With climate goals: each goal's figure for these openings, from the path records (empty when
   // they cannot tell).
   std::vector<ClimateFigure> climate;
