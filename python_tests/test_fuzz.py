@@ -236,3 +236,77 @@ def test_mutated_inputs_end_cleanly(tmp_path):
         results = list(pool.map(lambda s: check_case(s, tmp_path), range(CASES)))
     failures = [r for r in results if r]
     assert not failures, "%d of %d mutated runs failed:\n%s" % (len(failures), CASES, "\n".join(failures[:25]))
+
+
+# Keys whose names are the user's (materials, sensor groups): not typos.
+FREE_NAMES = {("materials",), ("sensors", "groups")}
+
+
+def typo(rng, word):
+    """One seeded edit of `word`: a letter dropped, doubled, swapped with the next, or replaced."""
+    i = rng.randrange(len(word))
+    op = rng.choice(["drop", "double", "swap", "replace"])
+    if op == "drop" and len(word) > 1:
+        return word[:i] + word[i + 1:]
+    if op == "swap" and i + 1 < len(word) and word[i] != word[i + 1]:
+        return word[:i] + word[i + 1] + word[i] + word[i + 2:]
+    if op == "replace":
+        return word[:i] + rng.choice([c for c in "abcdefghijklmnopqrstuvwxyz_" if c != word[i]]) + word[i + 1:]
+    return word[:i] + word[i] + word[i:]
+
+
+def key_paths(node, prefix=()):
+    """(path of the object, key) for every key of every object, user-named keys left out."""
+    if isinstance(node, dict):
+        for k, v in node.items():
+            if prefix not in FREE_NAMES:
+                yield prefix, k
+            yield from key_paths(v, prefix + (k,))
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            yield from key_paths(v, prefix + (i,))
+
+
+def shown_path(path, key):
+    out = ""
+    for p in path + (key,):
+        out += "[%d]" % p if isinstance(p, int) else ("." if out else "") + p
+    return out
+
+
+def full_scene(kind):
+    scene = base_scene(kind)
+    scene["opening_domain"]["groups"] = []
+    scene["sensors"]["weights"] = [1, 1, 1]
+    scene["goals"] = {"uniform": [{"sensors": "all", "level": 0.3, "min": 0.1, "max": 0.9}]}
+    scene["solver"].update(paths=16, seed=2, shape_weights={"isolated": 1, "boundary": 1, "regions": 1},
+                           panel_constraints=[{"materials": ["facade"], "constraints": {"max_openings": 2}}])
+    scene["solver"]["constraints"]["catalogue"]["walls"].append({"width": 1.5, "height": 1.2})
+    return scene
+
+
+@pytest.mark.parametrize("kind", ["uniform", "preetham", "overcast"])
+def test_a_typo_of_any_key_is_refused_naming_it(tmp_path, kind):
+    """A seeded typo of every key at every level of a valid scene: each is refused, naming the
+    misspelt key's path, with a suggestion (they ran with the defaults before)."""
+    import fenestra
+
+    (tmp_path / "room.obj").write_text(box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey"))
+    fenestra.scene_from_dict(full_scene(kind), tmp_path)  # the valid scene loads
+    every = list(key_paths(full_scene(kind)))
+    known = {k for _, k in every} | {"time", "date_end", "timezone", "utc_offset", "roofs", "groups", "weather"}
+    rng = random.Random(35)
+    for path, key in every:
+        wrong = typo(rng, key)
+        while wrong in known:  # another key's name is no typo
+            wrong = typo(rng, key)
+        scene = full_scene(kind)
+        parent = scene
+        for p in path:
+            parent = parent[p]
+        parent[wrong] = parent.pop(key)
+        with pytest.raises(ValueError) as error:
+            fenestra.scene_from_dict(scene, tmp_path)
+        message = str(error.value)
+        where = shown_path(path, wrong)
+        assert "scene '<dict>': %s: unknown key; did you mean `" % where in message, (key, wrong, message)

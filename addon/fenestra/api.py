@@ -12,6 +12,7 @@ from ._core import Cancelled, Contributions, Progress, Scene, read_openings, wri
 from . import _core
 from . import cost as _cost
 from .cost import available_memory, check_cost, estimate_cost
+from .json_values import json_text
 
 
 def load_scene(path, progress=None, callback=None, max_memory=None):
@@ -33,7 +34,7 @@ def load_scene(path, progress=None, callback=None, max_memory=None):
 def scene_from_dict(scene, base_dir=".", progress=None, callback=None, max_memory=None):
     """Builds a scene from a dict in the scene-file format; relative paths resolve against base_dir.
     progress and callback as for load_scene()."""
-    text, base_dir = json.dumps(scene), os.fspath(base_dir)
+    text, base_dir = json_text(scene, "scene '<dict>'"), os.fspath(base_dir)
 
     def work(p):
         with _cost.loading(max_memory):
@@ -49,33 +50,16 @@ def _warn_sky(scene):
     return scene
 
 
-def _plain(value):
-    """NumPy values as plain Python numbers and lists (for JSON)."""
-    if isinstance(value, dict):
-        return {k: _plain(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple, np.ndarray)):
-        return [_plain(v) for v in value]
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
-
-
 def openings_argument(openings):
-    """What the native module takes for openings: an (n, 4, 3) array of corners, or, when any
-    opening is given by "panel" and "parameter_rectangle" (the form of openings on curved panels),
-    the JSON text of an openings file."""
+    """What the native module takes for openings: an (n, 4, 3) array of corners, or, when the
+    openings are an openings-file dict or any is a dict ({"corners"} or "panel" and
+    "parameter_rectangle", the form of openings on curved panels), the JSON text of an openings file."""
     listed = openings.get("openings", []) if isinstance(openings, dict) else openings
-    if not isinstance(listed, np.ndarray) and any(isinstance(o, dict) and "parameter_rectangle" in o for o in listed):
-        for i, o in enumerate(listed):  # JSON has no NaN: name the value here
-            rect = o.get("parameter_rectangle") if isinstance(o, dict) else None
-            for key, value in (rect.items() if isinstance(rect, dict) else ()):
-                if isinstance(value, (float, np.floating)) and not np.isfinite(value):
-                    raise ValueError("opening %d: parameter_rectangle %s is %s, not a finite number of meters"
-                                     % (i, key, value))
-        chosen = [{k: o[k] for k in ("panel", "parameter_rectangle") if k in o} if "parameter_rectangle" in o
-                  else ({"corners": o["corners"]} if isinstance(o, dict) and "corners" in o else {"corners": o})
-                  for o in listed]
-        return json.dumps({"openings": _plain(chosen)})
+    if isinstance(openings, dict) or (not isinstance(listed, np.ndarray) and any(isinstance(o, dict) for o in listed)):
+        # As an openings file: the native reader refuses keys it does not know, naming them.
+        if not isinstance(openings, dict):
+            openings = {"openings": [o if isinstance(o, dict) else {"corners": o} for o in listed]}
+        return json_text(openings, "openings 'argument'")
     return openings_array(openings)
 
 
