@@ -106,17 +106,25 @@ def mutate_json(rng, scene):
 
 
 def mutate_text(rng, text):
-    """Byte-level damage: truncation, a stray byte (invalid UTF-8 included), a huge number."""
+    """Byte-level damage: truncation, a stray byte (invalid UTF-8 included), a key given twice, a NUL
+    in a file name, a huge number. Returns the bytes and whether they must be refused."""
     data = text.encode()
     op = rng.random()
     at = rng.randrange(len(data))
-    if op < 0.3:
-        return data[:at]
-    if op < 0.6:
-        return data[:at] + bytes([rng.choice([0x00, 0xff, 0xc3, ord("{"), ord('"'), ord(",")])]) + data[at:]
+    if op < 0.25:
+        return data[:at], False
+    if op < 0.5:
+        return data[:at] + bytes([rng.choice([0x00, 0xff, 0xc3, ord("{"), ord('"'), ord(",")])]) + data[at:], False
+    lines = text.splitlines(keepends=True)
+    keyed = [i for i, l in enumerate(lines) if '":' in l and l.rstrip().endswith(",")]
+    if op < 0.6 and keyed:  # a key given twice: the last one won
+        i = rng.choice(keyed)
+        return "".join(lines[:i + 1] + [lines[i]] + lines[i + 1:]).encode(), True
+    if op < 0.65:  # a NUL inside a file name: room.obj was read
+        return text.replace('"room.obj"', '"room.obj\\u0000' + rng.choice(["x", ".bak", "/../x"]) + '"').encode(), True
     digits = [i for i, c in enumerate(text) if c.isdigit()]
     i = rng.choice(digits)
-    return (text[:i] + rng.choice(["1e400", "-1e400", "99999999999999999999999", "0x10"]) + text[i + 1:]).encode()
+    return (text[:i] + rng.choice(["1e400", "-1e400", "99999999999999999999999", "0x10"]) + text[i + 1:]).encode(), False
 
 
 def mutate_obj(rng, text):
@@ -161,17 +169,20 @@ def make_case(seed, workdir):
     target = rng.choices(["json", "text", "obj", "openings", "args"], weights=[6, 2, 3, 1, 1])[0]
     if target == "openings" and command != "evaluate":
         target = "json"
-    scene_bytes = None
+    scene_bytes, refused = None, False
     if target == "json":
         scene = mutate_json(rng, scene)
     elif target == "text":
-        scene_bytes = mutate_text(rng, json.dumps(scene, indent=1))
+        scene_bytes, refused = mutate_text(rng, json.dumps(scene, indent=1))
     elif target == "obj":
         obj = mutate_obj(rng, obj)
     elif target == "openings":
         openings = mutate_json(rng, openings)
     if scene_bytes is None:
         scene_bytes = json.dumps(scene).encode()
+    # A typo'd key and a face of fewer than 3 corners were read past.
+    keys = {p[-1] for p in leaf_paths(scene if target == "json" else openings if target == "openings" else {}) if p}
+    refused = refused or "unknown_key" in keys or any(l in ("f 1", "v 1 2") for l in obj.splitlines())
     (workdir / "scene.json").write_bytes(scene_bytes)
     (workdir / "room.obj").write_text(obj)
     (workdir / "openings.json").write_text(json.dumps(openings))
@@ -184,7 +195,7 @@ def make_case(seed, workdir):
     if target == "args":
         args = mutate_args(rng, args)
     outputs = [out] + ([workdir / "out.json"] if command == "contributions" else [])
-    return args, outputs, "%s sky, %s, %s mutated" % (kind, command, target)
+    return args, outputs, "%s sky, %s, %s mutated%s" % (kind, command, target, " (must be refused)" if refused else "")
 
 
 def cap_memory():
@@ -202,11 +213,14 @@ def check_case(seed, root):
         return "seed %d (%s): still running after %.0f s" % (seed, what, TIME_BUDGET_S)
     stderr = r.stderr.decode("utf-8", "replace")
     problem = None
+    if "must be refused" in what and r.returncode != 1:
+        problem = "accepted (exit %d)" % r.returncode
     if r.returncode < 0:
         problem = "killed by signal %d" % -r.returncode
     elif r.returncode not in (0, 1, 2):
         problem = "exit status %d" % r.returncode
-    elif any(s in stderr for s in ("terminate called", "json.exception", "std::bad_alloc", "Assertion", "what():")):
+    elif any(s in stderr for s in ("terminate called", "json.exception", "std::bad_alloc", "Assertion", "what():",
+                                   "syntax error while", "last read:", "Failed parse", "literal;")):
         problem = "raw internal message"
     elif r.returncode != 0:
         if "fenestra: " not in stderr or len(stderr.strip()) < 20:
