@@ -6,8 +6,8 @@
 #include "cost/byte_size.h"
 #include "io/json_input.h"
 #include "io/json_keys.h"
-#include "io/quoted_text.h"
 #include "util/decimal_number.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 namespace {

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 MAX_DEPTH = 64  # as the native reader (io/json_input.h)
-QUOTED_CHARS = 80  # as io/quoted_text.h
+QUOTED_CHARS = 80  # as util/quoted_text.h
 
 
 def quoted(text):

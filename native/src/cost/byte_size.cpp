@@ -9,13 +9,14 @@
 #include <string_view>
 
 #include "util/decimal_number.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 
 uint64_t parse_byte_size(const std::string& text, const std::string& what) {
   auto fail = [&]() -> uint64_t {
-    throw std::invalid_argument(what + " expects a size in bytes such as 8G, 512M, 1.5GB or 2GiB, got '" + text +
-                                "'");
+    throw std::invalid_argument(what + " expects a size in bytes such as 8G, 512M, 1.5GB or 2GiB, got '" +
+                                quoted_text(text) + "'");
   };
   // The unit is the trailing letters; the rest must be a plain decimal number.
   std::size_t split = text.size();

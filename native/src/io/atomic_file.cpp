@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <streambuf>
 
-#include "io/quoted_text.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 namespace {

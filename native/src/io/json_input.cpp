@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/quoted_text.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 

@@ -10,10 +10,10 @@
 #include "io/atomic_file.h"
 #include "io/json_input.h"
 #include "io/json_keys.h"
-#include "io/quoted_text.h"
 #include "io/npz_writer.h"
 #include "scene/input_limits.h"
 #include "trace/contributions_origin.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 

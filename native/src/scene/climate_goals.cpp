@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "io/json_keys.h"
-#include "io/quoted_text.h"
 #include "scene/input_limits.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 namespace {

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "io/quoted_text.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 

@@ -10,10 +10,10 @@
 #include <stdexcept>
 
 #include "cost/load_checks.h"
-#include "io/quoted_text.h"
 #include "scene/input_limits.h"
 #include "scene/mesh.h"
 #include "util/decimal_number.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 

@@ -13,12 +13,12 @@
 #include "daylight/weather_file.h"
 #include "io/json_input.h"
 #include "io/json_keys.h"
-#include "io/quoted_text.h"
 #include "scene/bsdf.h"
 #include "scene/input_limits.h"
 #include "scene/scene.h"
 #include "solve/catalogue_snap.h"
 #include "solve/composition.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 

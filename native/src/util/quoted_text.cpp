@@ -1,4 +1,4 @@
-#include "io/quoted_text.h"
+#include "util/quoted_text.h"
 
 #include <cstdio>
 
