@@ -419,7 +419,7 @@ def test_openings_keys_are_checked_in_files_and_dicts(small_room):
             fenestra.evaluate(scene, openings)
     with pytest.raises(ValueError, match=re.escape("opening 0: name: unknown key")):
         fenestra.evaluate(scene, [{"corners": corners, "name": "south window"}])
-    with pytest.raises(ValueError, match=re.escape("openings[0].corners[0][0]: nan is not a finite number")):
+    with pytest.raises(ValueError, match=re.escape("opening 0, corner 0: has a non-finite coordinate")):
         fenestra.evaluate(scene, [{"corners": [[np.nan, 0, 1]] + corners[1:]}])
 
 

@@ -50,6 +50,26 @@ def _warn_sky(scene):
     return scene
 
 
+def _check_finite(listed):
+    """JSON has no NaN: a non-finite value of an opening is named here, as the native reader names
+    the opening."""
+    for i, o in enumerate(listed if isinstance(listed, (list, tuple)) else ()):
+        if not isinstance(o, dict):
+            continue
+        rect = o.get("parameter_rectangle")
+        for key, value in (rect.items() if isinstance(rect, dict) else ()):
+            if isinstance(value, (float, np.floating)) and not np.isfinite(value):
+                raise ValueError("opening %d: parameter_rectangle %s is %s, not a finite number of meters"
+                                 % (i, key, value))
+        try:
+            corners = np.asarray(o.get("corners", []), dtype=np.float64)
+        except (TypeError, ValueError):
+            continue  # not numbers: the native reader names it
+        for c, corner in enumerate(corners.reshape(-1, 3) if corners.size % 3 == 0 else ()):
+            if not np.isfinite(corner).all():
+                raise ValueError("opening %d, corner %d: has a non-finite coordinate, %s" % (i, c, list(corner)))
+
+
 def openings_argument(openings):
     """What the native module takes for openings: an (n, 4, 3) array of corners, or, when the
     openings are an openings-file dict or any is a dict ({"corners"} or "panel" and
@@ -59,6 +79,7 @@ def openings_argument(openings):
         # As an openings file: the native reader refuses keys it does not know, naming them.
         if not isinstance(openings, dict):
             openings = {"openings": [o if isinstance(o, dict) else {"corners": o} for o in listed]}
+        _check_finite(openings.get("openings"))
         return json_text(openings, "openings 'argument'")
     return openings_array(openings)
 
