@@ -431,3 +431,165 @@ def test_absurd_times_and_places_of_the_sun_are_refused():
         fenestra.sunrise_sunset("2024-06-21", 45.0, 1000.0, utc_offset=0)
     with pytest.raises(ValueError, match="zenith_deg is nan"):
         _core.sun_direction(np.nan, 0.0)
+
+
+def rename(*keys_and_new):
+    """An edit renaming the key at keys to new (a typo)."""
+    *keys, new = keys_and_new
+
+    def edit(scene):
+        d = scene
+        for k in keys[:-1]:
+            d = d[k]
+        d[new] = d.pop(keys[-1])
+    return edit
+
+
+# Typos at every level: each ran with the default before (0.25 m elements, reflectance 0.5, ...).
+TYPO_CASES = [
+    ("top level", rename("render", "rendr"), "rendr: unknown key; did you mean `render`?"),
+    ("element size", rename("opening_domain", "element_size", "element_sise"),
+     "opening_domain.element_sise: unknown key; did you mean `element_size`?"),
+    ("reflectance", rename("materials", "grey", "reflectance", "reflectence"),
+     "materials.grey.reflectence: unknown key; did you mean `reflectance`?"),
+    ("sensors", rename("sensors", "normals", "normal"), "sensors.normal: unknown key; did you mean `normals`?"),
+    ("sky type", rename("sky", "type", "tpye"), "sky.tpye: unknown key; did you mean `type`?"),
+    ("render", rename("render", "max_bounces", "max_bounce"), "render.max_bounce: unknown key; did you mean"),
+    ("solver", set_in("solver", "populaton", 8), "solver.populaton: unknown key; did you mean `population`?"),
+    ("constraints", set_in("solver", "constraints", "min_widht", 0.5),
+     "solver.constraints.min_widht: unknown key; did you mean `min_width`?"),
+    ("catalogue", set_in("solver", "constraints", "catalogue", {"wals": [[1, 1]]}),
+     "solver.constraints.catalogue.wals: unknown key; did you mean `walls`?"),
+    ("goals", set_in("goals", {"uniform": [{"sensors": "all", "levl": 0.3}]}),
+     "goals.uniform[0].levl: unknown key; did you mean `level`?"),
+    ("glass reflectance", set_in("materials", "grey", {"type": "glass", "reflectance": 0.1}),
+     "materials.grey.reflectance: unknown key"),
+]
+
+
+@pytest.mark.parametrize("case, edit, words", TYPO_CASES, ids=[c[0] for c in TYPO_CASES])
+def test_a_typo_is_refused_naming_the_closest_key(small_room, case, edit, words):
+    path = edited(small_room, edit)
+    expect_cli_error(path, ["bad.json", words])
+    expect_python_error(path, ["bad.json", words])
+    with pytest.raises(ValueError, match="scene '<dict>': " + re.escape(words)):
+        fenestra.scene_from_dict(json.loads(path.read_text()), small_room.parent)
+
+
+def test_duplicate_keys_are_refused_with_their_lines(small_room):
+    text = json.dumps(json.loads(small_room.read_text()), indent=1)
+    text = text.replace('"element_size": 0.5', '"element_size": 0.5,\n  "element_size": 2', 1)
+    bad = small_room.parent / "bad.json"
+    bad.write_text(text)
+    line = text[:text.index('"element_size": 2')].count("\n") + 1
+    words = ["bad.json', line %d: opening_domain.element_size: the key is given twice (first on line %d)"
+             % (line, line - 1)]
+    expect_cli_error(bad, words)
+    expect_python_error(bad, words)
+    with pytest.raises(ValueError, match="materials: key 1 is not a string"):  # json.dumps: "1", a duplicate
+        fenestra.scene_from_dict(dict(json.loads(small_room.read_text()), materials={"1": {}, 1: {}}))
+
+
+def test_json_syntax_errors_are_in_words_and_short(small_room):
+    bad = small_room.parent / "bad.json"
+    for text, words in [('{"fenestra": 1,\n "sky": {"type": tru}}',
+                         "line 2, column 18 (under key sky.type): expected a value (a number, string, true, false, "
+                         "null, object or array), found 'tru'"),
+                        ('{"fenestra": 0x10}', "found '0x10' (JSON numbers are finite and decimal"),
+                        ('{"fenestra": 1,}', "expected a key in double quotes, found '}'"),
+                        ("[" * 1000000, "nest deeper than 64 levels"),
+                        ('{"a": "' + "x" * 100000, "a string has no closing")]:
+        bad.write_text(text)
+        message = expect_cli_error(bad, ["bad.json", words])
+        assert len(message) < 2000 and "syntax error" not in message and "last read" not in message, message[:500]
+        message = expect_python_error(bad, ["bad.json", words])
+        assert len(message) < 600 and "syntax error" not in message and "literal" not in message, message[:500]
+
+
+def test_nul_bytes_in_paths_are_refused(small_room, tmp_path):
+    path = edited(small_room, set_in("geometry", "room.obj\u0000x"))  # loaded room.obj
+    expect_cli_error(path, ["bad.json", "geometry", "room.obj\\u0000x", "NUL byte"])
+    expect_python_error(path, ["geometry", "NUL byte"])
+    with pytest.raises(ValueError, match="NUL byte"):
+        fenestra.load_scene(str(small_room) + "\u0000x")
+    scene = fenestra.load_scene(small_room)
+    with pytest.raises(ValueError, match="NUL byte"):
+        fenestra.write_sky(scene, str(tmp_path / "sky.exr\u0000x"))
+    assert not (tmp_path / "sky.exr").exists()
+    openings = write_openings(small_room.parent, [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1, 0, 2]])
+    with pytest.raises(ValueError, match="NUL byte"):
+        fenestra.read_openings(str(openings) + "\u0000x")
+
+
+@pytest.mark.parametrize("line, words", [("f", "at least 3 corners, got 0"), ("f 1", "at least 3 corners, got 1"),
+                                         ("f 1 2", "at least 3 corners, got 2"),
+                                         ("v 0x10 0 0", "'0x10' is not a finite decimal number"),
+                                         ("v inf 0 0", "'inf' is not a finite decimal number"),
+                                         ("v 1e 0 0", "'1e' is not a finite decimal number"),
+                                         ("f 1/1/1/1 2 3", "is not v, v/vt, v//vn or v/vt/vn")])
+def test_obj_lines_are_checked_in_fenestras_words(small_room, line, words):
+    room = (small_room.parent / "room.obj").read_text()
+    (small_room.parent / "bad.obj").write_text(room + "usemtl grey\n" + line + "\n")
+    scene = edited(small_room, set_in("geometry", "bad.obj"))
+    fragments = ["bad.obj', line %d: " % (room.count("\n") + 2), words]
+    message = expect_cli_error(scene, fragments)
+    assert "Failed parse" not in message  # tinyobjloader's words
+    expect_python_error(scene, fragments)
+
+
+def test_openings_keys_are_checked_in_files_and_dicts(small_room):
+    corners = [[1, 0, 1], [2, 0, 1], [2, 0, 2], [1, 0, 2]]
+    bad = small_room.parent / "openings.json"
+    for openings, words in [({"openings": [{"corner": corners}]}, "opening 0: corner: unknown key; did you mean `corners`?"),
+                            ({"opening": [{"corners": corners}]}, "opening: unknown key; did you mean `openings`?")]:
+        bad.write_text(json.dumps(openings))
+        expect_cli_error(small_room, ["openings.json", words], command="evaluate", extra=("--openings", bad))
+        with pytest.raises(ValueError, match=re.escape(words)):
+            fenestra.read_openings(str(bad))
+        scene = fenestra.load_scene(small_room)
+        with pytest.raises(ValueError, match="openings 'argument': " + re.escape(words)):
+            fenestra.evaluate(scene, openings)
+    with pytest.raises(ValueError, match=re.escape("opening 0: name: unknown key")):
+        fenestra.evaluate(scene, [{"corners": corners, "name": "south window"}])
+    with pytest.raises(ValueError, match=re.escape("opening 0, corner 0: has a non-finite coordinate")):
+        fenestra.evaluate(scene, [{"corners": [[np.nan, 0, 1]] + corners[1:]}])
+
+
+def test_scene_dicts_take_numpy_values_and_refuse_what_json_cannot_hold(small_room):
+    scene = json.loads(small_room.read_text())
+    scene["sensors"]["points"] = np.array(scene["sensors"]["points"], np.float32)
+    scene["render"]["seed"] = np.int64(3)
+    fenestra.scene_from_dict(scene, small_room.parent)  # "Object of type float32 is not JSON serializable"
+    scene["sensors"]["points"][0][0] = np.nan
+    with pytest.raises(ValueError, match=re.escape("scene '<dict>': sensors.points[0][0]: nan is not a finite")):
+        fenestra.scene_from_dict(scene, small_room.parent)
+    scene = json.loads(small_room.read_text())
+    scene["sky"]["radiance"] = {1, 2}
+    with pytest.raises(ValueError, match=re.escape("scene '<dict>': sky.radiance: a set is not a JSON value")):
+        fenestra.scene_from_dict(scene, small_room.parent)
+    deep = []
+    for _ in range(100000):
+        deep = [deep]
+    scene["sky"]["radiance"] = deep  # json.dumps: RecursionError
+    with pytest.raises(ValueError, match="nest deeper than 64 levels"):
+        fenestra.scene_from_dict(scene, small_room.parent)
+
+
+@pytest.mark.parametrize("flag, value", [("--max-memory", "0x10G"), ("--max-memory", "infG"),
+                                         ("--max-memory", "1eG"), ("--paths", "0x10"), ("--paths", "1e3")])
+def test_cli_numbers_take_the_decimal_form_only(small_room, flag, value):
+    folder = small_room.parent
+    before = sorted(os.listdir(folder))
+    r = run("contributions", small_room, "-o", folder / "out.npz", "--quiet", flag, value)
+    assert r.returncode == 2, r.stderr
+    assert flag in r.stderr and value in r.stderr
+    assert sorted(os.listdir(folder)) == before
+    with pytest.raises(ValueError):
+        fenestra.check_cost(fenestra.load_scene(small_room), "contributions", max_memory="0x10G")
+
+
+def test_cluster_command_line_counts_are_ascii_digits():
+    from fenestra import distributed_cli
+    for value in ("\u00b2", "\u0663", "0x2", "+2", "2.0"):  # "²".isdigit() is True, int("²") raises
+        with pytest.raises(distributed_cli.UsageError, match="--workers expects an integer"):
+            distributed_cli.parse(["contributions", "s.json", "-o", "o.npz", "--workers", value])

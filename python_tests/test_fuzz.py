@@ -109,17 +109,25 @@ def mutate_json(rng, scene):
 
 
 def mutate_text(rng, text):
-    """Byte-level damage: truncation, a stray byte (invalid UTF-8 included), a huge number."""
+    """Byte-level damage: truncation, a stray byte (invalid UTF-8 included), a key given twice, a NUL
+    in a file name, a huge number. Returns the bytes and whether they must be refused."""
     data = text.encode()
     op = rng.random()
     at = rng.randrange(len(data))
-    if op < 0.3:
-        return data[:at]
-    if op < 0.6:
-        return data[:at] + bytes([rng.choice([0x00, 0xff, 0xc3, ord("{"), ord('"'), ord(",")])]) + data[at:]
+    if op < 0.25:
+        return data[:at], False
+    if op < 0.5:
+        return data[:at] + bytes([rng.choice([0x00, 0xff, 0xc3, ord("{"), ord('"'), ord(",")])]) + data[at:], False
+    lines = text.splitlines(keepends=True)
+    keyed = [i for i, l in enumerate(lines) if '":' in l and l.rstrip().endswith(",")]
+    if op < 0.6 and keyed:  # a key given twice: the last one won
+        i = rng.choice(keyed)
+        return "".join(lines[:i + 1] + [lines[i]] + lines[i + 1:]).encode(), True
+    if op < 0.65:  # a NUL inside a file name: room.obj was read
+        return text.replace('"room.obj"', '"room.obj\\u0000' + rng.choice(["x", ".bak", "/../x"]) + '"').encode(), True
     digits = [i for i, c in enumerate(text) if c.isdigit()]
     i = rng.choice(digits)
-    return (text[:i] + rng.choice(["1e400", "-1e400", "99999999999999999999999", "0x10"]) + text[i + 1:]).encode()
+    return (text[:i] + rng.choice(["1e400", "-1e400", "99999999999999999999999", "0x10"]) + text[i + 1:]).encode(), False
 
 
 def mutate_obj(rng, text):
@@ -167,17 +175,20 @@ def make_case(seed, workdir):
         target = "json"
     if target == "output":  # a sky map in a format that keeps cd/m^2 or not
         command = "sky"
-    scene_bytes = None
+    scene_bytes, refused = None, False
     if target == "json":
         scene = mutate_json(rng, scene)
     elif target == "text":
-        scene_bytes = mutate_text(rng, json.dumps(scene, indent=1))
+        scene_bytes, refused = mutate_text(rng, json.dumps(scene, indent=1))
     elif target == "obj":
         obj = mutate_obj(rng, obj)
     elif target == "openings":
         openings = mutate_json(rng, openings)
     if scene_bytes is None:
         scene_bytes = json.dumps(scene).encode()
+    # A typo'd key and a face of fewer than 3 corners were read past.
+    keys = {p[-1] for p in leaf_paths(scene if target == "json" else openings if target == "openings" else {}) if p}
+    refused = refused or "unknown_key" in keys or any(l in ("f 1", "v 1 2") for l in obj.splitlines())
     (workdir / "scene.json").write_bytes(scene_bytes)
     (workdir / "room.obj").write_text(obj)
     (workdir / "openings.json").write_text(json.dumps(openings))
@@ -196,7 +207,8 @@ def make_case(seed, workdir):
         cap = rng.randrange(96, 1536) * 1024 ** 2  # below about 64 MiB the program's libraries cannot be mapped
         args += ["--max-memory", "100G"]  # past the cost checks: the allocations themselves fail
     outputs = [out] + ([workdir / "out.json"] if command == "contributions" else [])
-    return args, outputs, cap, "%s sky, %s, %s mutated" % (kind, command, target)
+    return args, outputs, cap, "%s sky, %s, %s mutated%s" % (kind, command, target,
+                                                          " (must be refused)" if refused else "")
 
 
 def cap_memory(cap):
@@ -214,11 +226,14 @@ def check_case(seed, root):
         return "seed %d (%s): still running after %.0f s" % (seed, what, TIME_BUDGET_S)
     stderr = r.stderr.decode("utf-8", "replace")
     problem = None
+    if "must be refused" in what and r.returncode != 1:
+        problem = "accepted (exit %d)" % r.returncode
     if r.returncode < 0:
         problem = "killed by signal %d" % -r.returncode
     elif r.returncode not in (0, 1, 2):
         problem = "exit status %d" % r.returncode
-    elif any(s in stderr for s in ("terminate called", "json.exception", "std::bad_alloc", "Assertion", "what():")):
+    elif any(s in stderr for s in ("terminate called", "json.exception", "std::bad_alloc", "Assertion", "what():",
+                                   "syntax error while", "last read:", "Failed parse", "literal;")):
         problem = "raw internal message"
     elif r.returncode != 0:
         if "fenestra: " not in stderr or len(stderr.strip()) < 20:
@@ -447,3 +462,77 @@ def test_fuzzed_cluster_options_are_refused_before_connecting_or_accepted(monkey
             assert options["scheduler"].startswith("tcp://"), options
         outcomes["reached"] += 1
     assert min(outcomes.values()) >= 20, outcomes
+
+
+# Keys whose names are the user's (materials, sensor groups): not typos.
+FREE_NAMES = {("materials",), ("sensors", "groups")}
+
+
+def typo(rng, word):
+    """One seeded edit of `word`: a letter dropped, doubled, swapped with the next, or replaced."""
+    i = rng.randrange(len(word))
+    op = rng.choice(["drop", "double", "swap", "replace"])
+    if op == "drop" and len(word) > 1:
+        return word[:i] + word[i + 1:]
+    if op == "swap" and i + 1 < len(word) and word[i] != word[i + 1]:
+        return word[:i] + word[i + 1] + word[i] + word[i + 2:]
+    if op == "replace":
+        return word[:i] + rng.choice([c for c in "abcdefghijklmnopqrstuvwxyz_" if c != word[i]]) + word[i + 1:]
+    return word[:i] + word[i] + word[i:]
+
+
+def key_paths(node, prefix=()):
+    """(path of the object, key) for every key of every object, user-named keys left out."""
+    if isinstance(node, dict):
+        for k, v in node.items():
+            if prefix not in FREE_NAMES:
+                yield prefix, k
+            yield from key_paths(v, prefix + (k,))
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            yield from key_paths(v, prefix + (i,))
+
+
+def shown_path(path, key):
+    out = ""
+    for p in path + (key,):
+        out += "[%d]" % p if isinstance(p, int) else ("." if out else "") + p
+    return out
+
+
+def full_scene(kind):
+    scene = base_scene(kind)
+    scene["opening_domain"]["groups"] = []
+    scene["sensors"]["weights"] = [1, 1, 1]
+    scene["goals"] = {"uniform": [{"sensors": "all", "level": 0.3, "min": 0.1, "max": 0.9}]}
+    scene["solver"].update(paths=16, seed=2, shape_weights={"isolated": 1, "boundary": 1, "regions": 1},
+                           panel_constraints=[{"materials": ["facade"], "constraints": {"max_openings": 2}}])
+    scene["solver"]["constraints"]["catalogue"]["walls"].append({"width": 1.5, "height": 1.2})
+    return scene
+
+
+@pytest.mark.parametrize("kind", ["uniform", "preetham", "overcast"])
+def test_a_typo_of_any_key_is_refused_naming_it(tmp_path, kind):
+    """A seeded typo of every key at every level of a valid scene: each is refused, naming the
+    misspelt key's path, with a suggestion (they ran with the defaults before)."""
+    import fenestra
+
+    (tmp_path / "room.obj").write_text(box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey"))
+    fenestra.scene_from_dict(full_scene(kind), tmp_path)  # the valid scene loads
+    every = list(key_paths(full_scene(kind)))
+    known = {k for _, k in every} | {"time", "date_end", "timezone", "utc_offset", "roofs", "groups", "weather"}
+    rng = random.Random(35)
+    for path, key in every:
+        wrong = typo(rng, key)
+        while wrong in known:  # another key's name is no typo
+            wrong = typo(rng, key)
+        scene = full_scene(kind)
+        parent = scene
+        for p in path:
+            parent = parent[p]
+        parent[wrong] = parent.pop(key)
+        with pytest.raises(ValueError) as error:
+            fenestra.scene_from_dict(scene, tmp_path)
+        message = str(error.value)
+        where = shown_path(path, wrong)
+        assert "scene '<dict>': %s: unknown key; did you mean `" % where in message, (key, wrong, message)

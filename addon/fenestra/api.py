@@ -12,6 +12,7 @@ from . import _core
 from . import arguments as _arg
 from . import cost as _cost
 from .cost import available_memory, check_cost, estimate_cost
+from .json_values import json_text
 
 
 def load_scene(path, progress=None, callback=None, max_memory=None):
@@ -34,7 +35,8 @@ def load_scene(path, progress=None, callback=None, max_memory=None):
 def scene_from_dict(scene, base_dir=".", progress=None, callback=None, max_memory=None):
     """Builds a scene from a dict in the scene-file format; relative paths resolve against base_dir.
     progress and callback as for load_scene()."""
-    text, base_dir = _scene_json(scene), _arg.path(base_dir, "base_dir")
+    _arg.instance(scene, dict, "scene", "a dict in the scene-file format")
+    text, base_dir = json_text(scene, "scene '<dict>'"), _arg.path(base_dir, "base_dir")
     _check_run(progress, callback, max_memory)
 
     def work(p):
@@ -42,25 +44,6 @@ def scene_from_dict(scene, base_dir=".", progress=None, callback=None, max_memor
             return Scene.from_json(text, base_dir, "<dict>", p)
 
     return _warn_sky(_run(work, progress, callback))
-
-
-def _json_value(value):
-    """json.dumps' fallback: NumPy numbers and arrays as plain numbers and lists."""
-    if isinstance(value, (np.generic, np.ndarray)):
-        return value.tolist()
-    raise TypeError("%s has no form in a scene file (numbers, strings, true/false, null, lists and dicts)"
-                    % _arg.shown(value))
-
-
-def _scene_json(scene):
-    """The scene-file text of a dict, NumPy values (np.float32, arrays) included."""
-    _arg.instance(scene, dict, "scene", "a dict in the scene-file format")
-    try:
-        return json.dumps(scene, default=_json_value, allow_nan=False)
-    except TypeError as exc:
-        raise TypeError("scene: %s" % exc) from None
-    except ValueError:
-        raise ValueError("scene: a number is NaN or infinite; the scene format takes finite numbers only") from None
 
 
 def _scene(scene):
@@ -118,57 +101,50 @@ def _warn_sky(scene):
     return scene
 
 
-def _plain(value):
-    """NumPy values as plain Python numbers and lists (for JSON)."""
-    if isinstance(value, dict):
-        return {k: _plain(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple, np.ndarray)):
-        return [_plain(v) for v in value]
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
+def _check_finite(listed):
+    """JSON has no NaN: a non-finite value of an opening is named here, as the native reader names
+    the opening."""
+    for i, o in enumerate(listed if isinstance(listed, (list, tuple)) else ()):
+        if not isinstance(o, dict):
+            continue
+        rect = o.get("parameter_rectangle")
+        for key, value in (rect.items() if isinstance(rect, dict) else ()):
+            if isinstance(value, (float, np.floating)) and not np.isfinite(value):
+                raise ValueError("opening %d: parameter_rectangle %s is %s, not a finite number of meters"
+                                 % (i, key, value))
+        try:
+            corners = np.asarray(o.get("corners", []), dtype=np.float64)
+        except (TypeError, ValueError):
+            continue  # not numbers: the native reader names it
+        for c, corner in enumerate(corners.reshape(-1, 3) if corners.size % 3 == 0 else ()):
+            if not np.isfinite(corner).all():
+                raise ValueError("opening %d, corner %d: has a non-finite coordinate, %s" % (i, c, list(corner)))
 
 
 def openings_argument(openings):
     """What the native module takes for openings, from any form an openings file takes: an
     openings file's dict {"openings": [...]}, a list of openings (each {"corners": [...]},
     {"panel": ..., "parameter_rectangle": {...}}, both, or four corners), or an (n, 4, 3) array of
-    corners. Returns an (n, 4, 3) array of corners, or, when any opening is given by "panel" and
-    "parameter_rectangle" (the form of openings on curved panels), the JSON text of an openings
-    file. Every native call that takes openings converts them here."""
-    if isinstance(openings, dict):
-        if "openings" not in openings:
-            raise ValueError("openings: a dict must be an openings file's {\"openings\": [...]} (docs/scene-format.md); "
-                             "for one opening, pass a list holding it")
-        listed = openings["openings"]
-    elif isinstance(openings, (str, bytes)):
+    corners. Returns an (n, 4, 3) array of corners, or, when the openings are an openings file's
+    dict or any is a dict, the JSON text of an openings file: the native reader then checks its
+    keys as it checks a file's, naming any it does not know. Every native call that takes openings
+    converts them here."""
+    if isinstance(openings, (str, bytes)):
         raise TypeError("openings: expected an openings file's dict, a list of openings or an (n, 4, 3) array of "
                         "corners, not a string (read a file with fenestra.read_openings)")
-    else:
-        listed = openings
+    if isinstance(openings, dict) and "openings" not in openings and {"corners", "panel", "parameter_rectangle"} & set(openings):
+        raise ValueError("openings: a dict must be an openings file's {\"openings\": [...]} (docs/scene-format.md); "
+                         "for one opening, pass a list holding it")
+    listed = openings.get("openings", []) if isinstance(openings, dict) else openings
     if isinstance(listed, (str, bytes)) or not hasattr(listed, "__iter__"):
         raise TypeError("openings must be rectangles (an (n, 4, 3) array, a list of corner lists or of dicts), an "
                         "openings-file dict or read_openings(path), got %s" % _arg.shown(openings))
-    if not isinstance(listed, np.ndarray) and any(isinstance(o, dict) and "parameter_rectangle" in o for o in listed):
-        chosen = [{k: o[k] for k in ("panel", "parameter_rectangle") if k in o} if "parameter_rectangle" in o
-                  else ({"corners": o["corners"]} if isinstance(o, dict) and "corners" in o else {"corners": o})
-                  for o in listed]
-        for i, o in enumerate(chosen):  # JSON has no NaN or inf: name the value here
-            _check_finite(o, "opening %d" % i)
-        return json.dumps({"openings": _plain(chosen)})
+    if isinstance(openings, dict) or (not isinstance(listed, np.ndarray) and any(isinstance(o, dict) for o in listed)):
+        if not isinstance(openings, dict):
+            openings = {"openings": [o if isinstance(o, dict) else {"corners": o} for o in listed]}
+        _check_finite(openings.get("openings"))
+        return json_text(openings, "openings 'argument'")
     return openings_array(openings)
-
-
-def _check_finite(value, where):
-    """Raises ValueError naming the first number in `value` (dicts and lists) that is not finite."""
-    if isinstance(value, dict):
-        for key, item in value.items():
-            _check_finite(item, "%s: %s" % (where, key))
-    elif isinstance(value, (list, tuple, np.ndarray)):
-        for item in value:
-            _check_finite(item, where)
-    elif isinstance(value, (float, np.floating)) and not np.isfinite(value):
-        raise ValueError("%s is %s, not a finite number of meters" % (where, value))
 
 
 def openings_array(openings):

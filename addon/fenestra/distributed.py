@@ -32,6 +32,7 @@ import warnings
 import numpy as np
 
 from . import _core, api
+from .json_values import json_text
 
 # What client and workers must agree on: the package version and the shard protocol.
 PROTOCOL = 3
@@ -577,7 +578,8 @@ def _spec(scene, base_dir):
     client's own copy of the scene."""
     if isinstance(scene, dict):
         local = api.scene_from_dict(scene, base_dir)
-        spec = {"dict": scene, "base_dir": os.path.abspath(os.fspath(base_dir))}
+        # As plain JSON values (NumPy ones too): the spec is hashed as JSON and sent to the workers.
+        spec = {"dict": json.loads(json_text(scene, "scene '<dict>'")), "base_dir": os.path.abspath(os.fspath(base_dir))}
     elif isinstance(scene, (str, os.PathLike)):
         local = api.load_scene(os.fspath(scene))
         spec = {"path": os.path.abspath(os.fspath(scene))}

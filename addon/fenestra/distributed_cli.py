@@ -51,7 +51,7 @@ def parse(argv):
             name, text = flags[arg], argv[i]
             if name in integers:
                 lo, hi = integers[name]
-                if not text.isdigit() or not lo <= int(text) <= hi:
+                if not (text.isascii() and text.isdigit()) or not lo <= int(text) <= hi:
                     raise UsageError("%s expects an integer from %d to %d, got '%s'" % (arg, lo, hi, text))
                 a[name] = int(text)
             else:

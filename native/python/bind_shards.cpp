@@ -13,6 +13,7 @@
 
 #include "io/atomic_file.h"
 #include "io/output_pair.h"
+#include "io/json_input.h"
 #include "io/results.h"
 #include "io/sky_output.h"
 #include "scene/scene.h"
@@ -141,13 +142,7 @@ void bind_shards(py::module_& m) {
   m.def(
       "write_json_text",
       [](const std::string& path, const std::string& text) {
-        nlohmann::json j;
-        try {
-          j = nlohmann::json::parse(text);
-        } catch (const nlohmann::json::exception& e) {
-          throw std::invalid_argument(std::string("write_json_text: not valid JSON: ") + e.what());
-        }
-        write_json(path, j);
+        write_json(path, parse_json_text(text, "the JSON to write to", path));
       },
       py::arg("path"), py::arg("text"),
       "Writes JSON text as the command line writes its results (indented, whole or not at all).");

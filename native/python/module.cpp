@@ -14,6 +14,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image_writer.h"
+#include "io/json_input.h"
 #include "io/results.h"
 #include "io/sky_output.h"
 #include "io/solve_result.h"
@@ -155,16 +156,11 @@ std::vector<OpeningInput> openings_from(const py::object& openings, const SiteFr
     return openings_from(py::module_::import(api_module_name.c_str()).attr("openings_argument")(openings), frame);
   }
   if (py::isinstance<py::str>(openings)) {
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(openings.cast<std::string>());
-    } catch (const nlohmann::json::exception& e) {
-      throw std::invalid_argument(std::string("openings: not valid JSON: ") + e.what());
-    }
+    const nlohmann::json j = parse_json_text(openings.cast<std::string>(), "openings", "argument");
     try {
       return parse_openings(j, "argument", frame);
     } catch (const nlohmann::json::exception& e) {
-      throw std::invalid_argument(std::string("openings: a value has the wrong type: ") + e.what());
+      throw std::invalid_argument("openings 'argument': a value has the wrong type: " + json_error_text(e));
     }
   }
   const auto rects =

@@ -6,18 +6,24 @@
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <string_view>
+
+#include "util/decimal_number.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 
 uint64_t parse_byte_size(const std::string& text, const std::string& what) {
   auto fail = [&]() -> uint64_t {
-    throw std::invalid_argument(what + " expects a size in bytes such as 8G, 512M, 1.5GB or 2GiB, got '" + text +
-                                "'");
+    throw std::invalid_argument(what + " expects a size in bytes such as 8G, 512M, 1.5GB or 2GiB, got '" +
+                                quoted_text(text) + "'");
   };
-  if (text.empty() || !(std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '.')) return fail();
-  char* end = nullptr;
-  const double number = std::strtod(text.c_str(), &end);
-  std::string unit(end);
+  // The unit is the trailing letters; the rest must be a plain decimal number.
+  std::size_t split = text.size();
+  while (split > 0 && std::isalpha(static_cast<unsigned char>(text[split - 1]))) --split;
+  if (!is_decimal_number(std::string_view(text).substr(0, split), false)) return fail();
+  const double number = std::strtod(text.substr(0, split).c_str(), nullptr);
+  std::string unit = text.substr(split);
   if (!unit.empty() && (unit.back() == 'B' || unit.back() == 'b')) unit.pop_back();
   double scale = 1.0;
   if (!unit.empty()) {

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "util/quoted_text.h"
+
 namespace fenestra {
 
 namespace {
@@ -28,7 +30,7 @@ bool read_digits(const std::string& text, size_t pos, size_t count, int* value) 
   return true;
 }
 
-std::string quoted(const std::string& text) { return "\"" + text + "\""; }
+std::string quoted(const std::string& text) { return "\"" + quoted_text(text) + "\""; }
 
 date::sys_days to_sys_days(const LocalDate& d) {
   return date::sys_days(date::year(d.year) / date::month(static_cast<unsigned>(d.month)) /

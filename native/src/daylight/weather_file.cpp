@@ -17,6 +17,8 @@
 #include <system_error>
 #include <utility>
 
+#include "util/quoted_text.h"
+
 namespace fenestra {
 
 namespace {
@@ -49,7 +51,7 @@ constexpr int kEpwFields = 35;
 
 // ---- Text ----
 
-std::string quoted(const std::string& text) { return "\"" + text + "\""; }
+std::string quoted(const std::string& text) { return "\"" + quoted_text(text) + "\""; }
 
 std::string trim(const std::string& text) {
   const size_t begin = text.find_first_not_of(" \t");

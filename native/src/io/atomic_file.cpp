@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <streambuf>
 
+#include "util/quoted_text.h"
+
 namespace fenestra {
 namespace {
 
@@ -145,6 +147,10 @@ void set_write_interrupt(const Progress* interrupt) { g_interrupt = interrupt; }
 
 void check_output_path(const std::string& path, const std::vector<std::string>& inputs) {
   if (path.empty()) throw std::invalid_argument("cannot write '': the output path is empty");
+  // The system would take the name only up to the NUL, and write another file.
+  if (path.find('\0') != std::string::npos)
+    throw std::invalid_argument("cannot write '" + quoted_text(path) +
+                                "': the file name holds a NUL byte (\\u0000), which no file name can hold");
   const std::string dir = directory_of(path);
   struct stat st {};
   if (::stat(dir.c_str(), &st) != 0) fail(path, "directory '" + dir + "' does not exist");

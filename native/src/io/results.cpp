@@ -8,11 +8,13 @@
 
 #include "io/atomic_file.h"
 #include "io/json_input.h"
+#include "io/json_keys.h"
 #include "io/npz_writer.h"
 #include "io/output_pair.h"
 #include "scene/input_limits.h"
 #include "trace/contributions_origin.h"
 #include "util/out_of_memory.h"
+#include "util/quoted_text.h"
 #include "util/whole_file.h"
 
 namespace fenestra {
@@ -120,6 +122,8 @@ PanelRectangle parse_parameter_rectangle(const json& o, const std::function<void
     fail("\"parameter_rectangle\" needs \"panel\": the index of its panel (a whole number >= 0)");
   const json& r = o.at("parameter_rectangle");
   if (!r.is_object()) fail("\"parameter_rectangle\" is not an object {\"u0\", \"u1\", \"v0\", \"v1\"}");
+  if (const auto unknown = find_unknown_key(r, {"u0", "u1", "v0", "v1"}))
+    fail("parameter_rectangle." + quoted_text(unknown->key) + ": " + unknown->message);
   PanelRectangle out;
   out.panel = static_cast<int>(o.at("panel").get<int64_t>());
   double* fields[] = {&out.u0, &out.u1, &out.v0, &out.v1};
@@ -137,7 +141,17 @@ PanelRectangle parse_parameter_rectangle(const json& o, const std::function<void
 }  // namespace
 
 std::vector<OpeningInput> parse_openings(const json& j, const std::string& source, const SiteFrame& frame) {
-  auto fail = [&](const std::string& m) -> void { throw std::invalid_argument("openings '" + source + "': " + m); };
+  auto fail = [&](const std::string& m) -> void {
+    throw std::invalid_argument("openings '" + quoted_text(source) + "': " + m);
+  };
+  // An openings file, or a solve's result (docs/solver.md), whose other keys are read past.
+  if (const auto unknown = find_unknown_key(j, {"openings", "units", "goal_units", "open_elements", "element_count",
+                                               "element_size", "sensors", "error", "fitness", "warnings",
+                                               "constraints_met", "tradeoffs", "composition",
+                                               "constraint_violations", "unconstrained", "timings_s", "genetic",
+                                               "edge_moves", "second_start", "constraint_costs", "settings",
+                                               "climate"}))
+    fail(quoted_text(unknown->key) + ": " + unknown->message);
   if (!j.is_object() || !j.contains("openings") || !j.at("openings").is_array())
     fail("expected an object with an \"openings\" list");
   std::vector<OpeningInput> out;
@@ -145,6 +159,11 @@ std::vector<OpeningInput> parse_openings(const json& j, const std::string& sourc
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string where = "opening " + std::to_string(i);
     const json& o = list[i];
+    // "corners" or "panel" and "parameter_rectangle"; the rest describe a solve's opening.
+    if (const auto unknown = find_unknown_key(o, {"corners", "panel", "parameter_rectangle", "centre", "width",
+                                                 "height", "normal", "depth", "curved", "rows", "columns",
+                                                 "elements", "surface_grid"}))
+      fail(where + ": " + quoted_text(unknown->key) + ": " + unknown->message);
     if (o.is_object() && o.contains("parameter_rectangle")) {
       out.emplace_back(parse_parameter_rectangle(o, [&](const std::string& m) { fail(where + ": " + m); }));
       continue;
@@ -158,11 +177,11 @@ std::vector<OpeningInput> parse_openings(const json& j, const std::string& sourc
         fail(where + ": corner " + std::to_string(c) + " is not [x, y, z]");
       for (int k = 0; k < 3; ++k)
         if (!coordinate_in_range(p[k].get<double>()))
-          fail(where + ": corner " + std::to_string(c) + " " + p.dump() + " is out of range: coordinates " +
+          fail(where + ": corner " + std::to_string(c) + " " + quoted_json(p) + " is out of range: coordinates " +
                coordinate_requirement());
       const Vec3d site(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
       if (!local_coordinates_in_range(frame.to_local_exact(site)))
-        fail(where + ": corner " + std::to_string(c) + " " + p.dump() + " " + local_range_problem(frame.origin));
+        fail(where + ": corner " + std::to_string(c) + " " + quoted_json(p) + " " + local_range_problem(frame.origin));
       r[c] = frame.to_local(site);
     }
     out.emplace_back(r);

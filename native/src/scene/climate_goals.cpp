@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "io/json_keys.h"
 #include "scene/input_limits.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 namespace {
@@ -43,7 +45,7 @@ class GoalReader {
     if (!groups_.is_object()) fail("sensors.groups", "expected an object of \"name\": [sensor indices]");
     for (const auto& [name, list] : groups_.items()) {
       if (name == "all") fail("sensors.groups.all", "\"all\" already means every sensor: choose another name");
-      indices(list, "sensors.groups." + name);
+      indices(list, "sensors.groups." + quoted_text(name));
     }
   }
 
@@ -52,7 +54,7 @@ class GoalReader {
     std::vector<int> out;
     for (const json& i : list) {
       if (!i.is_number_integer() || i.get<long long>() < 0 || i.get<long long>() >= static_cast<long long>(sensors_))
-        fail(key, "expected sensor indices 0.." + std::to_string(sensors_ - 1) + ", got " + i.dump());
+        fail(key, "expected sensor indices 0.." + std::to_string(sensors_ - 1) + ", got " + quoted_json(i));
       out.push_back(i.get<int>());
     }
     std::sort(out.begin(), out.end());
@@ -70,9 +72,10 @@ class GoalReader {
         return;
       }
       if (!groups_.is_object() || !groups_.contains(name))
-        fail(key + ".sensors", "no sensor group named '" + name + "' (sensors.groups" +
+        fail(key + ".sensors", "no sensor group named '" + quoted_text(name) + "'" + did_you_mean(name, group_list()) +
+                                   " (sensors.groups" +
                                    (groups_.is_object() && !groups_.empty() ? " has " + group_names() : " is empty") + ")");
-      g->sensors = indices(groups_.at(name), "sensors.groups." + name);
+      g->sensors = indices(groups_.at(name), "sensors.groups." + quoted_text(name));
       return;
     }
     g->sensors_given = "list";
@@ -86,16 +89,20 @@ class GoalReader {
       return fallback;
     }
     const json& j = goal.at(name);
-    if (!j.is_number()) fail(key + "." + name, "expected a number (" + unit + "), got " + j.dump());
+    if (!j.is_number()) fail(key + "." + name, "expected a number (" + unit + "), got " + quoted_json(j));
     const double v = j.get<double>();
     if (!std::isfinite(v) || (lo_open ? !(v > lo) : !(v >= lo)) || !(v <= hi))
       fail(key + "." + name, std::string("must lie in ") + (lo_open ? "(" : "[") + lux(lo) + ", " + lux(hi) + "] " +
-                                 unit + ", got " + j.dump());
+                                 unit + ", got " + quoted_json(j));
     return v;
   }
 
   ClimateGoal goal(const json& j, const std::string& key) const {
     if (!j.is_object()) fail(key, "expected an object with \"metric\"");
+    if (!j.contains("metric"))
+      for (const auto& item : j.items())  // a misspelt "metric" is named as such
+        if (closest_word(item.key(), {"metric"}) == "metric")
+          fail(key + "." + quoted_text(item.key()), "unknown key; did you mean `metric`?");
     if (!j.contains("metric") || !j.at("metric").is_string())
       fail(key + ".metric", "missing: give \"sda\", \"ase\", \"en17037\", \"udi\" or \"mean\"");
     const std::string metric = j.at("metric").get<std::string>();
@@ -136,12 +143,13 @@ class GoalReader {
       g.illuminance_lux = number(j, "illuminance_lux", key, std::nan(""), 0.0, max_lux, true, "lux");
       known.push_back("illuminance_lux");
     } else {
-      fail(key + ".metric", "unknown metric \"" + metric + "\": give \"sda\", \"ase\", \"en17037\", \"udi\" or \"mean\"");
+      fail(key + ".metric", "unknown metric \"" + quoted_text(metric) + "\"" +
+                                did_you_mean(metric, {"sda", "ase", "en17037", "udi", "mean"}) +
+                                ": give \"sda\", \"ase\", \"en17037\", \"udi\" or \"mean\"");
     }
     g.weight = number(j, "weight", key, 1.0, 0.0, limits::kMaxWeight, true, "");
-    for (const auto& item : j.items())
-      if (std::find(known.begin(), known.end(), item.key()) == known.end())
-        fail(key + "." + item.key(), "unknown key for metric \"" + metric + "\"");
+    if (const auto unknown = find_unknown_key(j, known))
+      fail(key + "." + quoted_text(unknown->key), unknown->message + " of a \"" + metric + "\" goal");
     sensors_of(j, key, &g);
     return g;
   }
@@ -149,7 +157,13 @@ class GoalReader {
  private:
   std::string group_names() const {
     std::string out;
-    for (const auto& item : groups_.items()) out += (out.empty() ? "" : ", ") + item.key();
+    for (const auto& item : groups_.items()) out += (out.empty() ? "" : ", ") + quoted_text(item.key());
+    return out;
+  }
+  std::vector<std::string> group_list() const {
+    std::vector<std::string> out;
+    if (groups_.is_object())
+      for (const auto& item : groups_.items()) out.push_back(item.key());
     return out;
   }
 

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "util/quoted_text.h"
+
 namespace fenestra {
 
 namespace fs = std::filesystem;
@@ -30,6 +32,10 @@ std::string local_range_problem(const Vec3d& origin) {
 }
 
 void check_input_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
+  // The system would read the name only up to the NUL, and open another file.
+  if (path.find('\0') != std::string::npos)
+    throw std::invalid_argument(what + " '" + quoted_text(path) +
+                                "': the file name holds a NUL byte (\\u0000), which no file name can hold");
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status))

@@ -14,6 +14,8 @@
 #include "scene/site_frame.h"
 #include "util/out_of_memory.h"
 #include "util/whole_file.h"
+#include "util/decimal_number.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 
@@ -44,25 +46,40 @@ std::string read_text(const std::string& path) {
 
 // tinyobjloader resolves `usemtl` only against materials read through `mtllib`; the scene
 // file, not an MTL file, defines Fenestra's materials, so we hand it one MTL naming them all.
-// tinyobjloader reads "nan" or "1e999" as some number; we refuse them with the line number.
-void check_vertex_line(const std::string& path, size_t line_number, std::istringstream& words,
-                       std::vector<Vec3d>* vertices) {
-  Vec3d p;
-  for (int k = 0; k < 3; ++k) {
-    std::string token;
-    words >> token;
-    char* end = nullptr;
-    const double v = std::strtod(token.c_str(), &end);
-    if (token.empty() || *end != '\0' || !std::isfinite(v))
-      throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(line_number) +
-                                  ": vertex coordinate '" + token + "' is not a finite number");
-    if (!coordinate_in_range(v))
-      throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(line_number) +
-                                  ": vertex coordinate " + token + " is out of range (coordinates " +
-                                  coordinate_requirement() + ")");
-    p[k] = v;
+// Every line tinyobjloader could refuse or misread is checked here first, with its line number:
+// tinyobjloader would read "nan", "1e999", "0x10" (as 16) or "1e" as some number.
+[[noreturn]] void fail_at(const std::string& path, size_t line_number, const std::string& message) {
+  throw std::invalid_argument("geometry '" + quoted_text(path) + "', line " + std::to_string(line_number) + ": " +
+                              message);
+}
+
+// The numbers of a `v`, `vt` or `vn` line: `least` to `most` of them, each a plain decimal number.
+// Vertex coordinates must also lie in the accepted range; they are kept in `vertices` (in double:
+// tinyobjloader reads them in float, which keeps only 0.06 m of a coordinate in the millions).
+void check_number_line(const std::string& path, size_t line_number, std::istringstream& words,
+                       const std::string& keyword, int least, int most, std::vector<Vec3d>* vertices = nullptr) {
+  Vec3d p = Vec3d::Zero();
+  const std::string what = keyword == "v" ? "vertex coordinate" : keyword == "vt" ? "texture coordinate (vt)"
+                                                                                  : "normal (vn) component";
+  int count = 0;
+  std::string token;
+  while (words >> token) {
+    if (++count > most)
+      fail_at(path, line_number, "a `" + keyword + "` line takes at most " + std::to_string(most) + " numbers");
+    if (!is_decimal_number(token))
+      fail_at(path, line_number, what + " '" + quoted_text(token) +
+                                     "' is not a finite decimal number (such as 1, -0.5 or 2.5e-3)");
+    const double v = std::strtod(token.c_str(), nullptr);
+    if (!std::isfinite(v)) fail_at(path, line_number, what + " '" + quoted_text(token) + "' is not a finite number");
+    if (keyword == "v" && count <= 3 && !coordinate_in_range(v))
+      fail_at(path, line_number, what + " " + quoted_text(token) + " is out of range (coordinates " +
+                                     coordinate_requirement() + ")");
+    if (count <= 3) p[count - 1] = v;
   }
-  vertices->push_back(p);
+  if (count < least)
+    fail_at(path, line_number, "a `" + keyword + "` line needs " + std::to_string(least) + " numbers, got " +
+                                   std::to_string(count));
+  if (vertices) vertices->push_back(p);
 }
 
 // tinyobjloader reads indices with wrapping integer arithmetic (an index past 2^64 silently
@@ -79,7 +96,11 @@ struct IndexedKinds {
 
 void check_face_line(const std::string& path, size_t line_number, std::istringstream& words, IndexedKinds* kinds_seen) {
   std::string token;
+  int corners = 0;
   while (words >> token) {
+    ++corners;
+    if (std::count(token.begin(), token.end(), '/') > 2)
+      fail_at(path, line_number, "face corner '" + quoted_text(token) + "' is not v, v/vt, v//vn or v/vt/vn");
     size_t start = 0;
     for (int field = 0; field < 3 && start <= token.size(); ++field) {
       const size_t slash = token.find('/', start);
@@ -88,8 +109,7 @@ void check_face_line(const std::string& path, size_t line_number, std::istringst
       if (index.empty() && field > 0) continue;  // "v//vn" or "v/vt"
       const char* kinds[] = {"vertex", "texture coordinate", "normal"};
       auto fail = [&](const std::string& why) {
-        throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(line_number) + ": face " +
-                                    kinds[field] + " index '" + index + "' " + why);
+        fail_at(path, line_number, std::string("face ") + kinds[field] + " index '" + quoted_text(index) + "' " + why);
       };
       const size_t signs = std::min(index.find_first_not_of("-+"), index.size());
       if (index.empty() || signs > 1 || index.size() == signs ||
@@ -104,6 +124,8 @@ void check_face_line(const std::string& path, size_t line_number, std::istringst
       if (v > kinds_seen->largest[field]) kinds_seen->largest[field] = v, kinds_seen->largest_line[field] = line_number;
     }
   }
+  if (corners < 3)
+    fail_at(path, line_number, "a face needs at least 3 corners, got " + std::to_string(corners));
 }
 
 // Also returns the vertices in double: tinyobjloader reads them in float, which keeps only 0.06 m of a
@@ -125,11 +147,13 @@ std::string prepare_obj_text(const std::string& path, const std::string& text, s
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
-    if (keyword == "v") check_vertex_line(path, line_number, words, vertices), ++kinds.so_far[0];
-    if (keyword == "vt") ++kinds.so_far[1];
-    if (keyword == "vn") ++kinds.so_far[2];
+    // x y z, with an optional w or r g b (tinyobjloader's vertex colours).
+    if (keyword == "v") check_number_line(path, line_number, words, keyword, 3, 6, vertices), ++kinds.so_far[0];
+    if (keyword == "vt") check_number_line(path, line_number, words, keyword, 1, 3), ++kinds.so_far[1];
+    if (keyword == "vn") check_number_line(path, line_number, words, keyword, 3, 3), ++kinds.so_far[2];
     if (keyword == "f") check_face_line(path, line_number, words, &kinds);
-    if (keyword == "mtllib") {
+    // Lines, points and skin weights light nothing: left out (the line kept, for the numbering).
+    if (keyword == "mtllib" || keyword == "l" || keyword == "p" || keyword == "vw") {
       out << "#\n";
       continue;
     }
@@ -146,10 +170,10 @@ std::string prepare_obj_text(const std::string& path, const std::string& text, s
   const char* plurals[] = {"vertices", "texture coordinates (vt)", "normals (vn)"};
   for (int k = 0; k < 3; ++k)
     if (kinds.largest[k] > static_cast<long long>(kinds.so_far[k]))
-      throw std::invalid_argument("geometry '" + path + "', line " + std::to_string(kinds.largest_line[k]) + ": face " +
-                                  names[k] + " index " + std::to_string(kinds.largest[k]) + " is past the last " +
-                                  (k == 0 ? "vertex" : names[k]) + " (the file has " + std::to_string(kinds.so_far[k]) +
-                                  " " + plurals[k] + ")");
+      fail_at(path, kinds.largest_line[k],
+              std::string("face ") + names[k] + " index " + std::to_string(kinds.largest[k]) + " is past the last " +
+                  (k == 0 ? "vertex" : names[k]) + " (the file has " + std::to_string(kinds.so_far[k]) + " " +
+                  plurals[k] + ")");
   return out.str();
 }
 
@@ -162,7 +186,7 @@ SiteFrame frame_of(const std::string& path, const std::vector<Vec3d>& vertices, 
   const SiteFrame frame = SiteFrame::around(lo, hi);
   for (size_t i = 0; i < vertices.size(); ++i)
     if (!local_coordinates_in_range(frame.to_local_exact(vertices[i])))
-      throw std::invalid_argument("geometry '" + path + "': vertex " + std::to_string(i + 1) + " " +
+      throw std::invalid_argument("geometry '" + quoted_text(path) + "': vertex " + std::to_string(i + 1) + " " +
                                   local_range_problem(frame.origin));
   return frame;
 }
@@ -175,7 +199,7 @@ Mesh read_obj(const std::string& path, const std::vector<std::string>& material_
   if (frame) *frame = local;
   for (const auto& name : used) {
     if (std::find(material_names.begin(), material_names.end(), name) == material_names.end())
-      throw std::invalid_argument("geometry '" + path + "' uses material '" + name +
+      throw std::invalid_argument("geometry '" + quoted_text(path) + "' uses material '" + quoted_text(name) +
                                   "', which the scene file's \"materials\" does not define");
   }
   std::ostringstream mtl;
@@ -185,9 +209,10 @@ Mesh read_obj(const std::string& path, const std::vector<std::string>& material_
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(obj_text, mtl.str(), config)) {
-    throw std::invalid_argument("cannot parse geometry '" + path + "': " + reader.Error());
-  }
+  // Every line it could refuse was checked above; its own message, numbering the lines of the
+  // text it was given, is not shown.
+  if (!reader.ParseFromString(obj_text, mtl.str(), config))
+    throw std::invalid_argument("geometry '" + quoted_text(path) + "' could not be read as an OBJ file");
   const auto& attrib = reader.GetAttrib();
   const auto& shapes = reader.GetShapes();
   const auto& mtls = reader.GetMaterials();
@@ -195,7 +220,7 @@ Mesh read_obj(const std::string& path, const std::vector<std::string>& material_
   Mesh mesh;
   const size_t vertex_count = vertices.size();
   if (attrib.vertices.size() != 3 * vertex_count)
-    throw std::invalid_argument("geometry '" + path + "': cannot read its vertices (" + std::to_string(vertex_count) +
+    throw std::invalid_argument("geometry '" + quoted_text(path) + "': cannot read its vertices (" + std::to_string(vertex_count) +
                                 " 'v' lines, " + std::to_string(attrib.vertices.size() / 3) + " vertices read)");
   mesh.positions.reserve(vertex_count);
   for (const Vec3d& v : vertices) mesh.positions.push_back(local.to_local(v));
@@ -258,7 +283,7 @@ Mesh read_obj(const std::string& path, const std::vector<std::string>& material_
                                     material_names.begin());
       }
       if (material < 0) {
-        throw std::invalid_argument("geometry '" + path + "': faces of group '" + shape.name +
+        throw std::invalid_argument("geometry '" + quoted_text(path) + "': faces of group '" + quoted_text(shape.name) +
                                     "' have no material (no usemtl, and no material named \"default\")");
       }
       mesh.triangles.push_back(tri);
@@ -268,7 +293,7 @@ Mesh read_obj(const std::string& path, const std::vector<std::string>& material_
       const float area2 = mesh.area_normal(mesh.triangles.size() - 1).norm();
       if (!(area2 > 1e-10f)) {
         std::ostringstream s;
-        s << "geometry '" << path << "': face " << f + 1 << " of group '" << shape.name
+        s << "geometry '" << quoted_text(path) << "': face " << f + 1 << " of group '" << quoted_text(shape.name)
           << "' is degenerate (zero area)";
         throw std::invalid_argument(s.str());
       }

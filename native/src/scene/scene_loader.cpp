@@ -11,12 +11,14 @@
 #include "daylight/sky_matrix.h"
 #include "daylight/weather_file.h"
 #include "io/json_input.h"
+#include "io/json_keys.h"
 #include "scene/bsdf.h"
 #include "scene/input_limits.h"
 #include "scene/scene.h"
 #include "solve/catalogue_snap.h"
 #include "solve/composition.h"
 #include "util/whole_file.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 
@@ -37,8 +39,25 @@ class ScenePath {
   std::string source_;
 };
 
+// Refuses a key of `obj` (the section `key`, "" at the top level) that is not in `known`, naming
+// the closest known one. Each section lists its keys where it reads them.
+void check_known_keys(const ScenePath& sp, const json& obj, const std::string& key,
+                      const std::vector<std::string>& known) {
+  if (const auto unknown = find_unknown_key(obj, known))
+    sp.fail((key.empty() ? "" : key + ".") + quoted_text(unknown->key), unknown->message);
+}
+
+// When `name` (a key that chooses which others apply, such as "type") is missing, a key one typo
+// away from it is named as such, rather than as unknown to the default it then falls back on.
+void check_misspelt(const ScenePath& sp, const json& obj, const std::string& key, const std::string& name) {
+  if (!obj.is_object() || obj.contains(name)) return;
+  for (const auto& item : obj.items())
+    if (closest_word(item.key(), {name}) == name)
+      sp.fail(key + "." + quoted_text(item.key()), "unknown key; did you mean `" + name + "`?");
+}
+
 double number(const ScenePath& sp, const json& j, const std::string& key) {
-  if (!j.is_number()) sp.fail(key, "expected a number, got " + j.dump());
+  if (!j.is_number()) sp.fail(key, "expected a number, got " + quoted_json(j));
   const double v = j.get<double>();
   if (!std::isfinite(v)) sp.fail(key, "must be finite");
   return v;
@@ -60,7 +79,7 @@ double number_in(const ScenePath& sp, const json& obj, const std::string& name, 
   if (!obj.contains(name)) return fallback;
   const double v = number(sp, obj.at(name), key + "." + name);
   if (!(v >= lo && v <= hi))
-    sp.fail(key + "." + name, "must lie in [" + show(lo) + ", " + show(hi) + "]" + unit + ", got " + obj.at(name).dump());
+    sp.fail(key + "." + name, "must lie in [" + show(lo) + ", " + show(hi) + "]" + unit + ", got " + quoted_json(obj.at(name)));
   return v;
 }
 
@@ -68,14 +87,14 @@ double number_in(const ScenePath& sp, const json& obj, const std::string& name, 
 long long integer_in(const ScenePath& sp, const json& j, const IntegerRange& range, const std::string& key) {
   const double v = number(sp, j, key);
   if (v != std::floor(v) || v < static_cast<double>(range.lo) || v > static_cast<double>(range.hi))
-    sp.fail(key, range.requirement() + ", got " + j.dump());
+    sp.fail(key, range.requirement() + ", got " + quoted_json(j));
   return static_cast<long long>(v);
 }
 
 std::string text_or(const ScenePath& sp, const json& obj, const std::string& name, const std::string& key,
                     const std::string& fallback) {
   if (!obj.contains(name)) return fallback;
-  if (!obj.at(name).is_string()) sp.fail(key + "." + name, "expected a string, got " + obj.at(name).dump());
+  if (!obj.at(name).is_string()) sp.fail(key + "." + name, "expected a string, got " + quoted_json(obj.at(name)));
   return obj.at(name).get<std::string>();
 }
 
@@ -86,31 +105,31 @@ Rgb colour(const ScenePath& sp, const json& j, const std::string& key) {
   else if (j.is_array() && j.size() == 3)
     c = Rgb(number(sp, j[0], key), number(sp, j[1], key), number(sp, j[2], key));
   else
-    sp.fail(key, "expected a number or [r, g, b], got " + j.dump());
-  if (!c.isFinite().all()) sp.fail(key, "is too large for a float (beyond 3.4e38), got " + j.dump());
+    sp.fail(key, "expected a number or [r, g, b], got " + quoted_json(j));
+  if (!c.isFinite().all()) sp.fail(key, "is too large for a float (beyond 3.4e38), got " + quoted_json(j));
   return c;
 }
 
 // A position in meters, finite and within +-limits::kMaxCoordinate, read in double and returned in
 // the scene's local frame (within +-limits::kMaxLocalCoordinate of its origin).
 Vec3 point(const ScenePath& sp, const json& j, const std::string& key, const SiteFrame& frame) {
-  if (!j.is_array() || j.size() != 3) sp.fail(key, "expected [x, y, z], got " + j.dump());
+  if (!j.is_array() || j.size() != 3) sp.fail(key, "expected [x, y, z], got " + quoted_json(j));
   const double x = number(sp, j[0], key), y = number(sp, j[1], key), z = number(sp, j[2], key);
   if (!coordinate_in_range(x) || !coordinate_in_range(y) || !coordinate_in_range(z))
-    sp.fail(key, "coordinates " + coordinate_requirement() + ", got " + j.dump());
+    sp.fail(key, "coordinates " + coordinate_requirement() + ", got " + quoted_json(j));
   const Vec3d site(x, y, z);
-  if (!local_coordinates_in_range(frame.to_local_exact(site))) sp.fail(key, j.dump() + " " + local_range_problem(frame.origin));
+  if (!local_coordinates_in_range(frame.to_local_exact(site))) sp.fail(key, quoted_json(j) + " " + local_range_problem(frame.origin));
   return frame.to_local(site);
 }
 
 // A direction, normalized in double precision: components within +-limits::kMaxNormalComponent, not zero.
 Vec3 direction(const ScenePath& sp, const json& j, const std::string& key) {
-  if (!j.is_array() || j.size() != 3) sp.fail(key, "expected [x, y, z], got " + j.dump());
+  if (!j.is_array() || j.size() != 3) sp.fail(key, "expected [x, y, z], got " + quoted_json(j));
   const double x = number(sp, j[0], key), y = number(sp, j[1], key), z = number(sp, j[2], key);
   if (Vec3d(x, y, z).cwiseAbs().maxCoeff() > limits::kMaxNormalComponent)
-    sp.fail(key, "components of a normal must lie within +-" + show(limits::kMaxNormalComponent) + ", got " + j.dump());
+    sp.fail(key, "components of a normal must lie within +-" + show(limits::kMaxNormalComponent) + ", got " + quoted_json(j));
   const double n = std::sqrt(x * x + y * y + z * z);
-  if (!(n > 1e-6)) sp.fail(key, "a normal must not be zero (length at least 1e-6), got " + j.dump());
+  if (!(n > 1e-6)) sp.fail(key, "a normal must not be zero (length at least 1e-6), got " + quoted_json(j));
   return Vec3(x / n, y / n, z / n);
 }
 
@@ -120,7 +139,7 @@ std::vector<std::string> names(const ScenePath& sp, const json& obj, const std::
   const json& j = obj.at(name);
   if (!j.is_array()) sp.fail(key + "." + name, "expected a list of names");
   for (const auto& e : j) {
-    if (!e.is_string()) sp.fail(key + "." + name, "expected names, got " + e.dump());
+    if (!e.is_string()) sp.fail(key + "." + name, "expected names, got " + quoted_json(e));
     out.push_back(e.get<std::string>());
   }
   return out;
@@ -135,11 +154,15 @@ void check_range(const ScenePath& sp, const Rgb& c, float lo, float hi, const st
 }
 
 Material parse_material(const ScenePath& sp, const std::string& name, const json& j) {
-  const std::string key = "materials." + name;
+  const std::string key = "materials." + quoted_text(name);
   if (!j.is_object()) sp.fail(key, "expected an object");
   Material m;
   m.name = name;
+  check_misspelt(sp, j, key, "type");
   const std::string type = text_or(sp, j, "type", key, "diffuse");
+  if (type == "diffuse") check_known_keys(sp, j, key, {"type", "reflectance"});
+  if (type == "glossy") check_known_keys(sp, j, key, {"type", "reflectance", "roughness", "metallic"});
+  if (type == "glass") check_known_keys(sp, j, key, {"type", "transmittance", "ior", "kind"});
   if (j.contains("reflectance")) m.reflectance = colour(sp, j.at("reflectance"), key + ".reflectance");
   if (type == "diffuse") {
     m.type = MaterialType::Diffuse;
@@ -168,30 +191,23 @@ Material parse_material(const ScenePath& sp, const std::string& name, const json
       }
     }
   } else {
-    sp.fail(key + ".type", "unknown material type '" + type + "' (diffuse, glass or glossy)");
+    sp.fail(key + ".type", "unknown material type '" + quoted_text(type) + "'" +
+                               did_you_mean(type, {"diffuse", "glass", "glossy"}) + " (diffuse, glass or glossy)");
   }
   return m;
 }
 
 std::string text(const ScenePath& sp, const json& obj, const std::string& name, const std::string& key) {
   if (!obj.contains(name)) sp.fail(key + "." + name, "missing");
-  if (!obj.at(name).is_string()) sp.fail(key + "." + name, "expected a string, got " + obj.at(name).dump());
+  if (!obj.at(name).is_string()) sp.fail(key + "." + name, "expected a string, got " + quoted_json(obj.at(name)));
   return obj.at(name).get<std::string>();
 }
 
-void check_known_keys(const ScenePath& sp, const json& obj, const std::string& key,
-                      const std::vector<std::string>& known) {
-  for (const auto& item : obj.items()) {
-    if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
-    std::string list;
-    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-    sp.fail(key + "." + item.key(), "unknown key (known: " + list + ")");
-  }
-}
+
 
 // sky.resolution: [width, height] of a daylight sky's map, in pixels.
 void parse_resolution(const ScenePath& sp, const json& r, int* width, int* height) {
-  if (!r.is_array() || r.size() != 2) sp.fail("sky.resolution", "expected [width, height] in pixels, got " + r.dump());
+  if (!r.is_array() || r.size() != 2) sp.fail("sky.resolution", "expected [width, height] in pixels, got " + quoted_json(r));
   *width = static_cast<int>(integer_in(sp, r[0], limits::kSkyWidth, limits::kSkyWidth.key));
   *height = static_cast<int>(integer_in(sp, r[1], limits::kSkyHeight, limits::kSkyHeight.key));
 }
@@ -206,7 +222,7 @@ constexpr int kClimateMapWidth = 256, kClimateMapHeight = 128;
 std::shared_ptr<const WeatherData> read_sky_weather(const ScenePath& sp, const json& j, const fs::path& base,
                                                     Scene* scene) {
   if (!j.at("weather").is_string())
-    sp.fail("sky.weather", "expected a file name (.epw or .wea), got " + j.at("weather").dump());
+    sp.fail("sky.weather", "expected a file name (.epw or .wea), got " + quoted_json(j.at("weather")));
   const fs::path file = base / j.at("weather").get<std::string>();
   try {
     check_input_file(file.string(), "weather file", limits::kMaxWeatherFileBytes);
@@ -241,7 +257,7 @@ double perez_irradiance(const ScenePath& sp, const json& j, const std::string& n
     const double top = extraterrestrial_normal_irradiance(date.month, date.day);
     if (v > top)
       sp.fail("sky." + name, "must not exceed the extraterrestrial normal irradiance of " + to_string(date) + " (" +
-                                 show(std::floor(top)) + " W/m^2), got " + j.at(name).dump());
+                                 show(std::floor(top)) + " W/m^2), got " + quoted_json(j.at(name)));
   }
   return v;
 }
@@ -336,7 +352,7 @@ DaylightSettings parse_daylight(const ScenePath& sp, const json& j, const std::s
 void parse_occupied(const ScenePath& sp, const json& j, ClimateSettings* c) {
   const json& o = j.at("occupied");
   if (!o.is_array() || o.size() != 2 || !o[0].is_string() || !o[1].is_string())
-    sp.fail("sky.occupied", "expected [\"HH:MM\", \"HH:MM\"] (local standard time), got " + o.dump());
+    sp.fail("sky.occupied", "expected [\"HH:MM\", \"HH:MM\"] (local standard time), got " + quoted_json(o));
   try {
     c->occupied_start_hour = parse_clock_minutes(o[0].get<std::string>()) / 60.0;
     c->occupied_end_hour = parse_clock_minutes(o[1].get<std::string>()) / 60.0;
@@ -344,7 +360,7 @@ void parse_occupied(const ScenePath& sp, const json& j, ClimateSettings* c) {
     sp.fail("sky.occupied", e.what());
   }
   if (!(c->occupied_start_hour < c->occupied_end_hour))
-    sp.fail("sky.occupied", "the start must come before the end on the same day, got " + o.dump());
+    sp.fail("sky.occupied", "the start must come before the end on the same day, got " + quoted_json(o));
 }
 
 // A "climate" sky: the weather file's hourly sky matrix for annual studies, and, for everything
@@ -365,7 +381,7 @@ void parse_climate(const ScenePath& sp, const json& j, const fs::path& base, Sce
   if (j.contains("patches")) {
     const json& p = j.at("patches");
     if (!(p == 1 || p == 2 || p == 4))
-      sp.fail("sky.patches", "must be 1 (Tregenza, 145 sky patches), 2 (577) or 4 (2305), got " + p.dump());
+      sp.fail("sky.patches", "must be 1 (Tregenza, 145 sky patches), 2 (577) or 4 (2305), got " + quoted_json(p));
     c.subdivision = p.get<int>();
   }
   if (j.contains("occupied")) parse_occupied(sp, j, &c);
@@ -401,9 +417,11 @@ void parse_climate(const ScenePath& sp, const json& j, const fs::path& base, Sce
 
 void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* scene, Progress* progress) {
   if (!j.is_object()) sp.fail("sky", "expected an object");
-  if (!j.contains("type"))
+  check_misspelt(sp, j, "sky", "type");
+  if (!j.contains("type")) {
     sp.fail("sky.type", "missing: give \"uniform\", \"envmap\", \"preetham\", \"cie_clear\", \"cie_overcast\", "
                         "\"perez\" or \"climate\"");
+  }
   const std::string type = text(sp, j, "type", "sky");
   if (type == "uniform") {
     check_known_keys(sp, j, "sky", {"type", "radiance", "ground_radiance"});
@@ -413,7 +431,7 @@ void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* 
       const Rgb l = colour(sp, j.at(key), name);
       if ((l < 0.0f).any()) sp.fail(name, "must not be negative");
       if ((l > static_cast<float>(limits::kMaxRadiance)).any())
-        sp.fail(name, "must not exceed " + show(limits::kMaxRadiance) + " cd/m^2, got " + j.at(key).dump());
+        sp.fail(name, "must not exceed " + show(limits::kMaxRadiance) + " cd/m^2, got " + quoted_json(j.at(key)));
       return l;
     };
     const Rgb l = radiance("radiance", Rgb::Constant(1000.0f / kPi));
@@ -454,12 +472,15 @@ void parse_sky(const ScenePath& sp, const json& j, const fs::path& base, Scene* 
     scene->daylight = daylight;
     return;
   }
-  sp.fail("sky.type", "unknown sky type '" + type +
-                          "' (uniform, envmap, preetham, cie_clear, cie_overcast, perez or climate)");
+  sp.fail("sky.type", "unknown sky type '" + quoted_text(type) + "'" +
+                          did_you_mean(type, {"uniform", "envmap", "preetham", "cie_clear", "cie_overcast", "perez",
+                                              "climate"}) +
+                          " (uniform, envmap, preetham, cie_clear, cie_overcast, perez or climate)");
 }
 
 Sensors parse_sensors(const ScenePath& sp, const json& j, const SiteFrame& frame) {
   if (!j.is_object()) sp.fail("sensors", "expected an object");
+  check_known_keys(sp, j, "sensors", {"points", "normals", "goals", "goal_units", "weights", "groups"});
   Sensors s;
   if (!j.contains("points") || !j.at("points").is_array() || j.at("points").empty())
     sp.fail("sensors.points", "the scene has no sensors");
@@ -543,7 +564,7 @@ void parse_goals(const ScenePath& sp, const json& j, Sensors* s) {
       } else if (which.is_array() && !which.empty()) {
         for (const json& i : which) {
           if (!i.is_number_integer() || i.get<long long>() < 0 || i.get<long long>() >= static_cast<long long>(n))
-            sp.fail(key + ".sensors", "expected sensor indices 0.." + std::to_string(n - 1) + ", got " + i.dump());
+            sp.fail(key + ".sensors", "expected sensor indices 0.." + std::to_string(n - 1) + ", got " + quoted_json(i));
           goal.sensors.push_back(i.get<int>());
         }
       } else {
@@ -607,7 +628,7 @@ std::vector<CatalogueSize> parse_catalogue_sizes(const ScenePath& sp, const json
     }
     for (double side : {size.width, size.height})
       if (!(side > 0.0) || !(side <= kMaxSide))
-        sp.fail(at, "sides must be positive lengths up to 100 m, got " + e.dump());
+        sp.fail(at, "sides must be positive lengths up to 100 m, got " + quoted_json(e));
     sizes.push_back(size);
   }
   return sizes;
@@ -844,7 +865,7 @@ RenderSettings parse_render(const ScenePath& sp, const json& j) {
   if (j.contains("sampler")) {
     const json& v = j.at("sampler");
     if (!v.is_string() || !parse_sampler(v.get<std::string>(), &r.sampler))
-      sp.fail("render.sampler", "expected \"sobol\" or \"independent\", got " + v.dump());
+      sp.fail("render.sampler", "expected \"sobol\" or \"independent\", got " + quoted_json(v));
   }
   return r;
 }
@@ -891,9 +912,17 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
   const json j = parse_json_text(text, "scene", source_name);
   if (!j.is_object()) sp.fail("(top level)", "expected a JSON object");
   // Compared as a double: an integer such as 4294967297 must not wrap to 1.
-  if (!j.contains("fenestra") || !j.at("fenestra").is_number_integer() || j.at("fenestra").get<double>() != 1.0)
+  const bool version_1 = j.contains("fenestra") && j.at("fenestra").is_number_integer() &&
+                         j.at("fenestra").get<double>() == 1.0;
+  auto fail_version = [&] {
     sp.fail("fenestra", "expected the format version 1 (\"fenestra\": 1), got " +
-                            (j.contains("fenestra") ? j.at("fenestra").dump() : std::string("nothing")));
+                            (j.contains("fenestra") ? quoted_json(j.at("fenestra")) : std::string("nothing")));
+  };
+  if (j.contains("fenestra") && !version_1) fail_version();  // another version may have other keys
+  check_known_keys(sp, j, "",
+                   {"fenestra", "geometry", "materials", "opening_domain", "sensors", "goals", "sky", "render",
+                    "solver"});
+  if (!version_1) fail_version();
 
   Scene scene;
   scene.source = source_name;
@@ -914,6 +943,7 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     if (!j.contains("opening_domain") || !j.at("opening_domain").is_object())
       sp.fail("opening_domain", "expected an object naming the materials or groups that may host openings");
     const json& od = j.at("opening_domain");
+    check_known_keys(sp, od, "opening_domain", {"materials", "groups", "element_size", "thickness"});
     OpeningDomainSelection sel;
     sel.materials = names(sp, od, "materials", "opening_domain");
     sel.groups = names(sp, od, "groups", "opening_domain");
