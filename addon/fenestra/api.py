@@ -282,8 +282,8 @@ def solve(scene, contributions=None, progress=None, callback=None, max_memory=No
     with strict=True when a setup check warns (checks=False skips them: the add-on runs them
     itself), and when the cost model (docs/cost.md) says it will not fit in max_memory (bytes or
     "8G"; default what the system has available) or a stage would exceed its time limit."""
-    _core.require_goals(scene)
     _cost.check_cost(scene, "solve" if contributions is None else "solver", max_memory)
+    _core.require_goals(scene)
     setup = _setup_warnings(scene, "solve", strict) if checks else []
     result = json.loads(_run(lambda p: _core.solve(scene, contributions, p), progress, callback))
     for message in result.get("warnings", []):  # also in result["warnings"]
