@@ -60,7 +60,7 @@ def test_each_check_names_its_sensors(small_room):
     found = fenestra.check_setup(fenestra.load_scene(edit(small_room, outdoors)), "contributions")
     assert [f["kind"] for f in found] == ["outdoors"]
     assert found[0]["sensors"] == [3] and found[0]["total"] == 4
-    assert found[0]["message"].startswith("1 of 4 sensors are outdoors"), found[0]["message"]
+    assert found[0]["message"].startswith("1 of 4 sensors is outdoors"), found[0]["message"]
     assert "sensor 3 at (5.00, 1.50, 0.80)" in found[0]["message"]
 
     found = fenestra.check_setup(fenestra.load_scene(without_ceiling(edit(small_room, lambda s: s["sensors"]["points"].pop()))),
