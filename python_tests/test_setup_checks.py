@@ -159,3 +159,16 @@ def test_a_solve_without_goals_is_refused_before_tracing(small_room, tmp_path):
                                 s["sensors"].update(weights=[0, 0, 0])))
     with pytest.raises(ValueError, match="no sensor has a goal"):
         fenestra.solve(fenestra.load_scene(small_room))
+
+
+def test_a_solve_on_a_cluster_runs_the_same_checks(small_room, tmp_path):
+    edit(small_room, lambda s: (zero_goals(s), facing_down(s)))
+    out = tmp_path / "result.json"
+    r = cli("solve", small_room, "-o", out, "--workers", 1, "--quiet", "--strict")
+    assert r.returncode == 1 and "the setup checks found 2 problems (strict)" in r.stderr, r.stderr
+    assert not out.exists()
+    r = cli("solve", small_room, "-o", out, "--workers", 1, "--quiet")
+    assert r.returncode == 0, r.stderr
+    setup = [f["message"] for f in fenestra.check_setup(fenestra.load_scene(small_room), "solve")]
+    assert json.loads(out.read_text())["warnings"][:2] == setup
+    assert all(r.stderr.count(m) == 1 for m in setup), r.stderr
