@@ -8,11 +8,12 @@ import re
 import shlex
 import shutil
 import subprocess
+import sys
 
 import pytest
 
 import fenestra
-from conftest import CLI, EXAMPLES, box_obj
+from conftest import CLI, EXAMPLES, ROOT, box_obj
 
 REFERENCE = os.path.join(EXAMPLES, "reference_room", "scene.json")
 SIZE = re.compile(r"\d[\d.]* [kMGTPE]B\b")  # a figure such as "11.5 GB"
@@ -281,3 +282,74 @@ def test_solve_estimate_counts_the_exact_values_index(tmp_path):
     e = fenestra.estimate_cost(scene, "solve")
     assert e["memory"]["exact_values_index"] == pytest.approx(0.5 * e["memory"]["path_records"])
     assert "exact_values_index" not in fenestra.estimate_cost(scene, "contributions")["memory"]
+
+
+def test_daylight_steps_cost_their_own_time(tmp_path):
+    """Each step with the sun up creates its sky (about 2 ms, whatever the map's size): at 64 x 32 a
+    year of 1-minute steps would take about 6 minutes and is refused; 5 years of 15-minute steps
+    are refused at the default resolution (docs/cost.md, "Time limits")."""
+    sky = {"type": "preetham", "latitude": 48.85, "longitude": 2.35, "utc_offset": 1, "date": "2021-01-01",
+           "date_end": "2021-12-31", "start": "09:00", "end": "17:00", "step_minutes": 1, "resolution": [64, 32]}
+    scene = write_room(tmp_path, sky=sky)
+    r = run("sky", scene, "-o", tmp_path / "out.exr", "--quiet", timeout=120)
+    assert_refused(r, "175 200 time steps", "at 64 x 32 pixels", "about 6 min", "sky.step_minutes")
+    assert outputs(tmp_path) == []
+    five_years = dict(sky, date="2020-01-01", date_end="2024-12-31", step_minutes=15, resolution=[1024, 512])
+    with pytest.raises(ValueError, match="58 464 time steps"):
+        fenestra.scene_from_dict(dict(json.loads(scene.read_text()), sky=five_years), tmp_path)
+
+
+ANNUAL_PEAK = r"""
+import json, sys
+import fenestra
+scene_path, openings_path, paths, limit = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+scene = fenestra.load_scene(scene_path)
+openings = fenestra.read_openings(openings_path)
+estimate = fenestra.estimate_cost(scene, "annual_cutters", max_memory=limit, paths=paths)
+def status(key):
+    return next(int(l.split()[1]) * 1024 for l in open("/proc/self/status") if l.startswith(key))
+fenestra.annual(scene, openings, cutters=True, paths=16)  # threads, the ray scene, the sources once
+with open("/proc/self/clear_refs", "w") as f:
+    f.write("5")  # the peak resident size from here on
+before = status("VmRSS")
+fenestra.annual(scene, openings, cutters=True, paths=paths, max_memory=limit)
+print(json.dumps({"grown": status("VmHWM") - before, "estimate": estimate}))
+"""
+
+
+def test_annual_with_cutters_is_checked_before_any_work(small_room, tmp_path):
+    """`annual --cutters --paths 1073741824` would hold the replicate sums of 8.4 million tasks per
+    sensor and their rows of coefficients: refused at once, naming the paths that fit. The largest
+    accepted run under a limit runs, its measured peak within the estimate; one path more is refused."""
+    from test_annual import climate_room
+    scene_path = climate_room(small_room)
+    window = tmp_path / "window.json"
+    r = run("annual", scene_path, "--openings", window, "-o", tmp_path / "out", "--cutters", "--paths", 2 ** 30,
+            "--quiet")
+    assert_refused(r, "1 073 741 824 paths per sensor for 3 sensors, in tasks of 128 paths",
+                   "fewer paths (render.paths_per_sensor, --paths): at most")
+    assert outputs(tmp_path) == []
+    scene = fenestra.load_scene(scene_path)
+    calls = []
+    with pytest.raises(ValueError, match="1 073 741 824 paths per sensor"):
+        fenestra.annual(scene, fenestra.read_openings(str(window)), cutters=True, paths=2 ** 30,
+                        callback=lambda *a: calls.append(a))
+    assert calls == []
+
+    limit = "12M"  # a few of the year's sources' rows at most: about 60 000 paths per sensor fit
+    refused = fenestra.estimate_cost(scene, "annual_cutters", max_memory=limit, paths=2 ** 30)
+    fit = re.search(r"at most ([\d ]+) per sensor fit", refused["problem"])
+    assert not refused["fits"] and fit, refused["problem"]
+    n = int(fit.group(1).replace(" ", ""))
+    assert fenestra.estimate_cost(scene, "annual_cutters", max_memory=limit, paths=n)["fits"]
+    with pytest.raises(ValueError, match="at most %s per sensor fit" % fit.group(1)):
+        fenestra.check_cost(scene, "annual_cutters", max_memory=limit, paths=n + 1)
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "addon"))
+    r = subprocess.run([sys.executable, "-c", ANNUAL_PEAK, str(scene_path), str(window), str(n), limit],
+                       capture_output=True, text=True, timeout=600, env=env)
+    assert r.returncode == 0, r.stderr
+    measured = json.loads(r.stdout)
+    estimate = measured["estimate"]
+    # The estimate bounds what the run added at its peak, and is not loose: the rows dominate.
+    assert measured["grown"] <= estimate["total_bytes"] <= 12e6, (measured["grown"], estimate["memory"])
+    assert measured["grown"] >= 0.5 * estimate["total_bytes"], (measured["grown"], estimate["memory"])

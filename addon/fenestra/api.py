@@ -235,13 +235,20 @@ def check_setup(scene, command="solve"):
     return _core.check_setup(scene, command)
 
 
-def _setup_warnings(scene, command, strict):
-    """The setup checks before any work: raises ValueError listing them when strict, else issues
-    each as a RuntimeWarning; returns their messages."""
+def setup_messages(scene, command, strict=False):
+    """The setup checks' messages for `command`; with strict, raises ValueError listing them when
+    there are any (as --strict does)."""
     messages = [w["message"] for w in _core.check_setup(scene, command)]
     if strict and messages:
         raise ValueError("scene '%s': the setup checks found %d problem%s (strict); %s"
                          % (scene.source, len(messages), "" if len(messages) == 1 else "s", "; ".join(messages)))
+    return messages
+
+
+def _setup_warnings(scene, command, strict):
+    """The setup checks before any work: raises ValueError listing them when strict, else issues
+    each as a RuntimeWarning; returns their messages."""
+    messages = setup_messages(scene, command, strict)
     for message in messages:
         warnings.warn(message, RuntimeWarning, stacklevel=3)
     return messages
@@ -376,8 +383,8 @@ def solve(scene, contributions=None, progress=None, callback=None, max_memory=No
     _check_run(progress, callback, max_memory)
     _arg.flag(strict, "strict")
     _arg.flag(checks, "checks")
-    _core.require_goals(scene)
     _cost.check_cost(scene, "solve" if contributions is None else "solver", max_memory)
+    _core.require_goals(scene)
     setup = _setup_warnings(scene, "solve", strict) if checks else []
     result = json.loads(_run(lambda p: _core.solve(scene, contributions, p), progress, callback))
     for message in result.get("warnings", []):  # also in result["warnings"]

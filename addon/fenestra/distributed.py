@@ -1141,8 +1141,8 @@ def solve(scene, cluster, shards=None, base_dir=".", callback=None, max_memory=N
     if dark:  # as one process refuses it, before any tracing
         raise ValueError("scene '%s': sky: %s; the goals cannot be met: choose a date and time interval with daylight"
                          % (local.source, dark))
-    _core.require_goals(local)  # as one process refuses it, before any tracing
     check_client_fits(local, max_memory)
+    _core.require_goals(local)  # as one process refuses it, before any tracing
     if local.solver_paths > 0:  # as fenestra.solve traces them
         if local is scene:  # the caller's Scene keeps its settings
             local = api.load_scene(spec["path"])

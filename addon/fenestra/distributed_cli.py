@@ -20,7 +20,7 @@ cluster options (docs/distributed.md):
   --scheduler ADDRESS  use a running Dask scheduler, e.g. tcp://host:8786
   --shards N           blocks of sensors (default: one per worker)
   --threads N          threads per local worker (default: the cores shared out)
-other options as for a single process: --paths N, --seed N, --quiet, --max-memory SIZE
+other options as for a single process: --paths N, --seed N, --quiet, --strict, --max-memory SIZE
 (a local worker's memory limit)
 """
 
@@ -30,7 +30,7 @@ class UsageError(Exception):
 
 
 def parse(argv):
-    a = {"positional": [], "quiet": False}
+    a = {"positional": [], "quiet": False, "strict": False}
     flags = {"-o": "output", "--output": "output", "--openings": "openings", "--workers": "workers",
              "--scheduler": "scheduler", "--shards": "shards", "--threads": "threads", "--paths": "paths",
              "--seed": "seed", "--max-memory": "max_memory"}
@@ -44,6 +44,8 @@ def parse(argv):
             sys.exit(0)
         if arg == "--quiet":
             a["quiet"] = True
+        elif arg == "--strict":
+            a["strict"] = True
         elif arg in flags:
             if i + 1 >= len(argv):
                 raise UsageError("%s needs a value" % arg)
@@ -94,8 +96,13 @@ def run(a):
     _core.check_output_paths(output_paths(a), inputs)
     scene = fenestra.load_scene(a["scene"])
     _core.check_output_paths(output_paths(a), inputs)
+    # The setup checks, as one process runs them (docs/outputs.md, "Setup warnings"): printed before
+    # any work, or with --strict an error.
+    setup = fenestra.api.setup_messages(scene, a["command"], a["strict"])
+    for message in setup:
+        print("fenestra: warning: %s" % message, file=sys.stderr)
     if a["command"] == "solve":
-        return run_solve(a, scene)
+        return run_solve(a, scene, setup)
     if "paths" in a:
         scene.render.paths_per_sensor = a["paths"]
     if "seed" in a:
@@ -170,7 +177,7 @@ def print_climate_summary(climate):
     print("glazing %.2f m2 of %.2f m2 of opening domain" % (climate["glazing_area_m2"], climate["domain_area_m2"]))
 
 
-def run_solve(a, scene):
+def run_solve(a, scene, setup=()):
     from fenestra import _core, distributed
 
     say, progress = reporters(a)
@@ -180,6 +187,8 @@ def run_solve(a, scene):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)  # the result's warnings: printed below
             r = distributed.solve(source, cluster, shards=a.get("shards"), base_dir=base_dir, callback=progress)
+    own = r.get("warnings", [])  # the solver's (the setup's are printed above)
+    r["warnings"] = list(setup) + own
     _core.write_json_text(a["output"], json.dumps(r))
     e = r["error"]
     opened = len(r["open_elements"])
@@ -196,7 +205,7 @@ def run_solve(a, scene):
             print("checked with real cutters: relative RMS error %.2f%%, worst sensor %.1f%%"
                   % (100 * e["verified"]["relative_rms"], 100 * e["verified"]["max_relative"]))
     print_climate_summary(r.get("climate"))
-    for message in r.get("warnings", []):
+    for message in own:
         print("fenestra: warning: %s" % message, file=sys.stderr)
     return 0
 

@@ -324,8 +324,12 @@ int run(const Args& a) {
     if (!dark.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", dark.c_str());
   }
 
-  if (a.command == "solve") require_goals(scene);  // before any work
-  if (a.command != "solve") check_cost(scene, cost);  // docs/cost.md; solve below
+  if (a.command == "solve") {  // the solver's own paths and seed
+    if (a.overrides.count("--paths")) scene.solver.paths_per_sensor = scene.render.paths_per_sensor;
+    if (a.overrides.count("--seed")) scene.solver.seed = scene.render.seed;
+  }
+  check_cost(scene, cost);  // memory and time, before any work (docs/cost.md)
+  if (a.command == "solve") require_goals(scene);  // before any tracing
   // The setup checks (docs/outputs.md): warnings on stderr and in the output's "warnings", or
   // with --strict an error before any work.
   std::vector<std::string> setup;
@@ -357,9 +361,6 @@ int run(const Args& a) {
   }
   Progress& progress = g_progress;
   if (a.command == "solve") {
-    if (a.overrides.count("--paths")) scene.solver.paths_per_sensor = scene.render.paths_per_sensor;
-    if (a.overrides.count("--seed")) scene.solver.seed = scene.render.seed;
-    check_cost(scene, CostCommand::Solve);  // memory and time, before any work (docs/cost.md)
     if (!a.quiet)
       std::fprintf(stderr, "estimated memory: %s\n", memory_summary(scene, CostCommand::Solve, memory_limit()).c_str());
     SolveResult r = with_progress(progress, a.quiet, [&] { return solve_openings(scene, &progress); });

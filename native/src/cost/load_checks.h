@@ -40,7 +40,7 @@ void check_image_cost(const std::string& path, int width, int height, int channe
 
 // A daylight sky: building it must fit in memory (80 bytes per map pixel) and take at most
 // kMaxDaylightSeconds on the reference machine (each step with the sun up rasterises the upper
-// half of the map: about 40 ns per pixel).
+// half of the map, about 40 ns per pixel, and creates its sky: 2 ms, 0.2 ms for a Perez sky).
 inline constexpr double kMaxDaylightSeconds = 300.0;
 double daylight_build_seconds(const DaylightSettings& settings, size_t* steps = nullptr, size_t* steps_with_sun = nullptr);
 void check_daylight_cost(const DaylightSettings& settings);

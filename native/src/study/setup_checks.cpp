@@ -90,6 +90,9 @@ std::string of_text(size_t count, size_t total, size_t checked) {
   return s.str();
 }
 
+// The verb for `count` sensors: "is" / "are", "sees" / "see".
+const char* verb(size_t count, const char* one, const char* many) { return count == 1 ? one : many; }
+
 void zero_goals(const Scene& scene, std::vector<SetupWarning>* out) {
   if (!scene.sensors.climate_goals.empty()) return;
   const GivenGoals g = given_goals(scene);
@@ -102,7 +105,8 @@ void zero_goals(const Scene& scene, std::vector<SetupWarning>* out) {
     w.sensors.push_back(static_cast<int>(i));
   }
   if (w.sensors.empty()) return;  // no goal at all: the solve refuses it (require_goals)
-  w.message = "all " + std::to_string(w.sensors.size()) + " sensor goals are 0 (" +
+  w.message = std::string(w.sensors.size() == 1 ? "the only sensor goal is 0 (" : "all ") +
+              (w.sensors.size() == 1 ? "" : std::to_string(w.sensors.size()) + " sensor goals are 0 (") +
               (scene.sensors.uniform_goals.empty() ? "sensors.goals" : "goals.uniform") +
               "): the solve opens nothing and reports 0 % error; set a goal above 0";
   out->push_back(std::move(w));
@@ -151,8 +155,9 @@ void open_sky(const Scene& scene, const RayScene& rays, std::vector<SetupWarning
   const size_t total = scene.sensors.size();
   if (!outdoors.sensors.empty()) {
     outdoors.total = total, outdoors.checked = chosen.size();
-    outdoors.message = of_text(outdoors.sensors.size(), total, chosen.size()) +
-                       " are outdoors or outside every room (they see the sky in most directions): " +
+    outdoors.message = of_text(outdoors.sensors.size(), total, chosen.size()) + " " +
+                       verb(outdoors.sensors.size(), "is", "are") +
+                       " outdoors or outside every room (they see the sky in most directions): " +
                        sensors_text(scene, outdoors.sensors) +
                        "; no opening changes their light much, so their error stays large: move them into the rooms "
                        "(sensors.points), or remove them";
@@ -167,8 +172,8 @@ void open_sky(const Scene& scene, const RayScene& rays, std::vector<SetupWarning
                               : way.z() < -0.5 ? "mostly downward: a missing floor?"
                                                : "mostly sideways: a missing wall, a door or window that is not "
                                                  "opening domain?";
-    gaps.message = of_text(gaps.sensors.size(), total, chosen.size()) +
-                   " see the sky through gaps that are not opening domain (" + number(100.0 * gaps.share, "%.0f") +
+    gaps.message = of_text(gaps.sensors.size(), total, chosen.size()) + " " + verb(gaps.sensors.size(), "sees", "see") +
+                   " the sky through gaps that are not opening domain (" + number(100.0 * gaps.share, "%.0f") +
                    " % of their directions on average, " + where + "): " + sensors_text(scene, gaps.sensors) +
                    "; daylight through the gaps counts toward the goals: close the model there if the room is closed";
     out->push_back(std::move(gaps));
@@ -182,7 +187,8 @@ void downward(const Scene& scene, std::vector<SetupWarning>* out) {
   for (size_t i = 0; i < scene.sensors.size(); ++i)
     if (scene.sensors.normals[i].z() < kDownward) w.sensors.push_back(static_cast<int>(i));
   if (w.sensors.empty()) return;
-  w.message = of_text(w.sensors.size(), w.total, w.total) + " face downward (normal z below " + number(kDownward, "%.1f") +
+  w.message = of_text(w.sensors.size(), w.total, w.total) + " " + verb(w.sensors.size(), "faces", "face") +
+              " downward (normal z below " + number(kDownward, "%.1f") +
               "): " + sensors_text(scene, w.sensors) +
               "; a sensor measures the light on the side its normal points to, here the light from below: if they "
               "should face up, flip their normals (sensors.normals)";
@@ -255,10 +261,12 @@ void domain_sides(const Scene& scene, const RayScene& rays, std::vector<SetupWar
       area += a;
     }
     if (area > 0.0) centre /= static_cast<float>(area);
-    parts << (w.panels.empty() ? "" : "; ") << "panel " << index << " ('" << panel.label << "', "
+    parts << (w.panels.empty() ? "" : "; ") << "panel " << index << " (" << panel.label << "; "
           << number(panel.area, "%.3g") << " m2 about " << point_text(scene, centre) << ") is seen by "
-          << flagged.seen_from_outside << " sensors from one side, but " << flagged.on_room_side << " of "
-          << scene.sensors.size() << " sensors lie on the other side of its plane, which the solver takes for the room";
+          << flagged.seen_from_outside << " sensor" << (flagged.seen_from_outside == 1 ? "" : "s")
+          << " from one side, but " << flagged.on_room_side << " of "
+          << scene.sensors.size() << " sensors " << verb(static_cast<size_t>(flagged.on_room_side), "lies", "lie")
+          << " on the other side of its plane, which the solver takes for the room";
     w.panels.push_back(std::move(flagged));
   }
   if (w.panels.empty()) return;
