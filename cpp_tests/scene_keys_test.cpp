@@ -181,7 +181,7 @@ TEST(SceneKeys, PathsWithANulByteAreRefused) {
   EXPECT_NE(load_error(scene).find("sky.file: environment map"), std::string::npos) << load_error(scene);
   EXPECT_NE(load_error(scene).find("NUL byte"), std::string::npos) << load_error(scene);
   EXPECT_THROW(load_scene(std::string("scene.json\0x", 12)), std::invalid_argument);
-  EXPECT_THROW(read_openings(std::string("o.json\0x", 8)), std::invalid_argument);
+  EXPECT_THROW(read_openings(std::string("o.json\0x", 8), SiteFrame{}), std::invalid_argument);
 }
 
 TEST(ObjLines, FacesNeedThreeCornersAndNumbersTheDecimalForm) {
@@ -212,7 +212,7 @@ void expect_openings_error(const std::string& text, const std::string& words) {
   TempDir dir;
   dir.write("o.json", text);
   try {
-    read_openings(dir.file("o.json"));
+    read_openings(dir.file("o.json"), SiteFrame{});
     ADD_FAILURE() << "accepted: " << text;
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("o.json"), std::string::npos) << e.what();
@@ -247,7 +247,7 @@ TEST(OpeningsKeys, ASolveResultIsAnOpeningsFile) {
   r.openings = {o};
   json result = solve_result_json(scene, r);
   result["climate"] = json::object();  // written with climate goals
-  EXPECT_EQ(parse_openings(result, "result.json").size(), 1u);
+  EXPECT_EQ(parse_openings(result, "result.json", SiteFrame{}).size(), 1u);
 }
 
 }  // namespace

@@ -117,7 +117,7 @@ TEST(WholeFileDeathTest, EveryReaderTellsOutOfMemoryFromTheEnd) {
               "out of memory while reading weather file '.*big.epw'");
 
   write_file(dir.file("openings.json"), "{\"openings\": []", std::string(1023, ' ') + "\n", kBigFile);
-  EXPECT_EXIT(read_under_limit([&] { read_openings(dir.file("openings.json")); }), ::testing::ExitedWithCode(0),
+  EXPECT_EXIT(read_under_limit([&] { read_openings(dir.file("openings.json"), SiteFrame{}); }), ::testing::ExitedWithCode(0),
               "out of memory while reading openings file '.*openings.json'");
 
   write_file(dir.file("scene.json"), "{\"fenestra\": 1", std::string(1023, ' ') + "\n", kBigFile);
