@@ -107,3 +107,31 @@ def test_a_scene_dict_value_without_a_json_form_is_named(small_room):
     scene["render"]["seed"] = float("nan")
     with pytest.raises(ValueError, match="NaN or infinite"):
         fenestra.scene_from_dict(scene, small_room.parent)
+
+
+def test_methods_of_the_native_classes_name_wrong_types_in_fenestras_words(small_room, tmp_path):
+    """Contributions.save(scene, 5), Progress("x"), ...: the method, what it takes and the types it
+    got, never pybind11's listing of overloads."""
+    scene = fenestra.load_scene(small_room)
+    scene.render.paths_per_sensor = 16
+    c = fenestra.contributions(scene)
+    calls = {
+        "Contributions.save()": lambda bad: c.save(scene, bad),
+        "Contributions.evaluate_openings()": lambda bad: c.evaluate_openings(bad, bad),
+        "Contributions.annual_openings()": lambda bad: c.annual_openings(bad, None),
+        "Contributions.save_annual()": lambda bad: c.save_annual(scene, None, bad),
+        "Progress()": lambda bad: fenestra.Progress(bad),
+        "Progress.cancel()": lambda bad: fenestra.Progress().cancel(bad),
+        "Scene.elements_json()": lambda bad: scene.elements_json(bad),
+    }
+    for name, call in calls.items():
+        for bad in (object(), 5, 1.5j):
+            with pytest.raises(TypeError) as refused:
+                call(bad)
+            message = str(refused.value)
+            assert message.startswith(name + " takes ("), message
+            for words in LIBRARY_WORDING:
+                assert words not in message, (name, message)
+            assert len(message) <= 320, message
+    c.save(scene, str(tmp_path / "kept"))  # the methods still work
+    assert (tmp_path / "kept.npz").exists()

@@ -58,6 +58,8 @@ try:
         write_image,
         write_sky,
     )
+    from . import native_signatures
+    native_signatures.install()  # wrong argument types named in Fenestra's words
 except ImportError as exc:
     # Inside Blender the add-on still registers and its panel says why the native module is missing.
     if "bpy" not in sys.modules:
