@@ -5,6 +5,7 @@
 #include "test_scenes.h"
 
 #include "solve/composition.h"
+#include "solve/edge_refinement.h"
 #include "solve/window_catalogue.h"
 
 namespace fenestra {
@@ -98,6 +99,43 @@ TEST(Composition, ViolationsNameTheRule) {
   c.same_type_in_row = true;
   EXPECT_NE(broken(1, 0, 0.2, 0, 0).find("same_type_in_row"), std::string::npos);
   EXPECT_TRUE(composition_violations(d, c, good).empty());
+}
+
+}  // namespace
+}  // namespace fenestra
+
+namespace fenestra {
+namespace {
+
+// One window stacked above another cannot share its sill with it, nor take a sill height: the rule
+// is kept by giving an opening up (the one whose loss costs least), and reported as met.
+TEST(Composition, StackedOpeningsKeepTheRuleByGivingOneUp) {
+  const OpeningDomain d = domain_of({{Vec3(0, 0, 0), Vec3(6, 0, 0), Vec3(6, 0, 3), Vec3(0, 0, 3)}});
+  // A low wide window, a small one above it, and one beside them higher up.
+  const std::vector<PanelRectangle> stacked = {{0, 1.0, 2.5, 0.5, 1.5}, {0, 1.25, 2.0, 2.0, 2.5},
+                                               {0, 3.5, 4.5, 1.0, 2.0}};
+  // Every opening is worth its area; losing the small one costs least.
+  auto error_of = [](const std::vector<PanelRectangle>& set) {
+    double area = 0.0;
+    for (const PanelRectangle& r : set) area += r.width() * r.height();
+    return 10.0 - area;
+  };
+  for (const bool align : {true, false}) {
+    OpeningConstraints c;
+    c.min_gap = 0.25, c.margin = 0.0, c.min_width = c.min_height = 0.25;
+    if (align)
+      c.align_sills = true;
+    else
+      c.sill_heights = {0.5, 1.0};
+    ASSERT_FALSE(composition_violations(d, c, stacked).empty());
+    const Composition out = compose_facades(d, c, stacked, error_of, nullptr);
+    EXPECT_TRUE(composition_violations(d, c, out.openings).empty()) << (align ? "align_sills" : "sill_heights");
+    EXPECT_TRUE(constraint_violations(d, out.openings, c).empty());
+    ASSERT_EQ(out.steps.size(), 1u);
+    EXPECT_TRUE(out.steps[0].met);
+    EXPECT_EQ(out.openings.size(), 2u);
+    for (const PanelRectangle& r : out.openings) EXPECT_LT(r.v0, 1.9) << "the stacked window is the one given up";
+  }
 }
 
 }  // namespace

@@ -53,7 +53,7 @@ double within(const char* name, double v, double lo, double hi, const char* unit
 Place place_from(double latitude_deg, double longitude_deg, double elevation_m) {
   return Place{within("latitude_deg", latitude_deg, -90.0, 90.0, " degrees"),
                within("longitude_deg", longitude_deg, -180.0, 180.0, " degrees"),
-               within("elevation_m", elevation_m, -limits::kMaxCoordinate, limits::kMaxCoordinate, " m")};
+               within("elevation_m", elevation_m, -limits::kMaxElevation, limits::kMaxElevation, " m")};
 }
 
 // The instants of the dates a scene may give (years 0001 to 9999, "YYYY-MM-DD") in any UTC offset

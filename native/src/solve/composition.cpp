@@ -165,15 +165,31 @@ class Composer {
   void sill_candidates() {
     const OpeningConstraints& rules = rules_of_first();
     if (!rules.align_sills) {  // each opening on one of the heights
-      for (size_t i = 0; i < openings_.size(); ++i) {
-        if (facade(openings_[i]) < 0) continue;
+      for (size_t i = 0; i < openings_.size();) {
+        if (facade(openings_[i]) < 0) {
+          ++i;
+          continue;
+        }
         std::vector<Openings> alternatives;
         for (double h : rules.sill_heights) {
           Openings a = openings_;
           a[i] = heights_.with_sill(a[i], h);
           alternatives.push_back(a);
         }
-        keep_best(alternatives);
+        const bool met_before = met_all_;
+        if (keep_best(alternatives)) {
+          ++i;
+          continue;
+        }
+        // On none of the heights without meeting another opening (one stacked above another): the
+        // rule is kept by giving that opening up, when the rest still hold.
+        Openings without = openings_;
+        without.erase(without.begin() + static_cast<std::ptrdiff_t>(i));
+        if (!without.empty() && keep_best({without})) {
+          met_all_ = met_before;
+          continue;
+        }
+        ++i;
       }
       return;
     }
@@ -205,14 +221,62 @@ class Composer {
         for (double v : values) mean += v / static_cast<double>(values.size());
         values.push_back(mean);
       }
+      const bool met_before = met_all_;
+      if (!keep_best(aligned(openings_, f, values, with))) fewer_aligned(f, value, with, given, and_mean, met_before);
+    }
+  }
+
+  // `from` with facade f's openings given each of `values` in turn (distinct ones).
+  std::vector<Openings> aligned(const Openings& from, int f, const std::vector<double>& values,
+                                const WithValue& with) const {
+    std::vector<Openings> out;
+    for (double v : distinct(values)) {
+      Openings a = from;
+      for (PanelRectangle& r : a)
+        if (facade(r) == f) r = with(r, v);
+      out.push_back(a);
+    }
+    return out;
+  }
+
+  // No common value suits all of facade f's openings (one stacked above another cannot share its
+  // sill): the rule is kept by giving up openings, one at a time, the one whose loss lets the rest
+  // align best, until the rest align (the rule's cost is reported as every rule's is).
+  void fewer_aligned(int f, const Value& value, const WithValue& with, const std::vector<double>& given,
+                     bool and_mean, bool met_before) {
+    Openings kept = openings_;
+    while (std::count_if(kept.begin(), kept.end(), [&](const PanelRectangle& r) { return facade(r) == f; }) > 1) {
       std::vector<Openings> alternatives;
-      for (double v : distinct(values)) {
-        Openings a = openings_;
-        for (PanelRectangle& r : a)
-          if (facade(r) == f) r = with(r, v);
-        alternatives.push_back(a);
+      for (size_t i = 0; i < kept.size(); ++i) {
+        if (facade(kept[i]) != f) continue;
+        Openings without = kept;
+        without.erase(without.begin() + static_cast<std::ptrdiff_t>(i));
+        std::vector<double> values = given;
+        if (values.empty())
+          for (const PanelRectangle& r : without)
+            if (facade(r) == f) values.push_back(value(r));
+        if (and_mean && !values.empty()) {
+          double mean = 0.0;
+          for (double v : values) mean += v / static_cast<double>(values.size());
+          values.push_back(mean);
+        }
+        for (Openings& a : aligned(without, f, values, with)) alternatives.push_back(std::move(a));
       }
-      keep_best(alternatives);
+      if (keep_best(alternatives)) {
+        met_all_ = met_before;
+        return;
+      }
+      // None aligns yet: drop the opening whose loss costs least, and try again.
+      double best = std::numeric_limits<double>::infinity();
+      Openings next;
+      for (size_t i = 0; i < kept.size(); ++i) {
+        if (facade(kept[i]) != f) continue;
+        Openings without = kept;
+        without.erase(without.begin() + static_cast<std::ptrdiff_t>(i));
+        const double e = error_of_(without);
+        if (e < best) best = e, next = std::move(without);
+      }
+      kept = std::move(next);
     }
   }
 
