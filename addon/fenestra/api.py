@@ -232,7 +232,7 @@ def check_setup(scene, command="solve"):
     or facing down, a room open to the sky, domain panels seen from the side the solver does not
     take for the room). A list of dicts, one per problem found: "kind", "message", "sensors" (their
     indices), "checked" and "total" (sensors), and the kind's figures."""
-    return _core.check_setup(scene, command)
+    return _core.check_setup(_scene(scene), _arg.text(command, "command"))
 
 
 def setup_messages(scene, command, strict=False):
