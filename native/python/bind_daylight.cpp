@@ -12,6 +12,7 @@
 #include "daylight/local_time.h"
 #include "daylight/sky_models.h"
 #include "daylight/solar_position.h"
+#include "number_text.h"
 #include "scene/input_limits.h"
 
 namespace py = pybind11;
@@ -30,20 +31,11 @@ TimeZone zone_from(const std::optional<double>& utc_offset, const std::optional<
   throw std::invalid_argument("give utc_offset (hours, e.g. -7) or timezone (IANA name, e.g. \"Europe/Athens\")");
 }
 
-// A number as Python shows it (nan, inf, 1e+300).
-std::string shown(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 // `name` in [lo, hi] (NaN refused), else ValueError naming it, its value and the range.
 double within(const char* name, double v, double lo, double hi, const char* unit) {
   if (!(v >= lo && v <= hi)) {
     std::ostringstream s;
-    s << name << " is " << shown(v) << ": expected " << lo << " to " << hi << unit;
+    s << name << " is " << number_text(v) << ": expected " << lo << " to " << hi << unit;
     throw std::invalid_argument(s.str());
   }
   return v;
@@ -77,7 +69,7 @@ void bind_solar(py::module_& m) {
       [](double utc_seconds, double latitude_deg, double longitude_deg, double elevation_m, bool refraction,
          double pressure_hpa, double temperature_c) {
         if (!(utc_seconds >= kFirstInstant && utc_seconds <= kLastInstant))
-          throw std::invalid_argument("utc_seconds is " + shown(utc_seconds) +
+          throw std::invalid_argument("utc_seconds is " + number_text(utc_seconds) +
                                       ": expected POSIX seconds of a date in the years 0001 to 9999 (-6.2e10 to 2.5e11), "
                                       "as fenestra.utc_seconds gives them");
         const Place place = place_from(latitude_deg, longitude_deg, elevation_m);

@@ -29,6 +29,7 @@
 #include "util/out_of_memory.h"
 #include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
+#include "number_text.h"
 #include "open_masks.h"
 
 namespace py = pybind11;
@@ -73,15 +74,6 @@ long long render_integer(py::handle value, const IntegerRange& range) {
     throw std::invalid_argument(std::string(range.key) + " " + range.requirement() + ", got " +
                                 std::string(py::str(py::repr(value))));
   return v;
-}
-
-// A number as Python shows it (nan, inf, 1e+300), not std::to_string's 300 digits.
-std::string number_text(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 // A read-only NumPy view of an Eigen matrix owned by `owner` (no copy).
