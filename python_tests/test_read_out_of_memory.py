@@ -12,7 +12,7 @@ import sys
 
 import pytest
 
-from conftest import CLI, ROOT, box_obj
+from conftest import CLI, ROOT, write_small_room
 
 PRLIMIT = shutil.which("prlimit")
 BIG_OBJ_BYTES = 64 << 20
@@ -22,24 +22,17 @@ MiB = 1 << 20
 def write_study(directory, occluder_bytes, sky=None):
     """scene.json and room.obj: the small room, then (after it in the file) an occluder outside it made
     of the same triangle repeated until the OBJ is about occluder_bytes larger."""
-    room = box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey")
+    path = write_small_room(directory, paths=16)
     block = b"v 1 -5 0\nv 2 -5 0\nv 1 -5 1\nf -3 -2 -1\n"
-    with open(directory / "room.obj", "wb") as f:
-        f.write(room.encode())
+    with open(directory / "room.obj", "ab") as f:
         f.write(b"o occluder\nusemtl grey\n")
         f.write(block * (occluder_bytes // len(block)))
-    scene = {
-        "fenestra": 1,
-        "geometry": "room.obj",
-        "materials": {"grey": {"type": "diffuse", "reflectance": 0.6},
-                      "facade": {"type": "diffuse", "reflectance": 0.5}},
-        "opening_domain": {"materials": ["facade"], "element_size": 0.5},
-        "sensors": {"points": [[1.5, 1.0, 0.8]], "normals": [0, 0, 1]},
-        "sky": sky or {"type": "uniform", "radiance": 318.0},
-        "render": {"paths_per_sensor": 16, "threads": 1},
-    }
-    (directory / "scene.json").write_text(json.dumps(scene))
-    return directory / "scene.json"
+    scene = json.loads(path.read_text())
+    scene["sensors"]["points"] = scene["sensors"]["points"][:1]
+    scene["sky"] = sky or {"type": "uniform", "radiance": 318.0}
+    scene["render"]["threads"] = 1
+    path.write_text(json.dumps(scene))
+    return path
 
 
 def run_capped(cap, *args):
