@@ -680,8 +680,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("rays_traced", &rays_traced, "Rays traced by parallel computations since the module was loaded.");
   m.def("read_openings", [](const std::string& path) -> py::object {
     // Corners as the file gives them (site coordinates too): read into a frame near them, then back.
-    const SiteFrame frame = openings_file_frame(path);
-    const auto openings = read_openings(path, frame);
+    SiteFrame frame;
+    const auto openings = read_openings_in_own_frame(path, &frame);
     const bool by_parameter = std::any_of(openings.begin(), openings.end(), [](const OpeningInput& o) { return o.parameter.has_value(); });
     if (by_parameter) {  // the file's openings as dicts, checked
       py::list list;

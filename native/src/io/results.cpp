@@ -199,8 +199,10 @@ json openings_file_json(const std::string& path) {
 
 }  // namespace
 
-SiteFrame openings_file_frame(const std::string& path) {
-  const json j = openings_file_json(path);
+namespace {
+
+// A frame around the corners an openings file gives (SiteFrame::around), the origin if none.
+SiteFrame frame_of_corners(const json& j) {
   bool any = false;
   Vec3d lo, hi;
   if (j.is_object() && j.contains("openings") && j.at("openings").is_array())
@@ -215,13 +217,24 @@ SiteFrame openings_file_frame(const std::string& path) {
   return any ? SiteFrame::around(lo, hi) : SiteFrame{};
 }
 
-std::vector<OpeningInput> read_openings(const std::string& path, const SiteFrame& frame) {
-  const json j = openings_file_json(path);
+std::vector<OpeningInput> openings_of(const json& j, const std::string& path, const SiteFrame& frame) {
   try {
     return parse_openings(j, path, frame);
   } catch (const json::exception& e) {
     throw std::invalid_argument("openings '" + path + "': a value has the wrong type: " + json_error_text(e));
   }
+}
+
+}  // namespace
+
+std::vector<OpeningInput> read_openings(const std::string& path, const SiteFrame& frame) {
+  return openings_of(openings_file_json(path), path, frame);
+}
+
+std::vector<OpeningInput> read_openings_in_own_frame(const std::string& path, SiteFrame* frame) {
+  const json j = openings_file_json(path);
+  *frame = frame_of_corners(j);
+  return openings_of(j, path, *frame);
 }
 
 json evaluation_json(const SensorValues& values, size_t openings, int paths_per_sensor,

@@ -24,8 +24,9 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
 // scene's local frame, Scene::site).
 std::vector<OpeningInput> read_openings(const std::string& path, const SiteFrame& frame);
 std::vector<OpeningInput> parse_openings(const nlohmann::json& j, const std::string& source, const SiteFrame& frame);
-// A frame around an openings file's corners (SiteFrame::around), to read the file without a scene.
-SiteFrame openings_file_frame(const std::string& path);
+// The file read without a scene: in a frame around its own corners (SiteFrame::around), returned
+// in `frame` (so that corners in site coordinates keep their precision).
+std::vector<OpeningInput> read_openings_in_own_frame(const std::string& path, SiteFrame* frame);
 
 // `horizontal_illuminance`: the sky's (and sun's) on an unobstructed horizontal surface, for
 // daylight factors (sensors get "daylight_factor" in percent when it is positive). `warnings`: the
