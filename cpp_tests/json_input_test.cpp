@@ -88,6 +88,15 @@ TEST(JsonInput, EchoedTextIsCappedAndPrintable) {
   EXPECT_EQ(quoted_text(long_text), std::string(kMaxQuotedChars, 'z') + "...");
   EXPECT_EQ(quoted_text(std::string(100, '\xc3')).substr(0, 8), "\\xC3\\xC3");  // a cut sequence: not UTF-8
   EXPECT_EQ(quoted_text(std::string(90, 'a') + "\xc3\xa9"), std::string(80, 'a') + "...");
+  // Paths keep both ends: where they start and the file they name.
+  EXPECT_EQ(quoted_path("/tmp/out/result.json"), "/tmp/out/result.json");
+  const std::string deep = "/home/" + std::string(300, 'd') + "/result.json";
+  const std::string shown_path = quoted_path(deep);
+  EXPECT_EQ(shown_path.size(), kQuotedPathHead + 3 + kQuotedPathTail);
+  EXPECT_EQ(shown_path.substr(0, 10), "/home/dddd");
+  EXPECT_EQ(shown_path.substr(shown_path.size() - 12), "/result.json");
+  EXPECT_EQ(quoted_path(std::string(kMaxQuotedPathChars, 'p')), std::string(kMaxQuotedPathChars, 'p'));
+  EXPECT_EQ(quoted_path(std::string("a\0b", 3)), "a\\u0000b");
   nlohmann::json big = nlohmann::json::array();
   for (int i = 0; i < 1000000; ++i) big.push_back(i);
   const std::string shown = quoted_json(big);

@@ -12,6 +12,7 @@ import json
 import math
 import os
 import random
+import re
 import subprocess
 
 import numpy as np
@@ -716,6 +717,39 @@ BAD_SCENES = [
 def test_bad_curved_domains_are_refused(tmp_path, case, obj, overrides, fragments):
     scene_path = write_scene(tmp_path / "scene", obj(), element_size=0.5, **overrides)
     refuse_scene(scene_path, fragments)
+
+
+def moved_obj(text, offset):
+    """The OBJ text with every vertex moved by `offset` (meters), written with its full digits."""
+    lines = []
+    for line in text.split("\n"):
+        words = line.split()
+        if words[:1] == ["v"]:
+            line = "v " + " ".join(repr(float(w) + d) for w, d in zip(words[1:4], offset))
+        lines.append(line)
+    return "\n".join(lines)
+
+
+FACE_AT = re.compile(r"the face at \(([^,]+), ([^,]+), ([^)]+)\)")
+
+
+@pytest.mark.parametrize("case", ["degenerate_uv_triangle", "folding_uv_map", "overlapping_uv_map"])
+def test_a_bad_chart_names_its_face_where_the_user_put_it(tmp_path, case):
+    """A curved wall at UTM coordinates is refused naming its face in the model's coordinates, not in
+    the local frame it is traced in."""
+    _, obj, overrides, _ = next(c for c in BAD_SCENES if c[0] == case)
+    offset = (499993.0, 4999990.0, 120.0)
+    faces = []
+    for name, shift in (("origin", (0.0, 0.0, 0.0)), ("utm", offset)):
+        sensors = {"points": [[p[i] + shift[i] for i in range(3)] for p in SENSORS], "normals": [0, 0, 1]}
+        path = write_scene(tmp_path / name, moved_obj(obj(), shift), element_size=0.5,
+                           **dict(overrides, sensors=sensors))
+        with pytest.raises(ValueError) as error:
+            fenestra.load_scene(path)
+        found = FACE_AT.search(str(error.value))
+        assert found, str(error.value)
+        faces.append(np.array([float(x) for x in found.groups()]))
+    assert np.allclose(faces[1], faces[0] + np.array(offset), atol=1e-3), faces
 
 
 def test_vt_index_counting_back_past_the_first_is_refused(tmp_path):

@@ -75,6 +75,23 @@ def test_outputs_are_checked_before_the_run(small_room):
     assert_refused(r, before, d, "s.unknown")
 
 
+def test_an_over_long_output_path_is_named_by_its_ends(small_room):
+    """A 500-character path is not echoed whole: the message keeps where it starts and the file it
+    names, and stays short whatever the path's length."""
+    d = small_room.parent
+    before = listing(d)
+    deep = d / ("missing-" + "x" * 200) / ("y" * 200) / "result.json"
+    for command, out in (("solve", deep), ("contributions", deep.with_suffix("")), ("sky", deep.with_suffix(".exr")),
+                         ("sky", deep.with_suffix(".png"))):
+        r = run(command, small_room, "-o", out, "--quiet")
+        assert_refused(r, before, d, str(out)[:60] + "...", str(out)[-40:])
+        assert len(r.stderr) < 600, r.stderr
+        assert "x" * 100 not in r.stderr and "y" * 130 not in r.stderr, r.stderr
+    with pytest.raises(ValueError) as error:
+        fenestra.write_image(str(deep.with_suffix(".exr")), np.ones((2, 2, 3), np.float32))
+    assert len(str(error.value)) < 600 and str(deep.with_suffix(".exr"))[-40:] in str(error.value)
+
+
 def test_an_output_may_not_be_an_input(small_room, tmp_path):
     d = small_room.parent
     openings = d / "openings.json"

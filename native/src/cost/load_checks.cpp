@@ -14,6 +14,7 @@
 #include "daylight/weather_file.h"
 #include "scene/mesh.h"
 #include "scene/opening_domain.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 namespace {
@@ -56,7 +57,7 @@ void check_geometry_file_cost(const std::string& path) {
   const MemoryLimit limit = memory_limit();
   const double need = kObjBytesPerFileByte * static_cast<double>(size);
   if (need > static_cast<double>(limit.bytes))
-    throw CostError("geometry '" + path + "' is " + format_bytes(static_cast<double>(size)) + "; " +
+    throw CostError("geometry '" + quoted_path(path) + "' is " + format_bytes(static_cast<double>(size)) + "; " +
                     memory_refusal("reading it", need, need, limit, "a smaller geometry file (fewer triangles)"));
 }
 

@@ -13,6 +13,7 @@
 #include "daylight/perez_all_weather.h"
 #include "daylight/weather_site.h"
 #include "util/progress.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 namespace {
@@ -71,7 +72,7 @@ class PatchPoints {
 };
 
 void check_settings(const WeatherData& weather, const ClimateSettings& s) {
-  check(!weather.hours.empty(), "weather", "'" + weather.path + "' holds no rows");
+  check(!weather.hours.empty(), "weather", "'" + quoted_path(weather.path) + "' holds no rows");
   check(std::isfinite(s.place.latitude_deg) && std::abs(s.place.latitude_deg) <= 90.0, "latitude",
         "must be in [-90, 90] degrees, got " + number(s.place.latitude_deg));
   check(std::isfinite(s.place.longitude_deg) && std::abs(s.place.longitude_deg) <= 180.0, "longitude",

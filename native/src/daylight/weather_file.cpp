@@ -268,7 +268,7 @@ std::vector<std::string> read_lines(const std::string& path) {
     throw std::invalid_argument(path + ": cannot be read: no such file");
   if (std::filesystem::is_directory(status)) throw std::invalid_argument(path + ": cannot be read: it is a directory");
   std::vector<std::string> lines;
-  out_of_memory_while("reading weather file '" + path + "'", [&] {
+  out_of_memory_while("reading weather file '" + quoted_path(path) + "'", [&] {
     const std::string text = read_whole_file(path, "weather file");
     for (size_t start = 0; start < text.size();) {
       const size_t end = std::min(text.find('\n', start), text.size());

@@ -41,7 +41,7 @@ std::string temporary_name(const std::string& path) {
 }
 
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
-  throw std::invalid_argument("cannot write '" + path + "': " + why);
+  throw std::invalid_argument("cannot write '" + quoted_path(path) + "': " + why);
 }
 
 // A std::streambuf over a file descriptor that remembers whether any write failed.
@@ -149,13 +149,13 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
   if (path.empty()) throw std::invalid_argument("cannot write '': the output path is empty");
   // The system would take the name only up to the NUL, and write another file.
   if (path.find('\0') != std::string::npos)
-    throw std::invalid_argument("cannot write '" + quoted_text(path) +
+    throw std::invalid_argument("cannot write '" + quoted_path(path) +
                                 "': the file name holds a NUL byte (\\u0000), which no file name can hold");
   const std::string dir = directory_of(path);
   struct stat st {};
-  if (::stat(dir.c_str(), &st) != 0) fail(path, "directory '" + dir + "' does not exist");
-  if (!S_ISDIR(st.st_mode)) fail(path, "'" + dir + "' is not a directory");
-  if (::access(dir.c_str(), W_OK | X_OK) != 0) fail(path, "directory '" + dir + "' is not writable");
+  if (::stat(dir.c_str(), &st) != 0) fail(path, "directory '" + quoted_path(dir) + "' does not exist");
+  if (!S_ISDIR(st.st_mode)) fail(path, "'" + quoted_path(dir) + "' is not a directory");
+  if (::access(dir.c_str(), W_OK | X_OK) != 0) fail(path, "directory '" + quoted_path(dir) + "' is not writable");
   if (::lstat(path.c_str(), &st) != 0) {
     if (errno == ENOENT) return;  // a new file
     fail(path, std::strerror(errno));

@@ -14,6 +14,7 @@
 
 #include "io/image_codec_abi.h"
 #include "util/out_of_memory.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 namespace {
@@ -131,7 +132,7 @@ ImageHeader open_image(const std::string& path) {
   ImageHeader h;
   h.handle = m.open(path.c_str(), &h.width, &h.height, &h.channels, error, sizeof(error));
   if (!h.handle) throw_if_out_of_memory(error);
-  if (!h.handle) throw ImageError("cannot read image '" + path + "': " + error, error);
+  if (!h.handle) throw ImageError("cannot read image '" + quoted_path(path) + "': " + error, error);
   return h;
 }
 
@@ -139,7 +140,7 @@ void read_image(const std::string& path, const ImageHeader& header, float* pixel
   char error[kErrorCapacity] = {};
   if (!module().read(header.handle, pixels, error, sizeof(error))) {
     throw_if_out_of_memory(error);
-    throw ImageError("cannot read image '" + path + "': " + error, error);
+    throw ImageError("cannot read image '" + quoted_path(path) + "': " + error, error);
   }
 }
 
@@ -156,7 +157,7 @@ std::string encode_float_image(const std::string& path, int width, int height, i
   auto sink = [](void* context, const char* data, size_t size) { static_cast<std::string*>(context)->assign(data, size); };
   if (!m.encode(path.c_str(), width, height, channels, pixels, sink, &bytes, error, sizeof(error))) {
     throw_if_out_of_memory(error);
-    throw ImageError("cannot write image '" + path + "': " + error, error);
+    throw ImageError("cannot write image '" + quoted_path(path) + "': " + error, error);
   }
   return bytes;
 }

@@ -7,6 +7,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image_library.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 
@@ -15,7 +16,7 @@ void check_value_image_path(const std::string& path) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension == ".exr" || extension == ".hdr") return;
-  throw std::invalid_argument("cannot write '" + path + "': only .exr and .hdr (floating point) keep the values in "
+  throw std::invalid_argument("cannot write '" + quoted_path(path) + "': only .exr and .hdr (floating point) keep the values in "
                               "cd/m^2, and " +
                               (extension.empty() ? std::string("it has no extension")
                                                  : extension + " cannot (8-bit formats clip a 318 cd/m^2 sky to 255 "
@@ -27,7 +28,7 @@ std::string encode_image(const std::string& path, int width, int height, int cha
                          const std::vector<float>& pixels) {
   check_value_image_path(path);
   if (width < 1 || height < 1 || channels < 1 || pixels.size() != static_cast<size_t>(width) * height * channels)
-    throw std::invalid_argument("image '" + path + "': pixel data does not match its size");
+    throw std::invalid_argument("image '" + quoted_path(path) + "': pixel data does not match its size");
   return encode_float_image(path, width, height, channels, pixels.data());
 }
 

@@ -1,4 +1,5 @@
 #include "io/output_pair.h"
+#include "util/quoted_text.h"
 
 #include <sys/stat.h>
 
@@ -28,8 +29,8 @@ std::pair<std::string, std::string> npz_json_pair(const std::string& out) {
     const std::string kind = non_file_kind(named);
     // A directory `results` beside an explicit `results.npz` is no mistake; as `-o results` it is.
     if (!kind.empty() && !(named != out && kind == "a directory"))
-      throw std::invalid_argument("cannot write '" + pair.first + "' and '" + pair.second + "': the output '" + out +
-                                  "' names " + kind + (named == out ? "" : " ('" + named + "')") +
+      throw std::invalid_argument("cannot write '" + quoted_path(pair.first) + "' and '" + quoted_path(pair.second) + "': the output '" + out +
+                                  "' names " + kind + (named == out ? "" : " ('" + quoted_path(named) + "')") +
                                   ", and its .npz and .json would be created beside it; name a new or regular "
                                   "file (OUT or OUT.npz) in a writable directory");
   }

@@ -53,7 +53,7 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
                                                         const std::string& out) {
   const auto [npz_path, json_path] = npz_json_pair(out);
   check_output_paths({npz_path, json_path}, scene.input_files);  // before the arrays are copied
-  check_contributions_match(scene, c, "saving '" + npz_path + "'");
+  check_contributions_match(scene, c, "saving '" + quoted_path(npz_path) + "'");
 
   const size_t ns = c.sensor_count(), no = c.element_count();
   NpzWriter npz;
@@ -193,7 +193,7 @@ namespace {
 
 json openings_file_json(const std::string& path) {
   check_input_file(path, "openings file", limits::kMaxSceneFileBytes);
-  return out_of_memory_while("reading openings file '" + path + "'",
+  return out_of_memory_while("reading openings file '" + quoted_path(path) + "'",
                              [&] { return parse_json_text(read_whole_file(path, "openings file"), "openings", path); });
 }
 
@@ -221,7 +221,7 @@ std::vector<OpeningInput> openings_of(const json& j, const std::string& path, co
   try {
     return parse_openings(j, path, frame);
   } catch (const json::exception& e) {
-    throw std::invalid_argument("openings '" + path + "': a value has the wrong type: " + json_error_text(e));
+    throw std::invalid_argument("openings '" + quoted_path(path) + "': a value has the wrong type: " + json_error_text(e));
   }
 }
 

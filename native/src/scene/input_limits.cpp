@@ -39,13 +39,13 @@ void check_input_file(const std::string& path, const std::string& what, std::uin
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status))
-    throw std::invalid_argument("cannot open " + what + " '" + path + "': " +
+    throw std::invalid_argument("cannot open " + what + " '" + quoted_path(path) + "': " +
                                 (ec ? ec.message() : std::string("no such file")));
   if (!fs::is_regular_file(status))
-    throw std::invalid_argument(what + " '" + path + "' is not a regular file" +
+    throw std::invalid_argument(what + " '" + quoted_path(path) + "' is not a regular file" +
                                 (fs::is_directory(status) ? " (a directory)" : " (a device, FIFO or socket)"));
   const std::uintmax_t size = fs::file_size(path, ec);
-  if (ec) throw std::invalid_argument("cannot open " + what + " '" + path + "': " + ec.message());
+  if (ec) throw std::invalid_argument("cannot open " + what + " '" + quoted_path(path) + "': " + ec.message());
   if (size > max_bytes) {
     std::ostringstream s;
     s << what << " '" << path << "' is " << size << " bytes, more than the limit of " << max_bytes << " bytes ("

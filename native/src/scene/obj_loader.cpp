@@ -266,11 +266,11 @@ Mesh read_obj(const std::string& path, const std::vector<std::string>& material_
       for (int k = 0; k < 3; ++k) {
         const int vi = m.indices[offset + k].vertex_index;
         if (vi < 0 || static_cast<size_t>(vi) >= vertex_count)
-          throw std::invalid_argument("geometry '" + path + "': a face refers to a missing vertex");
+          throw std::invalid_argument("geometry '" + quoted_path(path) + "': a face refers to a missing vertex");
         tri[k] = static_cast<uint32_t>(vi);
         const int ti = m.indices[offset + k].texcoord_index;
         if (ti >= 0 && static_cast<size_t>(ti) >= texcoord_count)
-          throw std::invalid_argument("geometry '" + path + "': a face refers to a missing texture coordinate (vt)");
+          throw std::invalid_argument("geometry '" + quoted_path(path) + "': a face refers to a missing texture coordinate (vt)");
         uv[k] = ti;
       }
       if (uv[0] < 0 || uv[1] < 0 || uv[2] < 0) uv = {-1, -1, -1};
@@ -299,14 +299,14 @@ Mesh read_obj(const std::string& path, const std::vector<std::string>& material_
       }
     }
   }
-  if (mesh.triangles.empty()) throw std::invalid_argument("geometry '" + path + "' has no faces");
+  if (mesh.triangles.empty()) throw std::invalid_argument("geometry '" + quoted_path(path) + "' has no faces");
   return mesh;
 }
 
 }  // namespace
 
 Mesh load_obj(const std::string& path, const std::vector<std::string>& material_names, SiteFrame* frame) {
-  return out_of_memory_while("reading geometry file '" + path + "'",
+  return out_of_memory_while("reading geometry file '" + quoted_path(path) + "'",
                              [&] { return read_obj(path, material_names, frame); });
 }
 

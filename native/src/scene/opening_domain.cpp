@@ -174,7 +174,7 @@ OpeningDomain OpeningDomain::build(const Mesh& mesh, const std::vector<std::stri
     panel.label = describe_panel(mesh, material_names, comp);
     const bool curved = !is_flat(mesh, comp);
     std::shared_ptr<SurfaceChart> chart;
-    if (curved) chart = std::make_shared<SurfaceChart>(SurfaceChart::build(mesh, comp, panel.label));
+    if (curved) chart = std::make_shared<SurfaceChart>(SurfaceChart::build(mesh, comp, panel.label, sel.site));
     Vec3 n = Vec3::Zero();
     double area = 0.0;
     for (size_t i = 0; i < comp.size(); ++i) {

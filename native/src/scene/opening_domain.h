@@ -89,6 +89,7 @@ struct OpeningDomainSelection {
   // Meters of wall behind the domain faces, on the side away from the sensors. Unset: measured per
   // panel from the model (the outer face of a wall modelled as a solid), 0 where there is none.
   std::optional<float> thickness;
+  SiteFrame site;  // where the mesh's local frame sits: positions in messages are the input's
 };
 
 class OpeningDomain {

@@ -401,7 +401,7 @@ void parse_climate(const ScenePath& sp, const json& j, const fs::path& base, Sce
     d.weather = climate->weather;
     d.weather_rows = occupied_hours(climate->sky->hours, c);
     if (d.weather_rows.empty())
-      sp.fail("sky.occupied", "no hour of '" + c.weather_path + "' lies in the occupied period");
+      sp.fail("sky.occupied", "no hour of '" + quoted_path(c.weather_path) + "' lies in the occupied period");
     daylight = std::make_shared<Daylight>(make_daylight(d, progress));
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
@@ -954,6 +954,7 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     if (od.contains("thickness"))
       sel.thickness =
           static_cast<float>(number_in(sp, od, "thickness", "opening_domain", 0.0, 0.0, limits::kMaxThickness, " m"));
+    sel.site = scene.site;
     try {
       scene.domain = OpeningDomain::build(scene.mesh, scene.material_names(), sel);
     } catch (const std::invalid_argument& e) {

@@ -10,6 +10,7 @@
 #include "sampling/warp.h"
 #include "scene/input_limits.h"
 #include "util/out_of_memory.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 
@@ -75,14 +76,14 @@ std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, fl
   FloatImage image;
   try {
     // The size is checked from the header, before the pixels are allocated.
-    image = out_of_memory_while("reading environment map '" + path + "'", [&] {
+    image = out_of_memory_while("reading environment map '" + quoted_path(path) + "'", [&] {
       return read_float_image(path, [&](int width, int height, int channels) {
-        if (width < 2 || height < 1) throw std::invalid_argument("environment map '" + path + "' is empty");
+        if (width < 2 || height < 1) throw std::invalid_argument("environment map '" + quoted_path(path) + "' is empty");
         check_image_cost(path, width, height, channels);
       });
     });
   } catch (const ImageError& e) {
-    throw std::invalid_argument("cannot read environment map '" + path + "': " + e.reason());
+    throw std::invalid_argument("cannot read environment map '" + quoted_path(path) + "': " + e.reason());
   }
   const int w = image.width, h = image.height, channels = image.channels;
   const std::vector<float>& data = image.pixels;
@@ -91,7 +92,7 @@ std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, fl
     const float* p = &data[i * channels];
     pixels[i] = channels >= 3 ? Rgb(p[0], p[1], p[2]) : Rgb::Constant(p[0]);
   }
-  return std::make_shared<EnvironmentMap>(w, h, std::move(pixels), scale, rotation_deg, "'" + path + "'");
+  return std::make_shared<EnvironmentMap>(w, h, std::move(pixels), scale, rotation_deg, "'" + quoted_path(path) + "'");
 }
 
 Vec2 EnvironmentMap::direction_to_uv(const Vec3& dir) const {

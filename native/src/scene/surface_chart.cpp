@@ -21,10 +21,11 @@ auto cross2(const A& a, const B& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
-std::string face_at(const std::array<Vec3, 3>& c) {
-  const Vec3 m = (c[0] + c[1] + c[2]) / 3.0f;
+// Where the face is, as the user gave the model (site coordinates: a UTM easting keeps its meters).
+std::string face_at(const std::array<Vec3, 3>& c, const SiteFrame& site) {
+  const Vec3d m = site.to_site((c[0] + c[1] + c[2]) / 3.0f);
   std::ostringstream s;
-  s.precision(4);
+  s.precision(site.shifted() ? 10 : 4);
   s << "the face at (" << m.x() << ", " << m.y() << ", " << m.z() << ")";
   return s.str();
 }
@@ -67,8 +68,10 @@ std::array<float, 3> barycentric(const std::array<Vec2, 3>& t, const Vec2& q) {
 
 }  // namespace
 
-SurfaceChart SurfaceChart::build(const Mesh& mesh, const std::vector<uint32_t>& triangles, const std::string& label) {
+SurfaceChart SurfaceChart::build(const Mesh& mesh, const std::vector<uint32_t>& triangles, const std::string& label,
+                                 const SiteFrame& site) {
   SurfaceChart c;
+  c.site_ = site;
   const size_t n = triangles.size();
   c.corners_.resize(n);
   c.flat_.resize(n);
@@ -192,7 +195,7 @@ SurfaceChart SurfaceChart::build(const Mesh& mesh, const std::vector<uint32_t>& 
           throw std::invalid_argument(
               "the curved opening-domain panel of " + label +
               " has no UV map and cannot be unrolled flat (it is not developable, like a dome, or it closes on "
-              "itself, like a whole cylinder; " + face_at(c.corners_[p.triangle]) +
+              "itself, like a whole cylinder; " + face_at(c.corners_[p.triangle], site) +
               "): give its faces a UV map with one island, or split it");
       }
     }
@@ -221,7 +224,7 @@ void SurfaceChart::finish(const Mesh& mesh, const std::vector<uint32_t>& triangl
     const float chart_area = cross2(q[1] - q[0], q[2] - q[0]);
     // Far from square-ish (a thousandth of the surface's area in the chart): no element could use it.
     if (!(std::abs(chart_area) > 1e-3f * area_normal.norm()))
-      throw std::invalid_argument(std::string(what) + label + " is degenerate at " + face_at(p) +
+      throw std::invalid_argument(std::string(what) + label + " is degenerate at " + face_at(p, site_) +
                                   ": its UV triangle has (almost) no area");
     normal_[i] = (chart_area > 0.0f ? 1.0f : -1.0f) * area_normal.normalized();
     area_ratio_[i] = area_normal.norm() / std::abs(chart_area);
@@ -239,7 +242,7 @@ void SurfaceChart::finish(const Mesh& mesh, const std::vector<uint32_t>& triangl
     const auto& uses = entry.second;
     for (size_t a = 1; a < uses.size(); ++a)
       if (normal_[uses[0].triangle].dot(normal_[uses[a].triangle]) < 0.0f)
-        throw std::invalid_argument(std::string(what) + label + " folds over at " + face_at(corners_[uses[a].triangle]) +
+        throw std::invalid_argument(std::string(what) + label + " folds over at " + face_at(corners_[uses[a].triangle], site_) +
                                     ": neighbouring faces are mirrored in it");
   }
   build_lookup();
@@ -252,8 +255,8 @@ void SurfaceChart::finish(const Mesh& mesh, const std::vector<uint32_t>& triangl
       if (static_cast<size_t>(j) == i) continue;
       const auto b = barycentric(flat_[j], centre);
       if (b[0] > 1e-4f && b[1] > 1e-4f && b[2] > 1e-4f)
-        throw std::invalid_argument(std::string(what) + label + " overlaps itself: " + face_at(corners_[i]) + " and " +
-                                    face_at(corners_[j]) + " take the same place in it");
+        throw std::invalid_argument(std::string(what) + label + " overlaps itself: " + face_at(corners_[i], site_) + " and " +
+                                    face_at(corners_[j], site_) + " take the same place in it");
     }
   }
 }

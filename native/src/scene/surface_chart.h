@@ -11,6 +11,7 @@
 
 #include "math/vec.h"
 #include "scene/mesh.h"
+#include "scene/site_frame.h"
 
 namespace fenestra {
 
@@ -20,8 +21,10 @@ class SurfaceChart {
 
   // The chart of `triangles` (one connected, smooth piece of `mesh`): from their UVs when all have
   // them, else unrolled. Throws std::invalid_argument naming `label` and a face position when the
-  // UV map is degenerate, folds or overlaps, or when a surface without UVs cannot be unrolled.
-  static SurfaceChart build(const Mesh& mesh, const std::vector<uint32_t>& triangles, const std::string& label);
+  // UV map is degenerate, folds or overlaps, or when a surface without UVs cannot be unrolled; the
+  // position is in the input's coordinates (`site`: where the mesh's local frame sits).
+  static SurfaceChart build(const Mesh& mesh, const std::vector<uint32_t>& triangles, const std::string& label,
+                            const SiteFrame& site = {});
 
   Source source() const { return source_; }
   const char* source_name() const { return source_ == Source::kUvMap ? "uv_map" : "unrolled"; }
@@ -67,6 +70,7 @@ class SurfaceChart {
   int locate(const Vec2& q) const;  // local triangle holding q, or -1
 
   Source source_ = Source::kUnrolled;
+  SiteFrame site_;  // for the positions in messages
   std::vector<std::array<Vec3, 3>> corners_;  // surface corners of each local triangle
   std::vector<std::array<Vec2, 3>> flat_;
   std::vector<Vec3> normal_;

@@ -1,6 +1,7 @@
 #include "util/quoted_text.h"
 
 #include <cstdio>
+#include <vector>
 
 namespace fenestra {
 
@@ -40,28 +41,47 @@ void append_json(const nlohmann::json& value, std::size_t limit, std::string* ou
   }
 }
 
-}  // namespace
-
-std::string quoted_text(const std::string& text) {
-  std::string out;
-  std::size_t chars = 0, i = 0;
-  while (i < text.size()) {
-    if (chars == kMaxQuotedChars) return out + "...";
+// Each character of `text`, printable: control characters as \uXXXX (a NUL as \u0000), bytes that
+// are not UTF-8 as \xNN. Stops after `limit` characters.
+std::vector<std::string> printable_characters(const std::string& text, std::size_t limit) {
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  while (i < text.size() && out.size() < limit) {
     const unsigned char c = static_cast<unsigned char>(text[i]);
     const std::size_t n = utf8_length(text, i);
     char escaped[8];
     if (n == 0) {
       std::snprintf(escaped, sizeof escaped, "\\x%02X", c);
-      out += escaped, i += 1;
+      out.emplace_back(escaped), i += 1;
     } else if (c < 0x20 || c == 0x7f) {
       std::snprintf(escaped, sizeof escaped, "\\u%04X", c);
-      out += escaped, i += 1;
+      out.emplace_back(escaped), i += 1;
     } else {
-      out.append(text, i, n), i += n;
+      out.emplace_back(text, i, n), i += n;
     }
-    ++chars;
   }
   return out;
+}
+
+std::string joined(std::vector<std::string>::const_iterator begin, std::vector<std::string>::const_iterator end) {
+  std::string out;
+  for (auto it = begin; it != end; ++it) out += *it;
+  return out;
+}
+
+}  // namespace
+
+std::string quoted_text(const std::string& text) {
+  const std::vector<std::string> chars = printable_characters(text, kMaxQuotedChars + 1);
+  if (chars.size() <= kMaxQuotedChars) return joined(chars.begin(), chars.end());
+  return joined(chars.begin(), chars.begin() + kMaxQuotedChars) + "...";
+}
+
+std::string quoted_path(const std::string& path) {
+  const std::vector<std::string> chars = printable_characters(path, std::string::npos);
+  if (chars.size() <= kMaxQuotedPathChars) return joined(chars.begin(), chars.end());
+  return joined(chars.begin(), chars.begin() + kQuotedPathHead) + "..." +
+         joined(chars.end() - kQuotedPathTail, chars.end());
 }
 
 std::string quoted_json(const nlohmann::json& value) {

@@ -13,6 +13,12 @@ constexpr std::size_t kMaxQuotedChars = 80;
 // \xNN, and cut after kMaxQuotedChars characters with "..." appended.
 std::string quoted_text(const std::string& text);
 
+// A file path made printable the same way; a path longer than kMaxQuotedPathChars keeps its first
+// kQuotedPathHead and last kQuotedPathTail characters (where it starts, and the file it names)
+// around "...".
+constexpr std::size_t kMaxQuotedPathChars = 200, kQuotedPathHead = 60, kQuotedPathTail = 120;
+std::string quoted_path(const std::string& path);
+
 // A JSON value as JSON text, cut the same way; a large list or object is not written out whole
 // first.
 std::string quoted_json(const nlohmann::json& value);

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "util/out_of_memory.h"
+#include "util/quoted_text.h"
 
 namespace fenestra {
 namespace {
@@ -37,7 +38,7 @@ size_t read_up_to(int fd, char* p, size_t n, const std::string& named) {
 }  // namespace
 
 std::string read_whole_file(const std::string& path, const std::string& what) {
-  const std::string named = what + " '" + path + "'";
+  const std::string named = what + " '" + quoted_path(path) + "'";
   const Descriptor file{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
   if (file.fd < 0) throw std::invalid_argument("cannot open " + named + ": " + std::strerror(errno));
   struct stat st {};
