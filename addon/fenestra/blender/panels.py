@@ -270,6 +270,7 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
                     text = "%d opening%s: %.1f %%, %.1f m\u00b2" % (t.openings, plural, 100 * t.relative_rms, t.glazing_area)
                 else:  # whether the climate goals are met
                     met = {1: ", goals met", 0: ", goals not met"}.get(t.climate_met, "")
+                    met += " (real cutters)" if t.climate_by_cutters and met else ""
                     text = "%d opening%s: %.1f m\u00b2%s" % (t.openings, plural, t.glazing_area, met)
                 op = col_t.operator("fenestra.apply_tradeoff", depress=(i == r.tradeoff_shown), text=text)
                 op.index = i

@@ -292,6 +292,9 @@ class FenestraTradeoff(PropertyGroup):
     climate_met: IntProperty(name="Climate Goals Met", default=-1, min=-1, max=1,
                              description="With climate goals: 1 when these openings meet them all, 0 when not, "
                                          "-1 when unknown")
+    climate_by_cutters: BoolProperty(name="Checked with Real Cutters",
+                                     description="The climate figures are real cutters' (least glazing checked this "
+                                                 "design with less glass than the answer), not the path records'")
 
 
 class FenestraResults(PropertyGroup):

@@ -267,6 +267,7 @@ def apply(context, study, result):
         item.glazing_area = entry["glazing_area_m2"]
         climate = entry.get("climate")
         item.climate_met = -1 if not climate else int(bool(climate.get("all_met")))
+        item.climate_by_cutters = bool(climate) and climate.get("figures_by") == "cutters"
     r.tradeoff_shown = 0
     r.open_elements = len(result.get("open_elements", []))
     r.elements = result.get("element_count", 0)

@@ -69,7 +69,7 @@ json tradeoffs_json(const Scene& scene, const SolveResult& r) {
         figures.push_back(t.climate[g].achieved);
         met = met && figure_meets(scene.sensors.climate_goals.goals[g], t.climate[g].achieved);
       }
-      climate = {{"achieved", figures}, {"all_met", met}};
+      climate = {{"achieved", figures}, {"all_met", met}, {"figures_by", t.climate_cut ? "cutters" : "records"}};
     }
     list.push_back({{"climate", climate},{"openings_count", t.openings.size()},
                     {"answer", t.answer},

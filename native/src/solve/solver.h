@@ -29,8 +29,9 @@ struct TradeoffResult {
   bool answer = false;  // the solver's answer (the one with the most openings, unless least glazing took a
                         // trade-off that meets the climate goals with less glass)
   // With climate goals: each goal's figure for these openings, from the path records (empty when
-  // they cannot tell).
+  // they cannot tell), or from real cutters where least glazing checked them so (climate_cut).
   std::vector<ClimateFigure> climate;
+  bool climate_cut = false;
 };
 
 struct SolveResult {
