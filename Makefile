@@ -3,7 +3,7 @@ PYTHON := /usr/bin/python3
 BUILD  := build
 JOBS   ?= $(shell nproc)
 
-.PHONY: deps build test cpp-test py-test demo demo-annual bench validate install install-addon examples-blend clean
+.PHONY: deps build test layers cpp-test py-test demo demo-annual bench validate install install-addon examples-blend clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -18,7 +18,11 @@ cpp-test: build
 py-test: build
 	cd python_tests && $(PYTHON) -m pytest -q
 
-test: cpp-test py-test
+# Each layer of the native core includes only layers below it (docs/architecture.md).
+layers:
+	$(PYTHON) scripts/check_layers.py
+
+test: layers cpp-test py-test
 
 # The reference room against Radiance, then the apartment example solved and rendered in Blender.
 demo: build install-addon
