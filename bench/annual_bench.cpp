@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "annual/annual_contributions.h"
 #include "annual/annual_study.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"

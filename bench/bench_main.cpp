@@ -28,7 +28,8 @@
 #include <thread>
 #include <vector>
 
-#include "io/atomic_file.h"
+#include "annual/annual_contributions.h"
+#include "format/atomic_file.h"
 #include "scene/scene.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "annual/annual_contributions.h"
 #include "annual/annual_study.h"
 #include "scene/scene.h"
 #include "solve/climate_design.h"

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "annual/annual_contributions.h"
 #include "scene/scene.h"
 #include "solve/genetic.h"
 #include "solve/linear_start.h"

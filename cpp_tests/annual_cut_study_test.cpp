@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "annual/annual_contributions.h"
 #include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
 #include "solve/edge_refinement.h"

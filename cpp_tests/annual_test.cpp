@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "annual/annual_contributions.h"
 #include "annual/annual_illuminance.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"

@@ -7,9 +7,10 @@
 #include <random>
 #include <thread>
 
-#include "cost/cost_model.h"
-#include "cost/element_size_hint.h"
+#include "annual/annual_contributions.h"
+#include "scene/element_size_hint.h"
 #include "solve/nnls.h"
+#include "study/cost_model.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
 #include "trace/transport_matrix.h"

@@ -7,6 +7,7 @@
 
 #include <random>
 
+#include "annual/annual_contributions.h"
 #include "annual/annual_records.h"
 #include "annual/annual_study.h"
 #include "annual/hourly_flip_model.h"

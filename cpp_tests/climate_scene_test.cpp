@@ -12,7 +12,7 @@
 #include "daylight/daylight.h"
 #include "daylight/perez_all_weather.h"
 #include "daylight/sky_matrix.h"
-#include "io/sky_output.h"
+#include "scene/sky_figures.h"
 #include "test_scenes.h"
 
 namespace fenestra {

@@ -4,9 +4,9 @@
 
 #include "test_scenes.h"
 
+#include "scene/window_catalogue.h"
 #include "solve/composition.h"
 #include "solve/edge_refinement.h"
-#include "solve/window_catalogue.h"
 
 namespace fenestra {
 namespace {

@@ -12,7 +12,7 @@
 
 #include <tbb/global_control.h>
 
-#include "solve/constraints.h"
+#include "scene/opening_constraints.h"
 #include "solve/genetic.h"
 #include "solve/refine_openings.h"
 #include "util/rng.h"

@@ -9,14 +9,15 @@
 #include <sstream>
 #include <thread>
 
-#include "cost/byte_size.h"
-#include "cost/cost_context.h"
-#include "cost/cost_model.h"
-#include "cost/load_checks.h"
-#include "cost/memory_limit.h"
+#include "annual/annual_contributions.h"
 #include "daylight/daylight.h"
+#include "scene/domain_estimate.h"
+#include "study/cost_model.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
+#include "util/byte_size.h"
+#include "util/cost_context.h"
+#include "util/memory_limit.h"
 
 namespace fenestra {
 namespace {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "annual/annual_contributions.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"

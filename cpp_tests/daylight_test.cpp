@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "annual/annual_contributions.h"
 #include "chi2.h"
 #include "daylight/daylight.h"
 #include "daylight/sky_models.h"

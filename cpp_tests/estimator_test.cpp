@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <string>
 
+#include "annual/annual_contributions.h"
 #include "scene/scene.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"

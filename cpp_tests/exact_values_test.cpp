@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <random>
 
+#include "annual/annual_contributions.h"
 #include "solve/exact_values.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"

@@ -3,9 +3,9 @@
 // only in the forms their format defines.
 #include <gtest/gtest.h>
 
-#include "cost/byte_size.h"
-#include "io/json_input.h"
-#include "io/json_keys.h"
+#include "format/json_input.h"
+#include "format/json_keys.h"
+#include "util/byte_size.h"
 #include "util/decimal_number.h"
 #include "util/quoted_text.h"
 

@@ -6,6 +6,7 @@
 #include <random>
 #include <sstream>
 
+#include "annual/annual_contributions.h"
 #include "solve/region_search.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"

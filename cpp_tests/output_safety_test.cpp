@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "daylight/daylight.h"
-#include "io/atomic_file.h"
+#include "format/atomic_file.h"
 #include "solve/nnls.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"

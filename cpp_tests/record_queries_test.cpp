@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "annual/annual_contributions.h"
 #include "annual/annual_cut_study.h"
 #include "annual/annual_records.h"
 #include "solve/climate_design.h"

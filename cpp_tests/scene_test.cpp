@@ -3,7 +3,8 @@
 
 #include <cmath>
 
-#include "io/image_writer.h"
+#include "annual/annual_contributions.h"
+#include "format/image_writer.h"
 #include "io/results.h"
 #include "io/sky_output.h"
 #include "solve/solver.h"

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "annual/annual_contributions.h"
 #include "solve/exact_values.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iomanip>
 
+#include "annual/annual_contributions.h"
 #include "io/results.h"
 #include "scene/scene.h"
 #include "scene/site_frame.h"

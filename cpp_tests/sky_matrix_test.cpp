@@ -12,11 +12,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "cost/cost_context.h"
-#include "cost/cost_model.h"
 #include "daylight/perez_all_weather.h"
 #include "daylight/sky_matrix.h"
 #include "daylight/weather_site.h"
+#include "study/cost_model.h"
+#include "util/cost_context.h"
 
 using namespace fenestra;
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "annual/annual_contributions.h"
 #include "solve/coarse_grid.h"
 #include "solve/compensation.h"
 #include "solve/goals.h"

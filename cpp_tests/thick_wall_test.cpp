@@ -8,6 +8,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "annual/annual_contributions.h"
 #include "solve/thick_wall_edges.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "annual/annual_contributions.h"
 #include "scene/bsdf.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"

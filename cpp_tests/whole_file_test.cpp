@@ -10,12 +10,12 @@
 #include <fstream>
 #include <functional>
 
-#include "cost/cost_context.h"
 #include "daylight/weather_file.h"
 #include "io/results.h"
 #include "scene/mesh.h"
 #include "scene/scene.h"
 #include "test_scenes.h"
+#include "util/cost_context.h"
 #include "util/out_of_memory.h"
 #include "util/whole_file.h"
 

@@ -12,26 +12,28 @@
 #include <thread>
 #include <vector>
 
-#include "io/atomic_file.h"
-#include "io/image_writer.h"
-#include "io/output_pair.h"
-#include "cost/byte_size.h"
-#include "cost/cost_model.h"
-#include "io/results.h"
-#include "io/sky_output.h"
-#include "io/solve_result.h"
-#include "solve/goals.h"
-#include "solve/prediction_check.h"
-#include "solve/solver.h"
-#include "study/setup_checks.h"
-#include "scene/input_limits.h"
-#include "scene/scene.h"
-#include "trace/contributions.h"
-#include "trace/evaluate.h"
-#include "util/out_of_memory.h"
+#include "annual/annual_contributions.h"
 #include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
 #include "cluster_handoff.h"
+#include "format/atomic_file.h"
+#include "format/image_writer.h"
+#include "format/output_pair.h"
+#include "io/annual_result.h"
+#include "io/results.h"
+#include "io/sky_output.h"
+#include "io/solve_result.h"
+#include "scene/input_limits.h"
+#include "scene/scene.h"
+#include "solve/goals.h"
+#include "solve/prediction_check.h"
+#include "solve/solver.h"
+#include "study/cost_model.h"
+#include "study/setup_checks.h"
+#include "trace/contributions.h"
+#include "trace/evaluate.h"
+#include "util/byte_size.h"
+#include "util/out_of_memory.h"
 
 namespace {
 
@@ -93,7 +95,7 @@ struct Args {
   bool quiet = false;
   bool cutters = false;
   bool strict = false;
-  uint64_t max_memory = 0;  // bytes; 0: detected (cost/memory_limit.h)
+  uint64_t max_memory = 0;  // bytes; 0: detected (util/memory_limit.h)
 };
 
 [[noreturn]] void usage_error(const std::string& message) {

@@ -1,5 +1,5 @@
 // OpenImageIO behind a plain C interface, built as its own module (fenestra_images.so) and loaded
-// on first use (io/image_library.h): Debian's OpenImageIO pulls in some 250 libraries, whose
+// on first use (format/image_library.h): Debian's OpenImageIO pulls in some 250 libraries, whose
 // loading would otherwise cost every run and every `import fenestra` a third of a second.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "io/image_codec_abi.h"
+#include "format/image_codec_abi.h"
 
 namespace {
 
@@ -47,7 +47,7 @@ int encode(const char* path, int width, int height, int channels, const float* p
               std::string("the ") + out->format_name() + " writer cannot write to memory; use .exr or .hdr");
     return 0;
   }
-  // Encoded in memory, so that the file itself is written all at once (io/atomic_file.h).
+  // Encoded in memory, so that the file itself is written all at once (format/atomic_file.h).
   std::vector<unsigned char> bytes;
   OIIO::Filesystem::IOVecOutput memory(bytes);
   OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);

@@ -4,11 +4,11 @@
 
 #include <memory>
 
-#include "cost/byte_size.h"
-#include "cost/cost_context.h"
-#include "cost/cost_model.h"
-#include "cost/memory_limit.h"
 #include "scene/scene.h"
+#include "study/cost_model.h"
+#include "util/byte_size.h"
+#include "util/cost_context.h"
+#include "util/memory_limit.h"
 
 namespace py = pybind11;
 using namespace fenestra;

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "io/atomic_file.h"
-#include "io/output_pair.h"
-#include "io/json_input.h"
+#include "format/atomic_file.h"
+#include "format/json_input.h"
+#include "format/output_pair.h"
 #include "io/results.h"
-#include "io/sky_output.h"
 #include "scene/scene.h"
+#include "scene/sky_figures.h"
 #include "trace/contributions.h"
 #include "trace/contributions_origin.h"
 #include "trace/transport_matrix.h"

@@ -7,7 +7,7 @@
 
 #include <pybind11/stl.h>
 
-#include "solve/constraints.h"
+#include "scene/opening_constraints.h"
 #include "solve/nnls.h"
 
 namespace py = pybind11;

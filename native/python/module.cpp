@@ -12,25 +12,27 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/atomic_file.h"
-#include "io/image_writer.h"
-#include "io/json_input.h"
+#include "annual/annual_contributions.h"
+#include "annual/annual_cut_study.h"
+#include "annual/annual_study.h"
+#include "format/atomic_file.h"
+#include "format/image_writer.h"
+#include "format/json_input.h"
+#include "io/annual_result.h"
 #include "io/results.h"
 #include "io/sky_output.h"
 #include "io/solve_result.h"
-#include "solve/goals.h"
-#include "solve/solver.h"
-#include "trace/ray_scene.h"
+#include "number_text.h"
+#include "open_masks.h"
 #include "scene/input_limits.h"
 #include "scene/scene.h"
+#include "solve/goals.h"
+#include "solve/solver.h"
 #include "trace/contributions.h"
 #include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
+#include "trace/ray_scene.h"
 #include "util/out_of_memory.h"
-#include "annual/annual_cut_study.h"
-#include "annual/annual_study.h"
-#include "number_text.h"
-#include "open_masks.h"
 
 namespace py = pybind11;
 using namespace fenestra;

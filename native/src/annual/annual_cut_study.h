@@ -15,7 +15,7 @@
 namespace fenestra {
 
 // Per-task coefficient rows held at once (sensors are traced in batches within it; a batch holds
-// at least one sensor's). The cost model counts them (cost/cost_model.cpp).
+// at least one sensor's). The cost model counts them (study/cost_model.cpp).
 inline constexpr size_t kAnnualCutBatchBytes = size_t(64) << 20;
 
 // The same AnnualStudy as annual_study(): per sensor and source the unit daylight coefficients of

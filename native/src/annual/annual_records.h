@@ -6,8 +6,8 @@
 #include <memory>
 #include <vector>
 
-#include "annual/annual_sources.h"
 #include "daylight/annual_metrics.h"
+#include "daylight/annual_sources.h"
 #include "daylight/sky_matrix.h"
 #include "trace/path_record.h"
 #include "trace/sensor_range.h"

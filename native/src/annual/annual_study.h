@@ -4,7 +4,6 @@
 // from a climate scene's contributions. See docs/annual.md.
 #include <Eigen/Core>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -60,12 +59,5 @@ AnnualStudy annual_study_of(const AnnualCoefficients& coefficients, std::shared_
 // The openings as a region of the contributions' domain: each on its panel, on elements, and in a
 // thick wall on the grid's lines (throws std::invalid_argument naming the opening).
 OpenRegion region_of_openings(const Scene& scene, const std::vector<OpeningInput>& openings);
-
-// The study's summary (settings, space and per-sensor metrics) and its arrays as an .npz:
-// OUT.npz and OUT.json, written together or not at all. Returns both paths.
-nlohmann::json annual_json(const AnnualStudy& study);
-// Its "space" object: the area-weighted metrics, sDA levels, UDI bands and EN 17037 levels.
-nlohmann::json annual_space_json(const AnnualMetrics& metrics);
-std::pair<std::string, std::string> write_annual(const Scene& scene, const AnnualStudy& study, const std::string& out);
 
 }  // namespace fenestra

@@ -7,9 +7,9 @@
 #include <stdexcept>
 
 #include "annual/annual_records.h"
-#include "cost/cost_model.h"
-#include "cost/memory_limit.h"
 #include "daylight/annual_metrics.h"
+#include "util/cost_error.h"
+#include "util/memory_limit.h"
 #include "util/progress.h"
 
 namespace fenestra {

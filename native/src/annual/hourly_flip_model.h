@@ -54,7 +54,7 @@ struct HourlyFlipModel {
 // Bytes a model of these sizes holds at most (every element's change stored).
 double hourly_flip_model_bytes(size_t rows, size_t columns, size_t elements);
 
-// Throws CostError when the model would not fit in memory (cost/memory_limit.h), naming the figure
+// Throws CostError when the model would not fit in memory (util/memory_limit.h), naming the figure
 // and what to reduce; std::invalid_argument without annual records. Polls `progress`.
 HourlyFlipModel hourly_flip_model(const Contributions& c, const std::vector<uint8_t>& about,
                                   const std::vector<int>& rows, const HourlyColumns& columns,

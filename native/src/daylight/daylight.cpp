@@ -9,13 +9,15 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cost/load_checks.h"
 #include "daylight/perez_all_weather.h"
 #include "daylight/sky_models.h"
 #include "daylight/weather_file.h"
 #include "daylight/weather_site.h"
 #include "math/equirect.h"
 #include "math/gauss_legendre.h"
+#include "util/byte_size.h"
+#include "util/cost_error.h"
+#include "util/memory_limit.h"
 
 namespace fenestra {
 namespace {
@@ -329,6 +331,63 @@ Daylight make_daylight(const DaylightSettings& s, Progress* progress) {
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+namespace {
+
+constexpr double kDaylightBytesPerPixel = 80.0;
+constexpr double kDaylightSecondsPerPixel = 40e-9, kDaylightSecondsPerStep = 5e-6;
+// Per step with light, besides its pixels: the model's creation, its horizontal illuminance by
+// quadrature (96 x 192 directions: Preetham, CIE clear; a Perez sky gives its own) and the sun's
+// disk. Measured as CPU time against the pixels' (so that the machine's load cancels): a Preetham or
+// CIE clear step costs as much as 24 600 pixels of the map's upper half, 1.0 ms at 40 ns a pixel,
+// 1.8 ms measured on the reference machine; a Perez step 3 300 pixels. Rounded up.
+constexpr double kDaylightSecondsPerAnalyticStep = 2e-3, kDaylightSecondsPerPerezStep = 0.2e-3;
+
+}  // namespace
+
+double daylight_build_seconds(const DaylightSettings& settings, size_t* steps_out, size_t* up_out) {
+  size_t steps = 1, up = 1, lit = 1;
+  const bool perez = settings.model == DaylightSettings::Model::Perez;
+  if (settings.model != DaylightSettings::Model::CieOvercast) {
+    const std::vector<TimeStep> list = time_steps(settings);
+    steps = list.size(), up = 0, lit = 0;
+    for (const TimeStep& step : list) {
+      const bool sun_up = solar_position(step.utc_seconds, settings.place, true).zenith_deg < 90.0;
+      up += sun_up;
+      // A weather file's twilight rows light the Perez sky too (daylight.cpp).
+      lit += sun_up || (perez && settings.weather && step.weather_row >= 0 &&
+                        settings.weather->hours[static_cast<size_t>(step.weather_row)].diffuse_horizontal_w_m2 > 0.0);
+    }
+  }
+  if (steps_out) *steps_out = steps;
+  if (up_out) *up_out = up;
+  const double upper_pixels = static_cast<double>(settings.width) * (settings.height / 2);
+  const double per_step = perez ? kDaylightSecondsPerPerezStep : kDaylightSecondsPerAnalyticStep;
+  return static_cast<double>(lit) * (upper_pixels * kDaylightSecondsPerPixel + per_step) +
+         static_cast<double>(steps) * kDaylightSecondsPerStep;
+}
+
+void check_daylight_cost(const DaylightSettings& settings) {
+  const double pixels = static_cast<double>(settings.width) * settings.height;
+  const MemoryLimit limit = memory_limit();
+  const double need = kDaylightBytesPerPixel * pixels;
+  std::ostringstream s;
+  if (need > static_cast<double>(limit.bytes)) {
+    s << "resolution " << settings.width << " x " << settings.height << ": "
+      << memory_refusal("building the sky map", need, need, limit, "a smaller sky.resolution");
+    throw CostError(s.str());
+  }
+  size_t steps = 0, up = 0;
+  const double seconds = daylight_build_seconds(settings, &steps, &up);
+  if (seconds <= kMaxDaylightSeconds) return;
+  s << "the interval needs " << format_count(static_cast<double>(steps)) << " time steps of " << settings.step_minutes
+    << " min (" << format_count(static_cast<double>(up)) << " with the sun up) at " << settings.width << " x "
+    << settings.height << " pixels: building the sky would take about " << std::lround(seconds / 60.0) << " min ("
+    << format_count(seconds) << " s on the 2-core reference machine; at most " << format_count(kMaxDaylightSeconds)
+    << " s): use a larger sky.step_minutes, a shorter interval (sky.date_end, sky.start, sky.end) or a smaller "
+       "sky.resolution";
+  throw CostError(s.str());
 }
 
 }  // namespace fenestra

@@ -72,4 +72,12 @@ Daylight make_daylight(const DaylightSettings& settings, Progress* progress = nu
 // angles: pixels are piecewise constant), in the map's radiance units times sr.
 Rgb map_horizontal_illuminance(int width, int height, const std::vector<Rgb>& pixels);
 
+// Building a daylight sky must fit in memory (80 bytes per map pixel) and take at most
+// kMaxDaylightSeconds on the reference machine (each step with the sun up rasterises the upper
+// half of the map, about 40 ns per pixel, and creates its sky: 2 ms, 0.2 ms for a Perez sky).
+// check_daylight_cost throws CostError naming the figure and the setting to change.
+inline constexpr double kMaxDaylightSeconds = 300.0;
+double daylight_build_seconds(const DaylightSettings& settings, size_t* steps = nullptr, size_t* steps_with_sun = nullptr);
+void check_daylight_cost(const DaylightSettings& settings);
+
 }  // namespace fenestra

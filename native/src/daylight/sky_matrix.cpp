@@ -9,9 +9,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cost/load_checks.h"
 #include "daylight/perez_all_weather.h"
 #include "daylight/weather_site.h"
+#include "util/byte_size.h"
+#include "util/cost_error.h"
+#include "util/memory_limit.h"
 #include "util/progress.h"
 #include "util/quoted_text.h"
 
@@ -180,6 +182,42 @@ SkyMatrix make_sky_matrix(const WeatherData& weather, const ClimateSettings& s, 
   const std::string far = far_place_warning(s.place, weather, ClimateSettings::kFarKm);
   if (!far.empty()) m.warnings.push_back(far);
   return m;
+}
+
+namespace {
+
+// The sky matrix: one float per patch and hour, and per hour a HourStamp, a sun direction and
+// illuminance, two doubles; the Perez sky of an hour takes about 0.1 ms to create.
+constexpr double kSkyMatrixBytesPerHour = sizeof(double) * 2 + 16 + 12 + 4, kSkyMatrixSecondsPerHour = 1e-4;
+constexpr double kSkyMatrixSecondsPerEvaluation = 15e-9;  // one luminance of a patch mean, 2 cores
+
+}  // namespace
+
+double sky_matrix_bytes(int patches, size_t hours) {
+  return (4.0 * patches + kSkyMatrixBytesPerHour) * static_cast<double>(hours);
+}
+
+double sky_matrix_build_seconds(int patches, size_t hours_with_light, int points_per_side) {
+  const double evaluations = static_cast<double>(patches) * points_per_side * points_per_side;
+  return static_cast<double>(hours_with_light) * (evaluations * kSkyMatrixSecondsPerEvaluation + kSkyMatrixSecondsPerHour);
+}
+
+void check_sky_matrix_cost(int subdivision, int patches, size_t hours, size_t hours_with_light, int points_per_side) {
+  const MemoryLimit limit = memory_limit();
+  const double need = sky_matrix_bytes(patches, hours);
+  std::ostringstream s;
+  s << "patches " << subdivision << " gives " << format_count(patches) << " patches x " << format_count(static_cast<double>(hours))
+    << " hours: ";
+  if (need > static_cast<double>(limit.bytes)) {
+    s << memory_refusal("the sky matrix", need, need, limit, "fewer sky patches (sky.patches 1, 2 or 4)");
+    throw CostError(s.str());
+  }
+  const double seconds = sky_matrix_build_seconds(patches, hours_with_light, points_per_side);
+  if (seconds <= kMaxSkyMatrixSeconds) return;
+  s << "building the sky matrix would take about " << std::lround(seconds / 60.0) << " min ("
+    << format_count(seconds) << " s on the 2-core reference machine; at most " << format_count(kMaxSkyMatrixSeconds)
+    << " s): use fewer sky patches (sky.patches 1, 2 or 4)";
+  throw CostError(s.str());
 }
 
 }  // namespace fenestra

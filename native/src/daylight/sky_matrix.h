@@ -59,7 +59,7 @@ struct SkyMatrix {
 // model refuses (see PerezAllWeatherSky::create).
 SkyMatrix make_sky_matrix(const WeatherData& weather, const ClimateSettings& settings);
 // The same, reporting the hours done to `progress` and polling its cancellation (throws Cancelled).
-// Also refuses (CostError) a matrix beyond the memory limit or the time limit (cost/load_checks.h).
+// Also refuses (CostError) a matrix beyond the memory limit or the time limit (check_sky_matrix_cost below).
 SkyMatrix make_sky_matrix(const WeatherData& weather, const ClimateSettings& settings, Progress* progress);
 
 // Indices of the hours whose clock hour lies in [occupied_start_hour, occupied_end_hour) (local
@@ -72,5 +72,13 @@ struct Climate {
   std::shared_ptr<const WeatherData> weather;
   std::shared_ptr<const SkyMatrix> sky;
 };
+
+// A climate's sky matrix: its patches x hours floats and per-hour vectors must fit in memory, and
+// its patch means (points^2 Perez evaluations per sky patch for every hour with light) take at
+// most kMaxSkyMatrixSeconds on the reference machine; else CostError naming the figure.
+inline constexpr double kMaxSkyMatrixSeconds = 300.0;
+double sky_matrix_bytes(int patches, size_t hours);
+double sky_matrix_build_seconds(int patches, size_t hours_with_light, int points_per_side);
+void check_sky_matrix_cost(int subdivision, int patches, size_t hours, size_t hours_with_light, int points_per_side);
 
 }  // namespace fenestra

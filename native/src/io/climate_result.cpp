@@ -1,7 +1,7 @@
 #include "io/climate_result.h"
 
-#include "annual/annual_study.h"
 #include "daylight/sky_matrix.h"
+#include "io/annual_result.h"
 
 namespace fenestra {
 namespace {

@@ -6,11 +6,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/atomic_file.h"
-#include "io/json_input.h"
-#include "io/json_keys.h"
-#include "io/npz_writer.h"
-#include "io/output_pair.h"
+#include "format/atomic_file.h"
+#include "format/json_input.h"
+#include "format/json_keys.h"
+#include "format/npz_writer.h"
+#include "format/output_pair.h"
 #include "scene/input_limits.h"
 #include "trace/contributions_origin.h"
 #include "util/out_of_memory.h"
@@ -104,7 +104,7 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
       {"elements", elements_json(scene)},
       {"warnings", c.warnings},
   };
-  // The pair appears together or not at all (io/atomic_file.h); the summary, which names the
+  // The pair appears together or not at all (format/atomic_file.h); the summary, which names the
   // arrays, is renamed into place last.
   write_files_atomically(
       {{npz_path, [&](std::ostream& o) { npz.write(o); }},

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "io/json_keys.h"
+#include "format/json_keys.h"
 #include "scene/input_limits.h"
 #include "util/quoted_text.h"
 

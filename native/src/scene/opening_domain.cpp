@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "cost/load_checks.h"
+#include "scene/domain_estimate.h"
 #include "scene/position_key.h"
 #include "scene/surface_chart.h"
 

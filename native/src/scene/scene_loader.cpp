@@ -10,15 +10,13 @@
 #include "daylight/perez_all_weather.h"
 #include "daylight/sky_matrix.h"
 #include "daylight/weather_file.h"
-#include "io/json_input.h"
-#include "io/json_keys.h"
+#include "format/json_input.h"
+#include "format/json_keys.h"
 #include "scene/bsdf.h"
 #include "scene/input_limits.h"
 #include "scene/scene.h"
-#include "solve/catalogue_snap.h"
-#include "solve/composition.h"
-#include "util/whole_file.h"
 #include "util/quoted_text.h"
+#include "util/whole_file.h"
 
 namespace fenestra {
 

@@ -5,10 +5,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cost/load_checks.h"
-#include "io/image_library.h"
+#include "format/image_library.h"
 #include "sampling/warp.h"
 #include "scene/input_limits.h"
+#include "util/byte_size.h"
+#include "util/cost_error.h"
+#include "util/memory_limit.h"
 #include "util/out_of_memory.h"
 #include "util/quoted_text.h"
 
@@ -139,6 +141,23 @@ std::string EnvironmentMap::to_string() const {
   std::ostringstream s;
   s << "EnvironmentMap(" << source_ << ", " << width_ << "x" << height_ << ", scale=" << scale_ << ")";
   return s.str();
+}
+
+void check_image_cost(const std::string& path, int width, int height, int channels) {
+  const double pixels = static_cast<double>(width) * static_cast<double>(height);
+  const double need = pixels * (4.0 * std::max(channels, 1) + 52.0);
+  std::ostringstream s;
+  s << "environment map '" << path << "' is " << width << " x " << height << " pixels";
+  if (pixels > kMaxImagePixels) {
+    s << " (" << format_count(pixels) << "; reading it would need " << format_bytes(need) << "): at most "
+      << format_count(kMaxImagePixels) << " pixels (16384 x 8192) are read: use a smaller map";
+    throw CostError(s.str());
+  }
+  const MemoryLimit limit = memory_limit();
+  if (need > static_cast<double>(limit.bytes)) {
+    s << "; " << memory_refusal("reading it", need, need, limit, "a smaller map");
+    throw CostError(s.str());
+  }
 }
 
 }  // namespace fenestra

@@ -74,4 +74,10 @@ class EnvironmentMap final : public Sky {
   Distribution2D distribution_;
 };
 
+// Environment maps: at most kMaxImagePixels pixels, and their reading must fit in memory
+// (the file's floats, the map, its sampling distribution: 4 x channels + 52 bytes per pixel);
+// else CostError naming the figure.
+inline constexpr double kMaxImagePixels = 16384.0 * 8192.0;
+void check_image_cost(const std::string& path, int width, int height, int channels);
+
 }  // namespace fenestra

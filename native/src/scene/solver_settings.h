@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "solve/constraints.h"
+#include "scene/opening_constraints.h"
 
 namespace fenestra {
 

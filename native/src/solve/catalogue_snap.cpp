@@ -186,34 +186,6 @@ class Snapper {
 
 }  // namespace
 
-std::string catalogue_fit_problem(const OpeningDomain& domain, const OpeningConstraints& constraints) {
-  const double a = domain.element_size();
-  double room_w = 0.0, room_h = 0.0, size_w = 0.0, size_h = 0.0;
-  bool any = false;
-  for (size_t p = 0; p < domain.panels().size(); ++p) {
-    const Panel& panel = domain.panels()[p];
-    const OpeningConstraints& set = constraints.for_panel(static_cast<int>(p));
-    const std::vector<CatalogueSize> sizes = set.catalogue.sizes_for(panel);
-    if (sizes.empty()) continue;
-    const double margin = a * std::ceil(set.margin / a - 1e-6);
-    const double w = panel.cols * a - 2.0 * margin;
-    double h = panel.rows * a - 2.0 * margin;
-    if (is_wall(panel)) h = std::min(h, panel.rows * a - set.sill_min - set.head_clearance);
-    for (const CatalogueSize& size : sizes)
-      if (size.width <= w + 1e-6 && size.height <= h + 1e-6) return {};
-    if (!any || w * h > room_w * room_h) room_w = w, room_h = h;
-    for (const CatalogueSize& size : sizes)
-      if (!any || size.width * size.height < size_w * size_h) size_w = size.width, size_h = size.height, any = true;
-  }
-  if (!any) return {};
-  char text[256];
-  std::snprintf(text, sizeof text,
-                "no size fits any panel: the largest room for an opening is %.2f x %.2f m (panel less margin, "
-                "sill_min and head_clearance), the smallest size %.2f x %.2f m",
-                std::max(0.0, room_w), std::max(0.0, room_h), size_w, size_h);
-  return text;
-}
-
 OpeningConstraints grid_search_constraints(const OpeningDomain& domain, const OpeningConstraints& constraints) {
   if (!uses_catalogue(domain, constraints)) return constraints;
   const double a = domain.element_size();

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "solve/constraints.h"
+#include "scene/opening_constraints.h"
 #include "solve/genetic.h"
 #include "solve/record_queries.h"
 #include "trace/contributions.h"
@@ -31,10 +31,6 @@ struct CatalogueSnap {
   std::vector<std::string> notes;  // openings dropped for want of an admissible size
 };
 
-// Empty when some catalogue size fits within a panel that has a catalogue (its extent less the
-// margins, and on walls less the sill and head clearances), or no panel has one; otherwise why not,
-// naming the largest room and the smallest size.
-std::string catalogue_fit_problem(const OpeningDomain& domain, const OpeningConstraints& constraints);
 
 // The constraints the element-grid search works with: on panels with a catalogue, sizes within
 // an element of the catalogue's range (so that the grid's openings are near a catalogue size),

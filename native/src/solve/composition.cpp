@@ -15,7 +15,6 @@ namespace {
 
 constexpr double kSame = 1e-3;         // meters: two sills, heads, widths or piers are equal
 constexpr double kRowTolerance = 0.01;  // meters: openings whose sills are this close form a row
-constexpr double kPlaneTolerance = 0.01;
 constexpr double kTuneStep = 0.02;      // meters: the finest step of the search after the rules
 
 using Openings = std::vector<PanelRectangle>;
@@ -465,39 +464,11 @@ class Composer {
 
 }  // namespace
 
-std::vector<int> facades_of(const OpeningDomain& domain) {
-  std::vector<int> facade(domain.panels().size(), -1);
-  std::vector<size_t> first;  // a panel of each facade
-  for (size_t p = 0; p < domain.panels().size(); ++p) {
-    const Panel& panel = domain.panels()[p];
-    if (panel.curved() || !is_wall(panel)) continue;
-    for (size_t f = 0; f < first.size() && facade[p] < 0; ++f) {
-      const Panel& q = domain.panels()[first[f]];
-      const bool parallel = panel.normal.dot(q.normal) > 1.0f - 1e-4f;
-      const bool same_plane = std::abs(panel.normal.dot(panel.origin - q.origin)) < kPlaneTolerance;
-      if (parallel && same_plane) facade[p] = static_cast<int>(f);
-    }
-    if (facade[p] < 0) facade[p] = static_cast<int>(first.size()), first.push_back(p);
-  }
-  return facade;
-}
-
 Composition compose_facades(const OpeningDomain& domain, const OpeningConstraints& constraints,
                             const std::vector<PanelRectangle>& openings,
                             const std::function<double(const std::vector<PanelRectangle>&)>& error_of,
                             Progress* progress) {
   return Composer(domain, constraints, openings, error_of, progress).run();
-}
-
-std::string composition_problem(const OpeningDomain& domain, const OpeningConstraints& constraints) {
-  const std::vector<int> facade = facades_of(domain);
-  for (size_t p = 0; p < facade.size(); ++p)
-    if (constraints.for_panel(static_cast<int>(p)).composes() && facade[p] >= 0) return {};
-  for (size_t p = 0; p < facade.size(); ++p)
-    if (constraints.for_panel(static_cast<int>(p)).composes())
-      return "align_sills, align_heads, equal_widths, same_type_in_row, symmetric, equal_spacing and sill_heights "
-             "apply to flat walls, and the opening domain has none where they are set";
-  return {};
 }
 
 std::vector<std::string> composition_violations(const OpeningDomain& domain, const OpeningConstraints& c,

@@ -15,7 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "solve/constraints.h"
+#include "scene/facades.h"
+#include "scene/opening_constraints.h"
 #include "trace/open_region.h"
 
 namespace fenestra {
@@ -33,8 +34,6 @@ struct Composition {
   std::vector<CompositionStep> steps;  // the rules that apply, in order
 };
 
-// Facades: for each panel, the index of its facade (flat walls sharing a plane), or -1.
-std::vector<int> facades_of(const OpeningDomain& domain);
 
 // `error_of` scores a set of openings (lower is better).
 Composition compose_facades(const OpeningDomain& domain, const OpeningConstraints& constraints,
@@ -42,8 +41,6 @@ Composition compose_facades(const OpeningDomain& domain, const OpeningConstraint
                             const std::function<double(const std::vector<PanelRectangle>&)>& error_of,
                             Progress* progress);
 
-// Empty, or why the composition rules cannot apply: a rule set where the domain has no flat wall.
-std::string composition_problem(const OpeningDomain& domain, const OpeningConstraints& constraints);
 
 // What the openings break of the composition rules (one line each).
 std::vector<std::string> composition_violations(const OpeningDomain& domain, const OpeningConstraints& constraints,

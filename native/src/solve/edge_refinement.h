@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "solve/constraints.h"
+#include "scene/opening_constraints.h"
 #include "solve/genetic.h"
 #include "solve/record_queries.h"
 #include "trace/contributions.h"

@@ -4,7 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "io/sky_output.h"
+#include "scene/sky_figures.h"
 
 namespace fenestra {
 

@@ -1,5 +1,6 @@
 #include "solve/record_queries.h"
 
+#include "annual/annual_contributions.h"
 #include "annual/annual_cut_study.h"
 #include "scene/scene.h"
 #include "solve/region_search.h"

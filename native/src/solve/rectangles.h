@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "scene/opening_constraints.h"
 #include "scene/opening_domain.h"
-#include "solve/constraints.h"
 #include "trace/open_region.h"
 
 namespace fenestra {

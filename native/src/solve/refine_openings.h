@@ -29,8 +29,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "scene/opening_constraints.h"
 #include "scene/opening_domain.h"
-#include "solve/constraints.h"
 #include "solve/genetic.h"
 #include "util/progress.h"
 

@@ -8,26 +8,27 @@
 #include <optional>
 #include <stdexcept>
 
-#include "solve/catalogue_snap.h"
-#include "solve/climate_design.h"
+#include "annual/annual_contributions.h"
 #include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
+#include "scene/sky_figures.h"
+#include "solve/catalogue_snap.h"
+#include "solve/climate_design.h"
 #include "solve/coarse_grid.h"
 #include "solve/compensation.h"
+#include "solve/constraint_costs.h"
+#include "solve/edge_refinement.h"
+#include "solve/least_glazing.h"
 #include "solve/linear_start.h"
 #include "solve/nnls.h"
 #include "solve/prediction_check.h"
+#include "solve/record_queries.h"
 #include "solve/refine_openings.h"
-#include "solve/constraint_costs.h"
-#include "io/sky_output.h"
+#include "solve/thick_wall_edges.h"
+#include "solve/tradeoffs.h"
 #include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
 #include "trace/flip_effects.h"
-#include "solve/edge_refinement.h"
-#include "solve/least_glazing.h"
-#include "solve/record_queries.h"
-#include "solve/thick_wall_edges.h"
-#include "solve/tradeoffs.h"
 
 namespace fenestra {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "cost/memory_limit.h"
+#include "util/memory_limit.h"
 #include "util/progress.h"
 
 namespace fenestra {

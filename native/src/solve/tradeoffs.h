@@ -12,8 +12,8 @@
 #include <functional>
 #include <vector>
 
+#include "scene/opening_constraints.h"
 #include "scene/scene.h"
-#include "solve/constraints.h"
 #include "solve/genetic.h"
 #include "solve/record_queries.h"
 #include "trace/contributions.h"

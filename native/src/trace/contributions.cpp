@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
-#include "annual/annual_records.h"
 #include "trace/parallel.h"
 #include "trace/path_tracer.h"
 #include "trace/replicates.h"
@@ -148,18 +148,19 @@ SensorValues Contributions::evaluate(const OpenRegion& region, const Progress* p
 size_t Contributions::memory_bytes() const {
   size_t bytes = sizeof(double) * (E.size() * 3 + T.size());
   for (const auto& r : records) bytes += r.memory_bytes();
-  if (annual) bytes += annual->memory_bytes();
+  bytes += annual_bytes;
   return bytes;
 }
 
-Contributions compute_contributions(const Scene& scene, Progress* progress, bool transport, SensorRange range) {
+Contributions trace_contributions(const Scene& scene, Progress* progress, bool transport, SensorRange range,
+                                  SourcedPass* pass) {
+  if (scene.climate && !pass)
+    throw std::logic_error("a climate sky is traced as many sources: annual/annual_contributions.h");
   range = range.within(scene.sensors.size());
   const auto start = std::chrono::steady_clock::now();
-  // A climate sky is traced as unit sources (sky patches, sun clusters): the records then hold
-  // daylight coefficients beside their values under the mean sky of the occupied hours.
-  std::shared_ptr<AnnualRecords> annual = scene.climate ? prepare_annual(scene) : nullptr;
-  const Scene traced = annual ? annual_tracing_scene(scene, annual->sources) : Scene();
-  PathTracer tracer(annual ? traced : scene, {}, Mesh{}, annual ? &scene.climate->sky->patches : nullptr);
+  // A sky of many sources (a climate's patches and sun clusters) is traced as unit sources: the
+  // records then hold daylight coefficients beside their values under the pass's design sky.
+  PathTracer tracer(pass ? pass->traced_scene() : scene, {}, Mesh{}, pass ? pass->patches() : nullptr);
   tracer.check_sensors(range);
   if (scene.render.sampler == RenderSettings::Sampler::kSobol) tracer.prepare_portal_selection(scene.render.threads, range);
 
@@ -176,13 +177,13 @@ Contributions compute_contributions(const Scene& scene, Progress* progress, bool
       const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
       const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
       SensorRecord& rec = chunks[task];
-      rec.sourced = annual != nullptr;
+      rec.sourced = pass != nullptr;
       for (size_t p = first; p < last; ++p) {
         Rng rng = path_rng(scene.render.seed, sensor, p);
         const std::optional<PathSamples> samples = path_samples(scene.render, scene.render.seed, sensor, p);
         tracer.record_sensor_path(sensor, p, samples ? &*samples : nullptr, rng, &rec);
       }
-      if (annual) convert_to_design_values(*annual, &rec);
+      if (pass) pass->chunk_traced(&rec);
     });
 
     c.paths_per_sensor = paths;
@@ -204,10 +205,7 @@ Contributions compute_contributions(const Scene& scene, Progress* progress, bool
       analyse_sensor(rec, i, elements, &c, progress);
     });
     if (transport) c.T = transport_matrix(c.records, elements, paths, scene.render.threads, progress);
-    if (annual) {
-      record_direct_sun(scene, tracer, annual.get(), scene.render.threads, range);
-      c.annual = annual;
-    }
+    if (pass) pass->tracing_done(tracer, scene.render.threads, range, &c);
   } catch (const Cancelled&) {
     release_in_background(std::move(chunks));  // the path records: hundreds of megabytes
     release_in_background(std::move(c));

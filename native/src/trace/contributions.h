@@ -40,6 +40,7 @@ struct Contributions {
   // A climate scene's annual pass: the records' events name their sources (sky patches, sun
   // clusters) and carry their coefficients; values are the mean of the occupied hours.
   std::shared_ptr<const AnnualRecords> annual;
+  size_t annual_bytes = 0;  // what `annual` holds (set with it: the records are complete by then)
   // The setup checks' warnings (study/setup_checks.h), set by the front end that ran them; written
   // to the summary's "warnings".
   std::vector<std::string> warnings;
@@ -55,10 +56,30 @@ struct Contributions {
   size_t memory_bytes() const;
 };
 
+class PathTracer;
+class SkyPatches;
+
+// A sky of many sources traced in one pass (a climate's sky patches and sun clusters): the scene
+// the paths see, and what becomes of each chunk of records as it is traced and of the pass after.
+// annual/annual_contributions.h fills it in; the tracer knows nothing of the year.
+class SourcedPass {
+ public:
+  virtual ~SourcedPass() = default;
+  // The scene traced in place of the study's (a unit sky, the sources as its suns), and its patches.
+  virtual const Scene& traced_scene() const = 0;
+  virtual const SkyPatches* patches() const = 0;
+  // Each chunk of a sensor's paths once traced, on the worker that traced it.
+  virtual void chunk_traced(SensorRecord* record) const = 0;
+  // After the records are assembled: what the pass adds with the same tracer (annual, annual_bytes).
+  virtual void tracing_done(const PathTracer& tracer, int threads, SensorRange sensors, Contributions* out) = 0;
+};
+
+// The contributions of a scene whose sky is one source, or with `pass` of many (a climate scene
+// needs one: annual/annual_contributions.h's compute_contributions gives it).
 // With `transport` false, T is left empty (a records-only pass: the edges of thick walls).
 // `sensors`: only that block of the scene's sensors (a shard); the rows and records are theirs, in
 // order, and equal those of the whole scene's pass bit for bit.
-Contributions compute_contributions(const Scene& scene, Progress* progress = nullptr, bool transport = true,
-                                    SensorRange sensors = {});
+Contributions trace_contributions(const Scene& scene, Progress* progress, bool transport, SensorRange sensors,
+                                  SourcedPass* pass);
 
 }  // namespace fenestra

@@ -7,10 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "daylight/annual_sources.h"
 #include "sampling/spherical_rectangle.h"
 #include "sampling/warp.h"
 #include "scene/bsdf.h"
-#include "annual/annual_sources.h"
 #include "trace/parallel.h"
 #include "trace/replicates.h"
 

@@ -1,4 +1,4 @@
-#include "annual/annual_sources.h"
+#include "daylight/annual_sources.h"
 
 #include <algorithm>
 #include <cmath>

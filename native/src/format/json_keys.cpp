@@ -1,4 +1,4 @@
-#include "io/json_keys.h"
+#include "format/json_keys.h"
 
 #include <algorithm>
 #include <cctype>

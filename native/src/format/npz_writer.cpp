@@ -1,4 +1,4 @@
-#include "io/npz_writer.h"
+#include "format/npz_writer.h"
 
 #include <zlib.h>
 

@@ -1,7 +1,8 @@
-#include "solve/constraints.h"
+#include "scene/opening_constraints.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -20,7 +21,6 @@ constexpr int kMaxCount = 1 << 30;         // "unlimited" rows or columns
 constexpr int64_t kMaxElements = int64_t{1} << 60;
 // Feasibility is searched over widths up to this many elements; no domain comes close.
 constexpr int kMaxSearchedWidth = 1 << 22;
-const double kWallCosine = std::sin(30.0 * M_PI / 180.0);  // |normal.z| at most: a wall
 
 const char* kKey = "solver.constraints: ";
 
@@ -318,8 +318,6 @@ void check_feasible(const OpeningConstraints& c, double a) {
   if (heights) check_heights(c, g, a);
 }
 
-bool is_wall(const Panel& panel) { return std::abs(panel.normal.z()) <= kWallCosine; }
-
 PanelHeights wall_heights(const Panel& panel, int panel_index, const OpeningConstraints& all, double a) {
   const std::vector<double>& base_z = all.panel_base_z;
   if (!base_z.empty() && panel_index >= static_cast<int>(base_z.size()))
@@ -521,6 +519,45 @@ std::vector<uint8_t> rectangles_mask(const OpeningDomain& domain, const std::vec
       }
   }
   return open;
+}
+
+std::string catalogue_fit_problem(const OpeningDomain& domain, const OpeningConstraints& constraints) {
+  const double a = domain.element_size();
+  double room_w = 0.0, room_h = 0.0, size_w = 0.0, size_h = 0.0;
+  bool any = false;
+  for (size_t p = 0; p < domain.panels().size(); ++p) {
+    const Panel& panel = domain.panels()[p];
+    const OpeningConstraints& set = constraints.for_panel(static_cast<int>(p));
+    const std::vector<CatalogueSize> sizes = set.catalogue.sizes_for(panel);
+    if (sizes.empty()) continue;
+    const double margin = a * std::ceil(set.margin / a - 1e-6);
+    const double w = panel.cols * a - 2.0 * margin;
+    double h = panel.rows * a - 2.0 * margin;
+    if (is_wall(panel)) h = std::min(h, panel.rows * a - set.sill_min - set.head_clearance);
+    for (const CatalogueSize& size : sizes)
+      if (size.width <= w + 1e-6 && size.height <= h + 1e-6) return {};
+    if (!any || w * h > room_w * room_h) room_w = w, room_h = h;
+    for (const CatalogueSize& size : sizes)
+      if (!any || size.width * size.height < size_w * size_h) size_w = size.width, size_h = size.height, any = true;
+  }
+  if (!any) return {};
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "no size fits any panel: the largest room for an opening is %.2f x %.2f m (panel less margin, "
+                "sill_min and head_clearance), the smallest size %.2f x %.2f m",
+                std::max(0.0, room_w), std::max(0.0, room_h), size_w, size_h);
+  return text;
+}
+
+std::string composition_problem(const OpeningDomain& domain, const OpeningConstraints& constraints) {
+  const std::vector<int> facade = facades_of(domain);
+  for (size_t p = 0; p < facade.size(); ++p)
+    if (constraints.for_panel(static_cast<int>(p)).composes() && facade[p] >= 0) return {};
+  for (size_t p = 0; p < facade.size(); ++p)
+    if (constraints.for_panel(static_cast<int>(p)).composes())
+      return "align_sills, align_heads, equal_widths, same_type_in_row, symmetric, equal_spacing and sill_heights "
+             "apply to flat walls, and the opening domain has none where they are set";
+  return {};
 }
 
 }  // namespace fenestra

@@ -1,4 +1,4 @@
-#include "cost/byte_size.h"
+#include "util/byte_size.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,8 +1,8 @@
-#include "cost/cost_model.h"
+#include "study/cost_model.h"
 
 #include "annual/annual_cut_study.h"
-#include "annual/annual_sources.h"
 #include "annual/hourly_flip_model.h"
+#include "daylight/annual_sources.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,15 +10,15 @@
 #include <sstream>
 #include <thread>
 
-#include "cost/byte_size.h"
-#include "cost/element_size_hint.h"
-#include "cost/load_checks.h"
 #include "daylight/daylight.h"
 #include "daylight/sky_matrix.h"
+#include "scene/domain_estimate.h"
+#include "scene/element_size_hint.h"
 #include "scene/scene.h"
 #include "solve/genetic.h"
 #include "trace/parallel.h"
 #include "trace/replicates.h"
+#include "util/byte_size.h"
 
 namespace fenestra {
 namespace {
@@ -392,16 +392,6 @@ CostEstimate estimate_cost(const Scene& scene, CostCommand command, double eleme
     }
   }
   return e;
-}
-
-std::string memory_refusal(const std::string& what, double bytes, double total_bytes, const MemoryLimit& limit,
-                           const std::string& setting) {
-  std::ostringstream s;
-  s << what << " needs " << format_bytes(bytes);
-  if (total_bytes > 1.05 * bytes) s << " (" << format_bytes(total_bytes) << " in all)";
-  s << ", " << format_bytes(static_cast<double>(limit.bytes)) << " " << limit.source << ": use " << setting
-    << ", or raise the limit with --max-memory (max_memory= in Python)";
-  return s.str();
 }
 
 std::string memory_summary(const Scene& scene, CostCommand command, const MemoryLimit& limit) {

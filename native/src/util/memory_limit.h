@@ -16,7 +16,7 @@ struct MemoryLimit {
 // What the system allows now (no override).
 MemoryLimit detect_available_memory();
 
-// The figure in force on this thread: the override of a CostScope (cost/cost_context.h) or the
+// The figure in force on this thread: the override of a CostScope (util/cost_context.h) or the
 // process-wide one when set, else detect_available_memory().
 MemoryLimit memory_limit();
 

@@ -1,12 +1,12 @@
-#include "io/image_writer.h"
+#include "format/image_writer.h"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <stdexcept>
 
-#include "io/atomic_file.h"
-#include "io/image_library.h"
+#include "format/atomic_file.h"
+#include "format/image_library.h"
 #include "util/quoted_text.h"
 
 namespace fenestra {

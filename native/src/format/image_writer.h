@@ -1,6 +1,6 @@
 #pragma once
 // Linear float images (environment maps) written with OpenImageIO (.exr, .hdr, ...), through the
-// image module (io/image_library.h).
+// image module (format/image_library.h).
 #include <string>
 #include <vector>
 
@@ -16,7 +16,7 @@ void check_value_image_path(const std::string& path);
 // (first check_value_image_path).
 std::string encode_image(const std::string& path, int width, int height, int channels,
                          const std::vector<float>& pixels);
-// Encodes, then writes all or nothing (io/atomic_file.h: the path is checked first).
+// Encodes, then writes all or nothing (format/atomic_file.h: the path is checked first).
 void write_image(const std::string& path, int width, int height, int channels, const std::vector<float>& pixels);
 
 }  // namespace fenestra

@@ -1,4 +1,4 @@
-#include "io/image_library.h"
+#include "format/image_library.h"
 
 #include <dlfcn.h>
 #include <sys/mman.h>
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "io/image_codec_abi.h"
+#include "format/image_codec_abi.h"
 #include "util/out_of_memory.h"
 #include "util/quoted_text.h"
 

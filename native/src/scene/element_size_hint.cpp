@@ -1,4 +1,4 @@
-#include "cost/element_size_hint.h"
+#include "scene/element_size_hint.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// The C interface of the image module (native/images/oiio_codec.cpp, loaded by io/image_library).
+// The C interface of the image module (native/images/oiio_codec.cpp, loaded by format/image_library).
 // Functions return 0 or null on failure and then write a message into `error`: exactly
 // FENESTRA_IMAGE_OUT_OF_MEMORY when an allocation failed (no exception crosses this interface).
 #include <cstddef>

@@ -1,4 +1,4 @@
-#include "io/json_input.h"
+#include "format/json_input.h"
 
 #include <algorithm>
 #include <cctype>

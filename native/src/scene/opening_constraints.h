@@ -11,9 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "scene/facades.h"
 #include "scene/mesh.h"
 #include "scene/opening_domain.h"
-#include "solve/window_catalogue.h"
+#include "scene/window_catalogue.h"
 
 namespace fenestra {
 
@@ -116,8 +117,6 @@ struct GridLimits {
 };
 GridLimits grid_limits(const OpeningConstraints& constraints, double element_size);
 
-// Panels whose normal lies within 30 degrees of horizontal: sill and head limits apply there.
-bool is_wall(const Panel& panel);
 // World heights (m) of a panel's base and top: from panel_base_z / panel_top_z where the
 // constraints carry them (the faces' lowest and highest vertex), else its element grid's.
 struct PanelHeights {
@@ -165,5 +164,12 @@ bool satisfies_all(const OpeningDomain& domain, const std::vector<GridRectangle>
 
 // The open mask (one value per element of the domain) of a set of openings.
 std::vector<uint8_t> rectangles_mask(const OpeningDomain& domain, const std::vector<GridRectangle>& rects);
+
+// Empty when some catalogue size fits within a panel that has a catalogue (its extent less the
+// margins, and on walls less the sill and head clearances), or no panel has one; otherwise why not,
+// naming the largest room and the smallest size.
+std::string catalogue_fit_problem(const OpeningDomain& domain, const OpeningConstraints& constraints);
+// Empty, or why the composition rules cannot apply: a rule set where the domain has no flat wall.
+std::string composition_problem(const OpeningDomain& domain, const OpeningConstraints& constraints);
 
 }  // namespace fenestra

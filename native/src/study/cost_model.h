@@ -1,25 +1,20 @@
 #pragma once
 // The cost model: memory and time a computation will need, estimated from the scene's sizes and
 // settings before anything large is allocated (docs/cost.md). check_cost() refuses what will not
-// fit in the memory limit (cost/memory_limit.h) or exceeds a stage's time limit, naming the
+// fit in the memory limit (util/memory_limit.h) or exceeds a stage's time limit, naming the
 // figure and the setting to change.
 #include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "cost/cost_context.h"
-#include "cost/memory_limit.h"
+#include "util/cost_context.h"
+#include "util/cost_error.h"
+#include "util/memory_limit.h"
 
 namespace fenestra {
 
 struct Scene;
-
-// A refusal by the cost model (a std::invalid_argument: Python's ValueError, the CLI's status 1).
-class CostError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
 
 struct MemoryItem {
   std::string key;          // "E", "T", "path_records", ...
@@ -74,10 +69,5 @@ std::string memory_summary(const Scene& scene, CostCommand command, const Memory
 void check_cost(const Scene& scene, CostCommand command, const MemoryLimit& limit, double paths = -1.0);
 // With the limit in force (memory_limit()).
 void check_cost(const Scene& scene, CostCommand command);
-
-// The message for `bytes` needed by `what` against `limit`: "... needs 11.5 GB, 3.2 GB available
-// (MemAvailable): use a larger element_size, or raise the limit with --max-memory (max_memory=)".
-std::string memory_refusal(const std::string& what, double bytes, double total_bytes, const MemoryLimit& limit,
-                           const std::string& setting);
 
 }  // namespace fenestra

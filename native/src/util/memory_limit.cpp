@@ -1,4 +1,4 @@
-#include "cost/memory_limit.h"
+#include "util/memory_limit.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -8,7 +8,7 @@
 #include <sstream>
 #include <thread>
 
-#include "cost/cost_context.h"
+#include "util/cost_context.h"
 
 namespace fenestra {
 namespace {

@@ -1,9 +1,9 @@
-#include "solve/window_catalogue.h"
+#include "scene/window_catalogue.h"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "solve/constraints.h"
+#include "scene/facades.h"
 
 namespace fenestra {
 namespace {

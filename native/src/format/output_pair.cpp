@@ -1,4 +1,4 @@
-#include "io/output_pair.h"
+#include "format/output_pair.h"
 #include "util/quoted_text.h"
 
 #include <sys/stat.h>

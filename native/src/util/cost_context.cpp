@@ -1,4 +1,4 @@
-#include "cost/cost_context.h"
+#include "util/cost_context.h"
 
 #include <mutex>
 
