@@ -31,8 +31,7 @@ inline fenestra::Vec2 next2(fenestra::Rng& rng) {
 
 using fenestra::Vec2;
 using fenestra::Vec3;
-
-constexpr double kPiD = 3.14159265358979323846;
+using fenestra::kPiD;
 
 // ---------------------------------------------------------------------------------------------
 // Incomplete gamma function.

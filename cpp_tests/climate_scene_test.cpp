@@ -21,7 +21,6 @@ namespace {
 using test::ObjBuilder;
 using test::TempDir;
 
-constexpr double kPiD = 3.14159265358979323846;
 const std::string kChicago =
     std::string(FENESTRA_EXAMPLES) + "/weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw";
 

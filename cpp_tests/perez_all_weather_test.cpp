@@ -12,7 +12,6 @@ using namespace fenestra;
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr double kDeg = kPiD / 180.0;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 

@@ -22,8 +22,6 @@ using namespace fenestra;
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
-
 const WeatherData& chicago() {
   static const WeatherData w =
       read_weather(std::string(FENESTRA_EXAMPLES) + "/weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw");

@@ -14,7 +14,6 @@ using namespace fenestra;
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr double kDeg = kPiD / 180.0;
 
 Vec3 direction(double zenith_deg, double azimuth_deg) {

@@ -16,7 +16,6 @@ using namespace fenestra;
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr double kDeg = kPiD / 180.0;
 const int kTregenza[7] = {30, 30, 24, 24, 18, 12, 6};  // Tregenza's ring sizes, horizon up
 

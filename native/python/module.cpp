@@ -409,18 +409,7 @@ PYBIND11_MODULE(_core, m) {
                                             std::to_string(range.begin) + ".." + std::to_string(range.end) +
                                             " of this scene");
             }
-            std::vector<PanelRectangle> rects;
-            const auto given = openings_from(openings, scene.site);
-            for (size_t i = 0; i < given.size(); ++i) {
-              try {
-                rects.push_back(to_panel_rectangle(scene.domain, given[i]));
-                check_on_elements(scene.domain, rects.back());
-                check_on_grid_lines_in_thick_walls(scene.domain, rects.back());
-              } catch (const std::invalid_argument& e) {
-                throw std::invalid_argument("opening " + std::to_string(i) + " " + e.what());
-              }
-            }
-            const OpenRegion region(scene.domain, rects);
+            const OpenRegion region = region_of_openings(scene, openings_from(openings, scene.site));
             SensorValues v;
             {
               py::gil_scoped_release release;

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "util/number_text.h"
+
 namespace fenestra {
 
 namespace {
@@ -23,12 +25,6 @@ constexpr double kEnTargetAreaFractionHorizontal = 0.95;
 
 [[noreturn]] void refuse(const std::string& message) {
   throw std::invalid_argument("annual metrics: " + message);
-}
-
-std::string number(double value) {
-  std::ostringstream s;
-  s << std::setprecision(10) << value;
-  return s.str();
 }
 
 std::string clock(double hours) {
@@ -58,21 +54,21 @@ void check_stamps(const std::vector<HourStamp>& hours) {
     if (!valid_day(h.month, h.day))
       refuse(where + ": month " + std::to_string(h.month) + ", day " + std::to_string(h.day) + " is not a date");
     if (!(h.clock_hour >= 0.0 && h.clock_hour < 24.0))
-      refuse(where + ".clock_hour = " + number(h.clock_hour) + " is outside [0, 24)");
+      refuse(where + ".clock_hour = " + decimal_text(h.clock_hour, 10) + " is outside [0, 24)");
   }
 }
 
 void check_positive(const char* field, double value) {
-  if (!(std::isfinite(value) && value > 0.0)) refuse(std::string(field) + " = " + number(value) + " must be > 0");
+  if (!(std::isfinite(value) && value > 0.0)) refuse(std::string(field) + " = " + decimal_text(value, 10) + " must be > 0");
 }
 
 void check_fraction(const std::string& field, double value) {
-  if (!(value > 0.0 && value <= 1.0)) refuse(field + " = " + number(value) + " must lie in (0, 1]");
+  if (!(value > 0.0 && value <= 1.0)) refuse(field + " = " + decimal_text(value, 10) + " must lie in (0, 1]");
 }
 
 void check_settings(const AnnualMetricSettings& s) {
   if (!(s.occupied_start_hour >= 0.0 && s.occupied_start_hour < s.occupied_end_hour && s.occupied_end_hour <= 24.0))
-    refuse("occupied hours [" + number(s.occupied_start_hour) + ", " + number(s.occupied_end_hour) +
+    refuse("occupied hours [" + decimal_text(s.occupied_start_hour, 10) + ", " + decimal_text(s.occupied_end_hour, 10) +
            ") must satisfy 0 <= start < end <= 24");
   check_positive("da_threshold_lux", s.da_threshold_lux);
   check_fraction("sda_time_fraction", s.sda_time_fraction);
@@ -84,14 +80,14 @@ void check_settings(const AnnualMetricSettings& s) {
     const std::string field = "udi_edges_lux[" + std::to_string(i) + "]";
     check_positive(field.c_str(), s.udi_edges_lux[i]);
     if (i > 0 && !(s.udi_edges_lux[i] > s.udi_edges_lux[i - 1]))
-      refuse(field + " = " + number(s.udi_edges_lux[i]) + " must exceed the edge before it, " +
-             number(s.udi_edges_lux[i - 1]));
+      refuse(field + " = " + decimal_text(s.udi_edges_lux[i], 10) + " must exceed the edge before it, " +
+             decimal_text(s.udi_edges_lux[i - 1], 10));
   }
   check_positive("ase_threshold_lux", s.ase_threshold_lux);
   if (!(std::isfinite(s.ase_hours) && s.ase_hours >= 0.0))
-    refuse("ase_hours = " + number(s.ase_hours) + " must be >= 0");
+    refuse("ase_hours = " + decimal_text(s.ase_hours, 10) + " must be >= 0");
   if (!(s.ase_pass_limit >= 0.0 && s.ase_pass_limit <= 1.0))
-    refuse("ase_pass_limit = " + number(s.ase_pass_limit) + " must lie in [0, 1]");
+    refuse("ase_pass_limit = " + decimal_text(s.ase_pass_limit, 10) + " must lie in [0, 1]");
   if (s.en17037_levels.empty()) refuse("en17037_levels is empty");
   for (size_t i = 0; i < s.en17037_levels.size(); ++i) {
     const En17037Level& level = s.en17037_levels[i];
@@ -99,8 +95,8 @@ void check_settings(const AnnualMetricSettings& s) {
     check_positive((field + ".target_lux").c_str(), level.target_lux);
     check_positive((field + ".minimum_target_lux").c_str(), level.minimum_target_lux);
     if (i > 0 && !(level.target_lux > s.en17037_levels[i - 1].target_lux))
-      refuse(field + ".target_lux = " + number(level.target_lux) + " must exceed the level before it, " +
-             number(s.en17037_levels[i - 1].target_lux));
+      refuse(field + ".target_lux = " + decimal_text(level.target_lux, 10) + " must exceed the level before it, " +
+             decimal_text(s.en17037_levels[i - 1].target_lux, 10));
   }
   check_fraction("en17037_time_fraction", s.en17037_time_fraction);
 }
@@ -121,7 +117,7 @@ void check_illuminance(const Matrix& m, const char* field, const std::vector<Hou
       const double value = m(i, j);
       if (!(std::isfinite(value) && value >= 0.0))
         refuse(std::string(field) + " at sensor " + std::to_string(i) + ", " + hour_name(hours, j) + " is " +
-               number(value) + " lux: it must be finite and >= 0");
+               decimal_text(value, 10) + " lux: it must be finite and >= 0");
     }
 }
 
@@ -134,7 +130,7 @@ Eigen::VectorXd sensor_weights(const std::vector<double>& areas, Eigen::Index se
   for (Eigen::Index i = 0; i < sensors; ++i) {
     const double a = areas[static_cast<size_t>(i)];
     if (!(std::isfinite(a) && a >= 0.0))
-      refuse("sensor_areas_m2[" + std::to_string(i) + "] = " + number(a) + " m^2 must be finite and >= 0");
+      refuse("sensor_areas_m2[" + std::to_string(i) + "] = " + decimal_text(a, 10) + " m^2 must be finite and >= 0");
     w[i] = a;
   }
   if (!(w.sum() > 0.0)) refuse("sensor_areas_m2 are all 0: no area to take fractions of");
@@ -386,12 +382,6 @@ AnnualMetrics compute(const Matrix& m, const AnnualMetricInputs& in, const Annua
   return r;
 }
 
-std::string percent(double fraction) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(1) << 100.0 * fraction << " %";
-  return s.str();
-}
-
 }  // namespace
 
 std::vector<char> en17037_daylight_hours(const std::vector<double>& external, int count) {
@@ -401,7 +391,7 @@ std::vector<char> en17037_daylight_hours(const std::vector<double>& external, in
     refuse("EN 17037 daylight hours: cannot take " + std::to_string(count) + " of " + std::to_string(n) + " hours");
   for (int j = 0; j < n; ++j)
     if (!(std::isfinite(external[j]) && external[j] >= 0.0))
-      refuse("external_horizontal_illuminance[" + std::to_string(j) + "] = " + number(external[j]) +
+      refuse("external_horizontal_illuminance[" + std::to_string(j) + "] = " + decimal_text(external[j], 10) +
              " lux must be finite and >= 0");
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -430,11 +420,11 @@ std::string AnnualMetricSettings::describe() const {
   s << "occupied " << clock(occupied_start_hour) << "-" << clock(occupied_end_hour) << " local standard time; DA "
     << da_threshold_lux << " lx; sDA " << da_threshold_lux << "/" << 100.0 * sda_time_fraction << "%; UDI edges";
   for (double e : udi_edges_lux) s << " " << e;
-  s << " lx; ASE " << ase_threshold_lux << " lx, > " << ase_hours << " h, limit " << percent(ase_pass_limit)
+  s << " lx; ASE " << ase_threshold_lux << " lx, > " << ase_hours << " h, limit " << percent_text(ase_pass_limit)
     << "; EN 17037 " << (en17037_openings == DaylightOpenings::Horizontal ? "horizontal" : "vertical/inclined")
     << " openings, levels";
   for (const En17037Level& l : en17037_levels) s << " " << l.name << " " << l.target_lux << "/" << l.minimum_target_lux;
-  s << " lx over " << percent(en17037_time_fraction) << " of daylight hours";
+  s << " lx over " << percent_text(en17037_time_fraction) << " of daylight hours";
   return s.str();
 }
 
@@ -442,20 +432,20 @@ std::string AnnualMetrics::to_string() const {
   std::ostringstream s;
   s << std::fixed << std::setprecision(1);
   s << sensors << " sensors, " << occupied_hours << " of " << hours << " hours occupied; mean "
-    << space_mean_illuminance_lux << " lx; DA " << percent(space_daylight_autonomy) << ", cDA "
-    << percent(space_continuous_daylight_autonomy) << "; UDI";
-  for (const UdiBand& b : udi) s << " [" << b.name << " " << percent(b.space_fraction) << "]";
-  s << "; sDA " << percent(spatial_daylight_autonomy);
-  for (const PassLevel& p : sda_levels) s << (p.passed ? " passes " : " misses ") << percent(p.level);
+    << space_mean_illuminance_lux << " lx; DA " << percent_text(space_daylight_autonomy) << ", cDA "
+    << percent_text(space_continuous_daylight_autonomy) << "; UDI";
+  for (const UdiBand& b : udi) s << " [" << b.name << " " << percent_text(b.space_fraction) << "]";
+  s << "; sDA " << percent_text(spatial_daylight_autonomy);
+  for (const PassLevel& p : sda_levels) s << (p.passed ? " passes " : " misses ") << percent_text(p.level);
   if (has_ase)
-    s << "; ASE " << percent(annual_sunlight_exposure) << (ase_passes ? " (passes)" : " (fails)");
+    s << "; ASE " << percent_text(annual_sunlight_exposure) << (ase_passes ? " (passes)" : " (fails)");
   else
     s << "; ASE not computed (no direct-sun illuminance)";
   s << "; EN 17037 over " << en17037.daylight_hours << " daylight hours (" << en17037.daylight_hours_basis << "):";
   for (const En17037LevelResult& l : en17037.levels) {
-    s << " " << l.level.name << " target " << percent(l.target_hours_fraction);
+    s << " " << l.level.name << " target " << percent_text(l.target_hours_fraction);
     if (en17037.openings == DaylightOpenings::VerticalOrInclined)
-      s << ", minimum " << percent(l.minimum_hours_fraction);
+      s << ", minimum " << percent_text(l.minimum_hours_fraction);
     s << (l.met ? " met;" : " not met;");
   }
   s << " level reached: " << en17037.level_reached;

@@ -8,12 +8,13 @@
 #include <vector>
 
 #include "daylight/sun_spectrum.h"
+#include "math/constants.h"
 #include "math/gauss_legendre.h"
+#include "util/number_text.h"
 
 namespace fenestra {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr double kDegree = kPiD / 180.0;
 
 // Lower clearness bounds of bins 2..8 (both papers, Table 1).
@@ -76,12 +77,6 @@ constexpr EfficacyRow kDirectEfficacy[kPerezBins] = {
     {57.20, -4.55, -2.98, 117.12}, {98.99, -3.46, -1.21, 12.38},  {109.83, -4.90, -1.71, -8.81},
     {110.34, -5.84, -1.99, -4.56}, {106.36, -3.97, -1.75, -6.16}, {107.19, -1.25, -1.51, -26.73},
     {105.75, 0.77, -1.26, -34.44}, {101.18, 1.58, -1.10, -8.29}};
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 void check_bin(int bin) {
   if (bin < 1 || bin > kPerezBins)
@@ -158,18 +153,18 @@ std::string record(const PerezSkyInput& input) {
 
 void check_irradiance(const PerezSkyInput& input, const char* field, double value, double bound) {
   if (!std::isfinite(value) || value < 0.0)
-    throw std::invalid_argument(record(input) + field + " " + number(value) + " W/m^2 must be finite and not negative");
+    throw std::invalid_argument(record(input) + field + " " + decimal_text(value) + " W/m^2 must be finite and not negative");
   if (value > bound)
-    throw std::invalid_argument(record(input) + field + " " + number(value) +
+    throw std::invalid_argument(record(input) + field + " " + decimal_text(value) +
                                 " W/m^2 exceeds the extraterrestrial normal irradiance of day " +
-                                std::to_string(input.day_of_year) + ", " + number(bound) + " W/m^2");
+                                std::to_string(input.day_of_year) + ", " + decimal_text(bound) + " W/m^2");
 }
 
 void check(const PerezSkyInput& input) {
   const Vec3& s = input.sun;
   if (!is_finite(s) || !(s.norm() > 0.0f))
-    throw std::invalid_argument(record(input) + "sun direction (" + number(s.x()) + ", " + number(s.y()) + ", " +
-                                number(s.z()) + ") must be finite and non-zero");
+    throw std::invalid_argument(record(input) + "sun direction (" + decimal_text(s.x()) + ", " + decimal_text(s.y()) + ", " +
+                                decimal_text(s.z()) + ") must be finite and non-zero");
   if (input.day_of_year < 1 || input.day_of_year > 366)
     throw std::invalid_argument(record(input) + "day of year " + std::to_string(input.day_of_year) +
                                 " is not in 1..366");
@@ -178,9 +173,9 @@ void check(const PerezSkyInput& input) {
   check_irradiance(input, "diffuse horizontal irradiance", input.diffuse_horizontal_w_m2, bound);
   const double td = input.dew_point_c;
   if (!std::isnan(td) && !(td >= PerezAllWeatherSky::kMinDewPointC && td <= PerezAllWeatherSky::kMaxDewPointC))
-    throw std::invalid_argument(record(input) + "dew point " + number(td) + " deg C is outside [" +
-                                number(PerezAllWeatherSky::kMinDewPointC) + ", " +
-                                number(PerezAllWeatherSky::kMaxDewPointC) + "] (NaN: missing)");
+    throw std::invalid_argument(record(input) + "dew point " + decimal_text(td) + " deg C is outside [" +
+                                decimal_text(PerezAllWeatherSky::kMinDewPointC) + ", " +
+                                decimal_text(PerezAllWeatherSky::kMaxDewPointC) + "] (NaN: missing)");
 }
 
 }  // namespace

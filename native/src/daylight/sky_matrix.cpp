@@ -11,27 +11,22 @@
 
 #include "daylight/perez_all_weather.h"
 #include "daylight/weather_site.h"
+#include "math/constants.h"
 #include "util/byte_size.h"
 #include "util/cost_error.h"
 #include "util/memory_limit.h"
+#include "util/number_text.h"
 #include "util/progress.h"
 #include "util/quoted_text.h"
 
 namespace fenestra {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr double kDegree = kPiD / 180.0;
 constexpr size_t kHoursPerTask = 24;  // one day of rows: a task of a few milliseconds
 
 void check(bool ok, const std::string& key, const std::string& message) {
   if (!ok) throw std::invalid_argument("sky." + key + ": " + message);
-}
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 std::string clock(double hours) {
@@ -76,18 +71,18 @@ class PatchPoints {
 void check_settings(const WeatherData& weather, const ClimateSettings& s) {
   check(!weather.hours.empty(), "weather", "'" + quoted_path(weather.path) + "' holds no rows");
   check(std::isfinite(s.place.latitude_deg) && std::abs(s.place.latitude_deg) <= 90.0, "latitude",
-        "must be in [-90, 90] degrees, got " + number(s.place.latitude_deg));
+        "must be in [-90, 90] degrees, got " + decimal_text(s.place.latitude_deg));
   check(std::isfinite(s.place.longitude_deg) && std::abs(s.place.longitude_deg) <= 180.0, "longitude",
-        "must be in [-180, 180] degrees, got " + number(s.place.longitude_deg));
+        "must be in [-180, 180] degrees, got " + decimal_text(s.place.longitude_deg));
   check(std::isfinite(s.place.elevation_m), "elevation", "must be a number of meters");
   check(std::isfinite(s.time_zone_hours) && std::abs(s.time_zone_hours) <= 14.0, "time_zone",
-        "the standard-time offset must be within 14 h of UTC, got " + number(s.time_zone_hours));
+        "the standard-time offset must be within 14 h of UTC, got " + decimal_text(s.time_zone_hours));
   check(std::isfinite(s.north_offset_deg), "north_offset_deg", "must be a number of degrees");
   check(std::isfinite(s.ground_reflectance) && s.ground_reflectance >= 0.0 && s.ground_reflectance <= 1.0,
-        "ground_reflectance", "must be in [0, 1], got " + number(s.ground_reflectance));
+        "ground_reflectance", "must be in [0, 1], got " + decimal_text(s.ground_reflectance));
   check(s.occupied_start_hour >= 0.0 && s.occupied_start_hour < s.occupied_end_hour && s.occupied_end_hour <= 24.0,
-        "occupied", "needs 0 <= start < end <= 24 h of local standard time, got [" + number(s.occupied_start_hour) +
-                        ", " + number(s.occupied_end_hour) + "]");
+        "occupied", "needs 0 <= start < end <= 24 h of local standard time, got [" + decimal_text(s.occupied_start_hour) +
+                        ", " + decimal_text(s.occupied_end_hour) + "]");
 }
 
 }  // namespace

@@ -7,21 +7,16 @@
 #include <string>
 
 #include "daylight/sun_spectrum.h"
+#include "math/constants.h"
+#include "util/number_text.h"
 
 namespace fenestra {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 void check_turbidity(const char* model, double turbidity) {
   if (!(turbidity >= PreethamSky::kMinTurbidity && turbidity <= PreethamSky::kMaxTurbidity))
-    throw std::invalid_argument(std::string(model) + ": turbidity " + number(turbidity) +
+    throw std::invalid_argument(std::string(model) + ": turbidity " + decimal_text(turbidity) +
                                 " is outside [1.7, 10], the range the Preetham model was fitted for");
 }
 
@@ -110,7 +105,7 @@ PreethamSky::PreethamSky(double turbidity, const Vec3& sun) : turbidity_(turbidi
   sun_ = sun.normalized();
   if (!(sun_.z() > 0.0f))
     throw std::invalid_argument("Preetham sky: the sun must be above the horizon (its elevation is " +
-                                number(std::asin(std::clamp(static_cast<double>(sun_.z()), -1.0, 1.0)) * 180.0 / kPiD) +
+                                decimal_text(std::asin(std::clamp(static_cast<double>(sun_.z()), -1.0, 1.0)) * 180.0 / kPiD) +
                                 " degrees)");
   sun_zenith_ = std::acos(std::min(1.0, static_cast<double>(sun_.z())));
 
@@ -165,7 +160,7 @@ Rgb PreethamSky::radiance(const Vec3& dir) const { return radiance(row(dir.z()),
 SunDisk preetham_sun(double turbidity, double sun_zenith_rad) {
   check_turbidity("Preetham sun", turbidity);
   if (!std::isfinite(sun_zenith_rad) || sun_zenith_rad < 0.0)
-    throw std::invalid_argument("Preetham sun: zenith angle " + number(sun_zenith_rad) +
+    throw std::invalid_argument("Preetham sun: zenith angle " + decimal_text(sun_zenith_rad) +
                                 " rad must be finite and not negative");
   if (sun_zenith_rad >= 0.5 * kPiD) {
     SunDisk dark;

@@ -5,17 +5,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "math/constants.h"
+#include "util/number_text.h"
+
 namespace fenestra {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr double kTwoPi = 2.0 * kPiD;
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // Angle in [0, 2 pi).
 double wrap_angle(double a) {
@@ -42,7 +38,7 @@ SkyPatches::SkyPatches(int subdivision, double north_offset_deg)
                                 " must be an integer in [1, " + std::to_string(kMaxSubdivision) +
                                 "] (1: Tregenza's 145 patches; 2: 577; 4: 2305)");
   if (!std::isfinite(north_offset_deg))
-    throw std::invalid_argument("SkyPatches: north_offset_deg " + number(north_offset_deg) +
+    throw std::invalid_argument("SkyPatches: north_offset_deg " + decimal_text(north_offset_deg) +
                                 " must be a finite number of degrees");
   north_offset_rad_ = north_offset_deg * kPiD / 180.0;
   ring_height_ = 0.5 * kPiD / (kTregenzaRings * subdivision + 0.5);
@@ -152,7 +148,7 @@ Vec3d SkyPatches::centre(int patch) const {
 
 Vec3d SkyPatches::square_to_patch(int patch, double u, double v) const {
   if (!(u >= 0.0 && u <= 1.0) || !(v >= 0.0 && v <= 1.0))
-    throw std::invalid_argument("SkyPatches::square_to_patch: (u, v) = (" + number(u) + ", " + number(v) +
+    throw std::invalid_argument("SkyPatches::square_to_patch: (u, v) = (" + decimal_text(u) + ", " + decimal_text(v) +
                                 ") must lie in [0, 1]^2");
   const Bounds b = bounds(patch);
   const double s0 = std::sin(b.alt0), s1 = std::sin(b.alt1);

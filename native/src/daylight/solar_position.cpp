@@ -11,11 +11,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "math/constants.h"
+
 namespace fenestra {
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr double kRad = kPiD / 180.0;  // radians per degree
 constexpr double kArcsec = 1.0 / 3600.0;  // degrees per arc second
 constexpr double kJ2000Unix = 946728000.0;  // 2000-01-01T12:00:00 (JD 2451545.0), POSIX seconds

@@ -4,10 +4,11 @@
 #include <cmath>
 #include <cstddef>
 
+#include "math/constants.h"
+
 namespace fenestra {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr double kLuminousEfficacy = 683.0;  // lm/W, definition of the candela (555 nm)
 
 // Piecewise-linear spectrum given at increasing wavelengths; zero outside its span.

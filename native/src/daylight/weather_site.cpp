@@ -5,10 +5,11 @@
 #include <cstdio>
 #include <sstream>
 
+#include "math/constants.h"
+
 namespace fenestra {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr double kSecondsPerDay = 86400.0, kSecondsPerHour = 3600.0;
 constexpr double kEarthRadiusKm = 6371.0;
 // Days before each month in a leap year: every month and day has a slot of its own.

@@ -4,14 +4,13 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "math/constants.h"
+
 namespace fenestra {
 
 using Vec3 = Eigen::Vector3f;
 using Vec2 = Eigen::Vector2f;
 using Rgb = Eigen::Array3f;
-
-constexpr float kPi = 3.14159265358979323846f;
-constexpr float kInvPi = 1.0f / kPi;
 
 // Rec. 709 / sRGB luminance weights: sensor values are luminance-weighted irradiance.
 inline float luminance(const Rgb& c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }

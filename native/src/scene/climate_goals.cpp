@@ -9,6 +9,7 @@
 
 #include "format/json_keys.h"
 #include "scene/input_limits.h"
+#include "util/number_text.h"
 #include "util/quoted_text.h"
 
 namespace fenestra {
@@ -18,12 +19,6 @@ using nlohmann::json;
 
 constexpr double kHoursPerYear = 8784.0;  // a leap year's
 constexpr double kMaxGoalLux = 200000.0;  // above full sunlight (about 130 000 lx)
-
-std::string percent(double fraction) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g %%", std::round(1000.0 * fraction) / 10.0);
-  return text;
-}
 
 std::string lux(double v) {
   char text[32];
@@ -214,18 +209,18 @@ std::string ClimateGoal::describe() const {
   switch (metric) {
     case ClimateMetric::SpatialDaylightAutonomy:
       std::snprintf(text, sizeof text, "sDA%s/%g%% >= %s", lux(illuminance_lux).c_str(),
-                    std::round(1000.0 * time_fraction) / 10.0, percent(area_fraction).c_str());
+                    std::round(1000.0 * time_fraction) / 10.0, short_percent_text(area_fraction).c_str());
       break;
     case ClimateMetric::SunlightExposure:
       std::snprintf(text, sizeof text, "ASE%s,%s <= %s", lux(illuminance_lux).c_str(), lux(hours).c_str(),
-                    percent(area_fraction).c_str());
+                    short_percent_text(area_fraction).c_str());
       break;
     case ClimateMetric::En17037:
       std::snprintf(text, sizeof text, "EN 17037 %s level", level.c_str());
       break;
     case ClimateMetric::UsefulDaylight:
       std::snprintf(text, sizeof text, "UDI %s-%s lx >= %s", lux(lower_lux).c_str(), lux(upper_lux).c_str(),
-                    percent(area_fraction).c_str());
+                    short_percent_text(area_fraction).c_str());
       break;
     case ClimateMetric::MeanIlluminance:
       std::snprintf(text, sizeof text, "annual mean %s lx", lux(illuminance_lux).c_str());

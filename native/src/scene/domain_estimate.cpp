@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "math/panel_axes.h"
 #include "scene/element_size_hint.h"
 #include "scene/mesh.h"
 #include "scene/opening_domain.h"
@@ -19,17 +20,6 @@ namespace {
 constexpr double kDomainBytesPerElement = 2.0 * sizeof(Element), kDomainBytesPerCell = sizeof(int);
 // A domain this large is probably not in meters.
 constexpr double kSuspiciousSide = 1000.0;
-
-// The panel's row direction, as OpeningDomain::build chooses it (horizontal on walls and tilted
-// roofs, +X on flat roofs).
-void panel_axes(const Vec3& n, Vec3* u, Vec3* v) {
-  if (std::abs(n.z()) < 0.999f) {
-    *u = Vec3(0, 0, 1).cross(n).normalized();
-  } else {
-    *u = (Vec3(1, 0, 0) - n.x() * n).normalized();
-  }
-  *v = n.cross(*u);
-}
 
 }  // namespace
 

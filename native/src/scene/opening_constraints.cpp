@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "util/number_text.h"
+
 namespace fenestra {
 namespace {
 
@@ -33,12 +35,7 @@ int64_t count_at_most(double x, int64_t unlimited) {
   return static_cast<int64_t>(std::floor(x * (1.0 + kRelative) + kRelative));
 }
 
-std::string number(double x) {
-  if (std::isinf(x)) return "unlimited";
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
+std::string number(double x) { return std::isinf(x) ? "unlimited" : decimal_text(x); }
 std::string meters(double x) { return number(x) + (std::isinf(x) ? "" : " m"); }
 std::string square_meters(double x) { return number(x) + (std::isinf(x) ? "" : " m^2"); }
 

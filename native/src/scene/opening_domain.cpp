@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "math/panel_axes.h"
 #include "scene/domain_estimate.h"
 #include "scene/position_key.h"
 #include "scene/surface_chart.h"
@@ -26,16 +27,6 @@ struct UnionFind {
   }
   void unite(int a, int b) { parent[find(a)] = find(b); }
 };
-
-// Rows run horizontally on walls and tilted roofs; flat roofs take +X as their row direction.
-void panel_axes(const Vec3& n, Vec3* u, Vec3* v) {
-  if (std::abs(n.z()) < 0.999f) {
-    *u = Vec3(0, 0, 1).cross(n).normalized();
-  } else {
-    *u = (Vec3(1, 0, 0) - n.x() * n).normalized();
-  }
-  *v = n.cross(*u);
-}
 
 struct Triangle2D {
   Vec2 a, b, c;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "math/panel_axes.h"
 #include "scene/position_key.h"
 
 namespace fenestra {
@@ -28,16 +29,6 @@ std::string face_at(const std::array<Vec3, 3>& c, const SiteFrame& site) {
   s.precision(site.shifted() ? 10 : 4);
   s << "the face at (" << m.x() << ", " << m.y() << ", " << m.z() << ")";
   return s.str();
-}
-
-// Rows level on walls, +X on flat roofs (as flat panels do).
-void plane_axes(const Vec3d& n, Vec3d* u, Vec3d* v) {
-  if (std::abs(n.z()) < 0.999) {
-    *u = Vec3d(0, 0, 1).cross(n).normalized();
-  } else {
-    *u = (Vec3d(1, 0, 0) - n.x() * n).normalized();
-  }
-  *v = n.cross(*u);
 }
 
 // Each edge of the piece (by its two end positions) and the (triangle, corner) pairs starting it.
@@ -114,7 +105,7 @@ SurfaceChart SurfaceChart::build(const Mesh& mesh, const std::vector<uint32_t>& 
     {
       const Vec3d n0 = (p3(0, 1) - p3(0, 0)).cross(p3(0, 2) - p3(0, 0)).normalized();
       Vec3d u, v;
-      plane_axes(n0, &u, &v);
+      panel_axes(n0, &u, &v);
       place_in_plane(0, p3(0, 0), u, v, Vec2d::Zero());
     }
     std::deque<size_t> queue{0};

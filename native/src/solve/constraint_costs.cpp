@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "util/number_text.h"
+
 namespace fenestra {
 namespace {
 
@@ -82,12 +84,6 @@ std::vector<std::string> set_keys(const OpeningConstraints& c, const Family& fam
   return out;
 }
 
-std::string percent(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f %%", 100.0 * x);
-  return text;
-}
-
 std::string joined(const std::vector<std::string>& keys) {
   std::string s;
   for (const std::string& k : keys) s += (s.empty() ? "" : ", ") + k;
@@ -145,14 +141,14 @@ bool constraints_cost_much(double free_error, double constrained_error) {
 
 std::string constraint_cost_warning(double free_error, double constrained_error,
                                     const std::vector<ConstraintCost>& costs) {
-  std::string s = "the openings within the constraints meet the goals at " + percent(constrained_error) +
-                  " on the element grid, the free answer at " + percent(free_error);
+  std::string s = "the openings within the constraints meet the goals at " + percent_text(constrained_error) +
+                  " on the element grid, the free answer at " + percent_text(free_error);
   if (costs.empty()) return s;
   // Lifting the limits, alone or together, gives back under a tenth of the difference: the
   // constraints are not what keeps the answer from the goals (the search within them is).
   if (costs[0].error_without > constrained_error - 0.1 * (constrained_error - free_error))
     return s + "; lifting the constraints, alone or together, does not bring it lower (constraint_costs in the result)";
-  s += "; without " + joined(costs[0].keys) + " it would be " + percent(costs[0].error_without);
+  s += "; without " + joined(costs[0].keys) + " it would be " + percent_text(costs[0].error_without);
   return s + " (constraint_costs in the result)";
 }
 

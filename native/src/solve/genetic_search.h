@@ -56,11 +56,6 @@ constexpr uint64_t kFirstPopulation = ~uint64_t{0};  // generation index of the 
 
 inline double squared_excess(double x) { return x > 0.0 ? x * x : 0.0; }
 
-// Uniform in [0, n) by multiply-shift (bias below n / 2^32).
-inline int uniform_int(Rng& rng, int n) {
-  return static_cast<int>((uint64_t{rng.next_u32()} * static_cast<uint64_t>(n)) >> 32);
-}
-
 // Each child draws from its own stream, so results do not depend on which thread bred it.
 inline Rng child_rng(uint64_t seed, uint64_t generation, uint64_t child) {
   const uint64_t key = mix_seed(mix_seed(seed, generation), child);

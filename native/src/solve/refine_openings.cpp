@@ -157,11 +157,6 @@ bool in_one_piece(const std::vector<uint8_t>& marked, int window_cols, int i0, i
   return reached == inside;
 }
 
-// Uniform in [0, n) by multiply-shift (bias below n / 2^32).
-int uniform_int(Rng& rng, int n) {
-  return static_cast<int>((uint64_t{rng.next_u32()} * static_cast<uint64_t>(n)) >> 32);
-}
-
 void lower_to(std::atomic<double>& bound, double value) {
   double current = bound.load(std::memory_order_relaxed);
   while (value < current && !bound.compare_exchange_weak(current, value, std::memory_order_relaxed)) {

@@ -29,6 +29,7 @@
 #include "trace/contributions_origin.h"
 #include "trace/evaluate.h"
 #include "trace/flip_effects.h"
+#include "util/number_text.h"
 
 namespace fenestra {
 
@@ -617,12 +618,6 @@ bool composes(const OpeningDomain& domain, const OpeningConstraints& constraints
   return false;
 }
 
-std::string percent(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f %%", 100.0 * x);
-  return text;
-}
-
 SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress* progress) {
   LocalRecordQueries records(scene, c, scene.domain, progress);
   return solve_openings(scene, records, progress);
@@ -875,8 +870,8 @@ SolveResult solve_openings(const Scene& scene, RecordQueries& records, Progress*
       if (!step.met)
         out.warnings.push_back(step.rule + ": no admissible way to meet it was found on every facade; left as it was");
       else if (step.error_after > step.error_before + 1e-3)
-        out.warnings.push_back(step.rule + " raises the error from " + percent(step.error_before) + " to " +
-                               percent(step.error_after));
+        out.warnings.push_back(step.rule + " raises the error from " + percent_text(step.error_before) + " to " +
+                               percent_text(step.error_after));
     if (composed.openings != final_rects) {
       final_rects = composed.openings;
       chosen = values_of(final_rects);

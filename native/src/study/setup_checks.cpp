@@ -14,6 +14,7 @@
 #include "scene/scene.h"
 #include "solve/goals.h"
 #include "trace/ray_scene.h"
+#include "util/number_text.h"
 
 namespace fenestra {
 namespace {
@@ -58,16 +59,10 @@ std::vector<int> sampled(size_t count) {
 // single precision to resolve kLift.
 float lift_at(const Vec3& p) { return std::max(kLift, 4.0f * std::numeric_limits<float>::epsilon() * p.cwiseAbs().maxCoeff()); }
 
-std::string number(double x, const char* format = "%.2f") {
-  char s[48];
-  std::snprintf(s, sizeof s, format, x);
-  return s;
-}
-
 // A position as the user gave it (the scene's input coordinates).
 std::string point_text(const Scene& scene, const Vec3& local) {
   const Vec3d p = scene.site.to_site(local);
-  return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ")";
+  return "(" + decimal_text(p.x(), "%.2f") + ", " + decimal_text(p.y(), "%.2f") + ", " + decimal_text(p.z(), "%.2f") + ")";
 }
 
 // "sensor 4 at (1.00, 2.00, 0.80)" or "sensors 0 (..), 1 (..), 2 (..) and 13 more".
@@ -173,7 +168,7 @@ void open_sky(const Scene& scene, const RayScene& rays, std::vector<SetupWarning
                                                : "mostly sideways: a missing wall, a door or window that is not "
                                                  "opening domain?";
     gaps.message = of_text(gaps.sensors.size(), total, chosen.size()) + " " + verb(gaps.sensors.size(), "sees", "see") +
-                   " the sky through gaps that are not opening domain (" + number(100.0 * gaps.share, "%.0f") +
+                   " the sky through gaps that are not opening domain (" + decimal_text(100.0 * gaps.share, "%.0f") +
                    " % of their directions on average, " + where + "): " + sensors_text(scene, gaps.sensors) +
                    "; daylight through the gaps counts toward the goals: close the model there if the room is closed";
     out->push_back(std::move(gaps));
@@ -188,7 +183,7 @@ void downward(const Scene& scene, std::vector<SetupWarning>* out) {
     if (scene.sensors.normals[i].z() < kDownward) w.sensors.push_back(static_cast<int>(i));
   if (w.sensors.empty()) return;
   w.message = of_text(w.sensors.size(), w.total, w.total) + " " + verb(w.sensors.size(), "faces", "face") +
-              " downward (normal z below " + number(kDownward, "%.1f") +
+              " downward (normal z below " + decimal_text(kDownward, "%.1f") +
               "): " + sensors_text(scene, w.sensors) +
               "; a sensor measures the light on the side its normal points to, here the light from below: if they "
               "should face up, flip their normals (sensors.normals)";
@@ -262,7 +257,7 @@ void domain_sides(const Scene& scene, const RayScene& rays, std::vector<SetupWar
     }
     if (area > 0.0) centre /= static_cast<float>(area);
     parts << (w.panels.empty() ? "" : "; ") << "panel " << index << " (" << panel.label << "; "
-          << number(panel.area, "%.3g") << " m2 about " << point_text(scene, centre) << ") is seen by "
+          << decimal_text(panel.area, "%.3g") << " m2 about " << point_text(scene, centre) << ") is seen by "
           << flagged.seen_from_outside << " sensor" << (flagged.seen_from_outside == 1 ? "" : "s")
           << " from one side, but " << flagged.on_room_side << " of "
           << scene.sensors.size() << " sensors " << verb(static_cast<size_t>(flagged.on_room_side), "lies", "lie")

@@ -46,4 +46,9 @@ inline Rng path_rng(uint64_t seed, uint64_t sensor, uint64_t path) {
   return Rng(key, mix_seed(key, 0x5EED));
 }
 
+// Uniform in [0, n) by multiply-shift (bias below n / 2^32).
+inline int uniform_int(Rng& rng, int n) {
+  return static_cast<int>((uint64_t{rng.next_u32()} * static_cast<uint64_t>(n)) >> 32);
+}
+
 }  // namespace fenestra
