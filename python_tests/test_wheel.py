@@ -6,14 +6,14 @@ renamed copies; auditwheel's view of the wheel agrees."""
 import os
 import re
 import shutil
+import signal
 import subprocess
-import sys
 import time
 import zipfile
 
 import pytest
 
-from conftest import EXAMPLES, ROOT
+from conftest import EXAMPLES, ROOT, write_small_room
 from packaging_paths import built_wheel, packaging_python
 
 # The libraries Blender also ships (libtbb.so.12, libembree4.so.4) and the heaviest system one.
@@ -113,9 +113,6 @@ def test_fenestra_command_keeps_exit_status_and_usage(venv, outside):
 
 def test_fenestra_command_is_interrupted_like_the_program(venv, tmp_path):
     """SIGINT reaches the program itself (no Python in between): status 130, no output left."""
-    import signal
-    sys.path.insert(0, os.path.dirname(__file__))
-    from conftest import write_small_room
     scene = write_small_room(tmp_path / "room", paths=1 << 22)
     proc = subprocess.Popen([str(venv / "bin" / "fenestra"), "contributions", str(scene), "-o",
                              str(tmp_path / "out")], env=clean_env(venv), stdout=subprocess.PIPE,
