@@ -1,9 +1,10 @@
-# Fenestra: `make demo`, `make test`, `make bench`. Everything runs with Debian's /usr/bin/python3.
+# Fenestra: `make demo`, `make test`, `make bench`. Everything runs with Debian's /usr/bin/python3, but for
+# packaging (`make wheel`, `make extension`), whose PyPI tools live in a venv of pyenv's Python 3.11.
 PYTHON := /usr/bin/python3
 BUILD  := build
 JOBS   ?= $(shell nproc)
 
-.PHONY: deps build test cpp-test py-test demo demo-annual bench validate install install-addon examples-blend clean
+.PHONY: deps build test cpp-test py-test wheel extension demo demo-annual bench validate install install-addon examples-blend clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -15,10 +16,24 @@ build: deps
 cpp-test: build
 	$(BUILD)/cpp_tests/fenestra_tests
 
-py-test: build
+# The suite installs the wheel and the extension too (test_wheel.py, test_extension.py).
+py-test: build extension
 	cd python_tests && $(PYTHON) -m pytest -q
 
 test: cpp-test py-test
+
+# The wheel (pyproject.toml) and the Blender 4.2+ extension, in $(DIST) (docs/install.md). PyPI's
+# packaging tools (requirements/packaging.txt) live in a venv of pyenv's Python 3.11, never Debian's.
+# PACKAGING_PYTHON=/path/to/python3.13 PACKAGING_VENV=build/venv/packaging-cp313 makes a cp313 wheel.
+DIST           := $(BUILD)/dist
+PACKAGING_VENV ?= $(BUILD)/venv/packaging
+wheel: build
+	@py=$$(FENESTRA_PACKAGING_PYTHON=$(PACKAGING_PYTHON) ./scripts/packaging-venv.sh $(PACKAGING_VENV)) && \
+	  JOBS=$(JOBS) ./scripts/build_wheel.sh "$$py" $(BUILD) $(DIST) >$(BUILD)/wheel-path.txt && \
+	  echo "wheel: $$(cat $(BUILD)/wheel-path.txt)"
+
+extension: wheel
+	@echo "extension: $$($(PYTHON) scripts/make_extension.py $$(cat $(BUILD)/wheel-path.txt) $(DIST))"
 
 # The reference room against Radiance, then the apartment example solved and rendered in Blender.
 demo: build install-addon
