@@ -1,0 +1,90 @@
+"""The Blenders the headless add-on suite runs in, and how a script is run in each
+(the `blender` fixture in conftest.py gives one per test; docs/blender.md, "Tested Blenders").
+
+- Debian's Blender 3.4 binary (`blender` on PATH): `blender -b --factory-startup --python SCRIPT`,
+  the checkout's addon/fenestra linked into a fresh BLENDER_USER_SCRIPTS/addons.
+- Blender 4.5 LTS as the bpy module, in the venv `make bpy-venv` makes (build/bpy-venv, or
+  FENESTRA_BPY_PYTHON): `python blender/run_in_bpy.py SCRIPT`, in fresh user resources
+  (BLENDER_USER_RESOURCES). The add-on is the extension zip that `make extension` writes, installed
+  by Blender's installer as bl_ext.user_default.fenestra; without a zip, the checkout's
+  addon/fenestra linked into the user add-on folder as module `fenestra`.
+
+A script finds the add-on through python_tests/blender/installed.py."""
+
+import glob
+import os
+import shutil
+import subprocess
+from dataclasses import dataclass
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+ADDON = os.path.join(ROOT, "addon", "fenestra")
+BPY_RUNNER = os.path.join(HERE, "blender", "run_in_bpy.py")
+EXTENSION_MODULE = "bl_ext.user_default.fenestra"
+
+
+def extension_zip():
+    """The extension zip the suite installs in bpy: FENESTRA_EXTENSION_ZIP, else the newest
+    build/fenestra-*-linux_x64.zip, else None."""
+    given = os.environ.get("FENESTRA_EXTENSION_ZIP")
+    if given:
+        return given
+    found = sorted(glob.glob(os.path.join(ROOT, "build", "fenestra-*-linux_x64.zip")), key=os.path.getmtime)
+    return found[-1] if found else None
+
+
+def bpy_python():
+    given = os.environ.get("FENESTRA_BPY_PYTHON")
+    if given:
+        return given
+    venv = os.path.join(ROOT, "build", "bpy-venv", "bin", "python")
+    return venv if os.path.exists(venv) else None
+
+
+@dataclass
+class Blender:
+    name: str                 # the test id: "blender-3.4", "bpy-4.5"
+    program: str | None       # the binary, or the venv's python; None: not available
+    missing: str              # why not, when program is None
+
+    @property
+    def is_bpy(self):
+        return self.name.startswith("bpy")
+
+    def command(self, script, args):
+        if self.is_bpy:
+            return [self.program, BPY_RUNNER, script, "--", *args]
+        return [self.program, "-b", "--factory-startup", "--python-exit-code", "1", "--python", script, "--", *args]
+
+    def environment(self, tmp_path):
+        """A fresh user folder with the add-on installed (or to be installed) in it."""
+        if self.is_bpy:
+            resources = tmp_path / "bpy-user"
+            addons = resources / "scripts" / "addons"
+            env = dict(os.environ, BLENDER_USER_RESOURCES=str(resources))
+            zip_path = extension_zip()
+            if zip_path:
+                env.update(FENESTRA_EXTENSION_ZIP=zip_path, FENESTRA_ADDON_MODULE=EXTENSION_MODULE)
+                addons.mkdir(parents=True, exist_ok=True)
+                return env
+        else:
+            addons = tmp_path / "scripts" / "addons"
+            env = dict(os.environ, BLENDER_USER_SCRIPTS=str(tmp_path / "scripts"))
+        addons.mkdir(parents=True, exist_ok=True)
+        if not (addons / "fenestra").exists():
+            os.symlink(ADDON, addons / "fenestra")
+        env.update(FENESTRA_ADDON_MODULE="fenestra")
+        env.pop("FENESTRA_EXTENSION_ZIP", None)
+        return env
+
+    def run(self, tmp_path, script, *args, timeout=600):
+        return subprocess.run(self.command(script, [str(a) for a in args]), capture_output=True, text=True,
+                              timeout=timeout, env=self.environment(tmp_path))
+
+
+def blenders():
+    binary = shutil.which("blender")
+    python = bpy_python()
+    return [Blender("blender-3.4", binary, "Blender is not installed"),
+            Blender("bpy-4.5", python, "no bpy venv: run `make bpy-venv` (or set FENESTRA_BPY_PYTHON)")]
