@@ -11,10 +11,13 @@
 
 A script finds the add-on through python_tests/blender/installed.py."""
 
+import atexit
+import functools
 import glob
 import os
 import shutil
 import subprocess
+import tempfile
 from dataclasses import dataclass
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -26,12 +29,21 @@ EXTENSION_MODULE = "bl_ext.user_default.fenestra"
 
 def extension_zip():
     """The extension zip the suite installs in bpy: FENESTRA_EXTENSION_ZIP, else the newest
-    build/fenestra-*-linux_x64.zip, else None."""
+    build/dist/fenestra-*-linux_x64.zip (`make extension`), else None."""
     given = os.environ.get("FENESTRA_EXTENSION_ZIP")
     if given:
         return given
-    found = sorted(glob.glob(os.path.join(ROOT, "build", "fenestra-*-linux_x64.zip")), key=os.path.getmtime)
+    found = sorted(glob.glob(os.path.join(ROOT, "build", "dist", "fenestra-*-linux_x64.zip")), key=os.path.getmtime)
     return found[-1] if found else None
+
+
+@functools.cache
+def extension_resources(zip_path):
+    """User resources shared by the session's bpy runs: the first run installs the zip (its wheel
+    unpacks to 150 MB, some seconds), the later ones find it installed and enable it."""
+    folder = tempfile.mkdtemp(prefix="fenestra-bpy-user-")
+    atexit.register(shutil.rmtree, folder, True)
+    return folder
 
 
 def bpy_python():
@@ -60,14 +72,13 @@ class Blender:
     def environment(self, tmp_path):
         """A fresh user folder with the add-on installed (or to be installed) in it."""
         if self.is_bpy:
+            zip_path = extension_zip()
+            if zip_path:
+                return dict(os.environ, BLENDER_USER_RESOURCES=extension_resources(zip_path),
+                            FENESTRA_EXTENSION_ZIP=zip_path, FENESTRA_ADDON_MODULE=EXTENSION_MODULE)
             resources = tmp_path / "bpy-user"
             addons = resources / "scripts" / "addons"
             env = dict(os.environ, BLENDER_USER_RESOURCES=str(resources))
-            zip_path = extension_zip()
-            if zip_path:
-                env.update(FENESTRA_EXTENSION_ZIP=zip_path, FENESTRA_ADDON_MODULE=EXTENSION_MODULE)
-                addons.mkdir(parents=True, exist_ok=True)
-                return env
         else:
             addons = tmp_path / "scripts" / "addons"
             env = dict(os.environ, BLENDER_USER_SCRIPTS=str(tmp_path / "scripts"))

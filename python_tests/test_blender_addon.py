@@ -13,6 +13,8 @@ import subprocess
 
 import pytest
 
+import blenders
+
 BLENDER = shutil.which("blender")
 HERE = os.path.dirname(os.path.abspath(__file__))
 ADDON = os.path.join(os.path.dirname(HERE), "addon", "fenestra")
@@ -127,3 +129,18 @@ def test_materials(blender, tmp_path):
     r = blender.run(tmp_path, os.path.join(HERE, "blender", "addon_materials.py"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
     assert "Ran 4 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+
+
+def test_native_libraries_in_bpy(blender, tmp_path):
+    """In bpy 4.5 with the add-on installed from the extension zip, Embree, TBB and OpenImageIO
+    come from bpy's own folder or the extension's vendored wheel, none from the system. (A
+    development build linked into bpy loads Debian's Embree 3 beside bpy's Embree 4, and takes bpy's
+    libtbb.so.12 for Debian's, the same name: docs/blender.md, "Blender versions".)"""
+    if not blender.is_bpy or blenders.extension_zip() is None:
+        pytest.skip("needs bpy and the extension zip (make extension)")
+    r = blender.run(tmp_path, os.path.join(HERE, "blender", "native_libraries.py"))
+    assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
+    libraries = [line.split(" ", 1)[1] for line in r.stdout.splitlines() if line.startswith("LIBRARY ")]
+    assert any("embree" in p for p in libraries) and any("tbb" in p for p in libraries), libraries
+    system = [p for p in libraries if p.startswith(("/usr/", "/lib"))]
+    assert not system, system

@@ -65,6 +65,8 @@ class Materials(unittest.TestCase):
         self.assertEqual(self.materials.material_dict(diffuse), {"type": "diffuse", "reflectance": [0.25, 0.5, 0.75]})
 
     def test_no_node_tree_is_grey(self):
+        if bpy.app.version >= (5, 0, 0):
+            self.skipTest("from 5.0 every material has its node tree")
         self.assertEqual(self.materials.material_dict(bpy.data.materials.new("Bare")), {"type": "diffuse", "reflectance": 0.5})
 
 

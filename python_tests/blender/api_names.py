@@ -377,7 +377,7 @@ class Checker(ast.NodeVisitor):
 
 
 def sources():
-    package = os.path.dirname(importlib.import_module(installed.NAME).__file__)
+    package = os.path.dirname(installed.package().__file__)
     files = [os.path.join(package, "__init__.py")]
     folder = os.path.join(package, "blender")
     files += sorted(os.path.join(folder, f) for f in os.listdir(folder) if f.endswith(".py"))
@@ -387,7 +387,7 @@ def sources():
 
 def main():
     installed.enable()
-    for cls in importlib.import_module(installed.NAME + ".blender").classes:
+    for cls in importlib.import_module(installed.package().__name__ + ".blender").classes:
         ADDON_CLASSES[cls.bl_rna.identifier] = cls
     checked, missing = 0, []
     for path, shown in sources():
