@@ -1,13 +1,14 @@
 """The Blenders the headless add-on suite runs in, and how a script is run in each
-(the `blender` fixture in conftest.py gives one per test; docs/blender.md, "Tested Blenders").
+(the `blender` fixture in conftest.py gives one per test; docs/blender.md, "Blender versions").
 
 - Debian's Blender 3.4 binary (`blender` on PATH): `blender -b --factory-startup --python SCRIPT`,
   the checkout's addon/fenestra linked into a fresh BLENDER_USER_SCRIPTS/addons.
 - Blender 4.5 LTS as the bpy module, in the venv `make bpy-venv` makes (build/bpy-venv, or
-  FENESTRA_BPY_PYTHON): `python blender/run_in_bpy.py SCRIPT`, in fresh user resources
-  (BLENDER_USER_RESOURCES). The add-on is the extension zip that `make extension` writes, installed
-  by Blender's installer as bl_ext.user_default.fenestra; without a zip, the checkout's
-  addon/fenestra linked into the user add-on folder as module `fenestra`.
+  FENESTRA_BPY_PYTHON): `python blender/run_in_bpy.py SCRIPT`. The add-on is the extension zip that
+  `make extension` writes (or FENESTRA_EXTENSION_ZIP), installed by Blender's installer as
+  bl_ext.user_default.fenestra into user resources (BLENDER_USER_RESOURCES) that the session's runs
+  share; without a zip, the checkout's addon/fenestra linked into fresh user resources' add-on
+  folder as module `fenestra`.
 
 A script finds the add-on through python_tests/blender/installed.py."""
 

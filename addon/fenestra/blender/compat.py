@@ -8,7 +8,7 @@ bgl (removed in 5.0: drawing is gpu and blf only); the Boolean solver 'FAST' (re
 5.0: BOOLEAN_SOLVER); dict context overrides (removed in 4.0: Context.temp_override, 3.2+);
 use_auto_smooth and Mesh.calc_normals (removed in 4.1: never used); Operator.__init__ (must pass
 its arguments on from 4.4: no operator defines one); blf.size's dpi argument (removed in 4.0:
-optional since 3.4); the render engine id (BLENDER_EEVEE_NEXT in 4.2 to 4.4: the add-on sets no
+optional since 3.4); the render engine id (BLENDER_EEVEE_NEXT in 4.2 to 4.5: the add-on sets no
 engine)."""
 
 import bpy
