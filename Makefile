@@ -1,9 +1,11 @@
-# Fenestra: `make demo`, `make test`, `make bench`. Everything runs with Debian's /usr/bin/python3.
+# Fenestra: `make demo`, `make test`, `make bench`. Everything runs with Debian's /usr/bin/python3, but for
+# packaging (`make wheel`, `make extension`), whose PyPI tools live in a venv of pyenv's Python 3.11, and
+# the headless Blender suite's second Blender, bpy 4.5, in its own venv (bpy-venv).
 PYTHON := /usr/bin/python3
 BUILD  := build
 JOBS   ?= $(shell nproc)
 
-.PHONY: deps build test layers cpp-test py-test demo demo-annual bench validate install install-addon examples-blend clean
+.PHONY: deps build bpy-venv test layers cpp-test py-test wheel extension demo demo-annual bench validate install install-addon examples-blend clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -15,14 +17,36 @@ build: deps
 cpp-test: build
 	$(BUILD)/cpp_tests/fenestra_tests
 
-py-test: build
-	cd python_tests && $(PYTHON) -m pytest -q
+# Blender 4.5 LTS as the bpy module (requirements/bpy.txt), for the headless add-on suite: a venv
+# of the `python3` first on PATH (a Python 3.11 that is not Debian's; BPY_PYTHON to choose another).
+BPY_VENV := $(BUILD)/bpy-venv
+bpy-venv:
+	@./scripts/bpy-venv.sh $(BPY_VENV)
+
+# The Blender suites run in Debian's Blender 3.4 and in bpy 4.5 (python_tests/blenders.py), bpy 4.5's
+# with the add-on installed from the extension zip; the suite installs the wheel too (test_wheel.py,
+# test_extension.py).
+py-test: build extension bpy-venv
+	cd python_tests && FENESTRA_BPY_PYTHON=$(CURDIR)/$(BPY_VENV)/bin/python $(PYTHON) -m pytest -q
 
 # Each layer of the native core includes only layers below it (docs/architecture.md).
 layers:
 	$(PYTHON) scripts/check_layers.py
 
 test: layers cpp-test py-test
+
+# The wheel (pyproject.toml) and the Blender 4.2+ extension, in $(DIST) (docs/install.md). PyPI's
+# packaging tools (requirements/packaging.txt) live in a venv of pyenv's Python 3.11, never Debian's.
+# PACKAGING_PYTHON=/path/to/python3.13 PACKAGING_VENV=build/venv/packaging-cp313 makes a cp313 wheel.
+DIST           := $(BUILD)/dist
+PACKAGING_VENV ?= $(BUILD)/venv/packaging
+wheel: build
+	@py=$$(FENESTRA_PACKAGING_PYTHON=$(PACKAGING_PYTHON) ./scripts/packaging-venv.sh $(PACKAGING_VENV)) && \
+	  JOBS=$(JOBS) ./scripts/build_wheel.sh "$$py" $(BUILD) $(DIST) >$(BUILD)/wheel-path.txt && \
+	  echo "wheel: $$(cat $(BUILD)/wheel-path.txt)"
+
+extension: wheel
+	@echo "extension: $$($(PYTHON) scripts/make_extension.py $$(cat $(BUILD)/wheel-path.txt) $(DIST))"
 
 # The reference room against Radiance, then the apartment example solved and rendered in Blender.
 demo: build install-addon

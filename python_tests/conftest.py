@@ -5,10 +5,13 @@ import sys
 import numpy as np
 import pytest
 
+import blenders
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "addon"))
 
 EXAMPLES = os.path.join(ROOT, "examples")
+BLENDERS = blenders.blenders()
 CLI = os.environ.get("FENESTRA_CLI", os.path.join(ROOT, "build", "fenestra"))
 
 
@@ -63,3 +66,11 @@ def write_small_room(folder, offset=(0.0, 0.0, 0.0), paths=4096, seed=3):
 def small_room(tmp_path):
     """A grey 3 x 3 x 2.5 m room whose south wall (y = 0) is the opening domain; writes scene.json."""
     return write_small_room(tmp_path)
+
+
+@pytest.fixture(params=BLENDERS, ids=[b.name for b in BLENDERS])
+def blender(request):
+    """Each Blender the headless add-on suite runs in (blenders.py): .run(tmp_path, script, *args)."""
+    if request.param.program is None:
+        pytest.skip(request.param.missing)
+    return request.param

@@ -12,15 +12,14 @@ import subprocess
 
 import pytest
 
-from test_blender_addon import BLENDER, HERE, run_in_blender
+from test_blender_addon import BLENDER, HERE
 
 XVFB_RUN = shutil.which("xvfb-run")
 XDOTOOL = shutil.which("xdotool")
 
 
-@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
-def test_climate_goals_exported_refused_and_solved(tmp_path):
-    r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_climate.py"), str(tmp_path / "out"))
+def test_climate_goals_exported_refused_and_solved(blender, tmp_path):
+    r = blender.run(tmp_path, os.path.join(HERE, "blender", "addon_climate.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
     assert "Ran 10 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 

@@ -13,14 +13,13 @@ import subprocess
 
 import pytest
 
-from test_blender_addon import BLENDER, HERE, run_in_blender
+from test_blender_addon import BLENDER, HERE
 
 XVFB_RUN = shutil.which("xvfb-run")
 
 
-@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
-def test_results_made_visible_and_cleared(tmp_path):
-    r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_results.py"), str(tmp_path / "out"))
+def test_results_made_visible_and_cleared(blender, tmp_path):
+    r = blender.run(tmp_path, os.path.join(HERE, "blender", "addon_results.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
     assert "Ran 9 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 

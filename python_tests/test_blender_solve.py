@@ -5,14 +5,11 @@ or solver settings change. The modal path, with real key events, is in test_blen
 
 import os
 
-import pytest
-
-from test_blender_addon import BLENDER, HERE, run_in_blender
+from test_blender_addon import HERE
 
 
-@pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
-def test_solve_life_cycle(tmp_path):
-    r = run_in_blender(tmp_path, os.path.join(HERE, "blender", "addon_solve.py"), str(tmp_path / "out"))
+def test_solve_life_cycle(blender, tmp_path):
+    r = blender.run(tmp_path, os.path.join(HERE, "blender", "addon_solve.py"), str(tmp_path / "out"))
     print(r.stdout[-3000:])
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
     assert "Ran 5 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]

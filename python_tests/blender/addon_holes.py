@@ -15,11 +15,13 @@ import os
 import sys
 import unittest
 
-import addon_utils
 import bmesh
 import bpy
 import numpy as np
 from mathutils import Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import installed  # noqa: E402
 
 OUT = sys.argv[sys.argv.index("--") + 1] if "--" in sys.argv else "/tmp/fenestra_holes_test"
 W, D, H = 4.0, 4.0, 2.7  # the room: x along the south wall, y into the room, z up
@@ -110,13 +112,13 @@ def result_dict(depth, count):
 
 def reset():
     bpy.ops.wm.read_homefile(use_empty=True)
-    addon_utils.enable("fenestra", default_set=True, handle_error=None)
+    installed.enable()
     assert hasattr(bpy.types.Scene, "fenestra"), "the add-on did not register"
 
 
 def setup(build, wall_thickness=0.0):
     """The scene, the study as the add-on exports it."""
-    from fenestra.blender import export
+    export = installed.blender("export")
     reset()
     walls = build()
     sensors()
@@ -161,7 +163,7 @@ class Holes(unittest.TestCase):
         self.assertEqual(modified, sorted(cut or [w.name for w in walls]))
 
     def apply(self, study, depth):
-        from fenestra.blender import results
+        results = installed.blender("results")
         count = sum(c for _, c in study.sensor_objects)
         results.apply(bpy.context, study, result_dict(depth, count))
 

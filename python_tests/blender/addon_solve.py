@@ -21,6 +21,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+import installed  # noqa: E402
 sys.path.insert(0, os.path.join(HERE, "..", "..", "examples"))
 import addon_study  # noqa: E402
 import build_blend_examples as examples  # noqa: E402
@@ -116,7 +117,7 @@ class Refusals(unittest.TestCase):
         self.assertGreater(suggested, 0.04)
         self.assertLessEqual(suggested, 0.1)
         # The size it names is accepted by the cost model (the solve itself is not run here).
-        import fenestra.blender.export as export
+        export = installed.blender("export")
         solve_settings.element_size = suggested
         staging = os.path.join(OUT, "suggested")
         path = export.build(bpy.context).write(staging)

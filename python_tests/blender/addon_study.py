@@ -10,9 +10,11 @@ import shutil
 import sys
 import unittest
 
-import addon_utils
 import bpy
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import installed  # noqa: E402
 
 OUT = sys.argv[sys.argv.index("--") + 1] if "--" in sys.argv else "/tmp/fenestra_addon_test"
 ROOM = (4.0, 4.0, 2.7)
@@ -21,12 +23,12 @@ CHICAGO = os.path.join(ROOT, "examples", "weather", "USA_IL_Chicago-OHare.Intl.A
 
 
 def enable():
-    addon_utils.enable("fenestra", default_set=True, handle_error=None)
+    installed.enable()
     assert hasattr(bpy.types.Scene, "fenestra"), "the add-on did not register"
 
 
 def disable():
-    addon_utils.disable("fenestra", default_set=True, handle_error=None)
+    installed.disable()
 
 
 def reset():
@@ -171,7 +173,7 @@ class Solve(unittest.TestCase):
         self.assertNotIn("direct samples for", bpy.context.scene.fenestra.results.warnings)
 
     def test_constraints_reach_the_study_when_set(self):
-        from fenestra.blender import native
+        native = installed.blender("native")
         study()
         path = os.path.join(OUT, "study", "scene.json")
         self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
@@ -187,7 +189,8 @@ class Solve(unittest.TestCase):
 
     def test_automatic_constraints_show_greyed_and_choices_reach_the_study(self):
         import fenestra
-        from fenestra.blender import constraint_defaults, properties
+        constraint_defaults = installed.blender("constraint_defaults")
+        properties = installed.blender("properties")
         study()
         c = bpy.context.scene.fenestra.solve.constraints
         # Every key left at 0 shows the solver's own automatic value.
@@ -301,7 +304,7 @@ class ClimateDaylight(unittest.TestCase):
         reset()
 
     def test_climate_sky_is_exported(self):
-        from fenestra.blender import export
+        export = installed.blender("export")
         study()
         sky = climate()
         sky.occupied_start, sky.occupied_end, sky.patches, sky.ground_reflectance = 7.5, 17.0, '2', 0.3
@@ -323,7 +326,7 @@ class ClimateDaylight(unittest.TestCase):
 
     def test_annual_daylight_of_a_room_with_one_window(self):
         import fenestra
-        from fenestra.blender import result_display
+        result_display = installed.blender("result_display")
         study()
         climate()
         f = bpy.context.scene.fenestra
@@ -441,7 +444,7 @@ class ClimateDaylight(unittest.TestCase):
         self.assertFalse(os.path.exists(annual_folder()))
         # Another sky: the operator is not available, and says why.
         bpy.context.scene.fenestra.sky.type = 'UNIFORM'
-        from fenestra.blender.annual_operator import FENESTRA_OT_annual_daylight
+        FENESTRA_OT_annual_daylight = installed.blender("annual_operator").FENESTRA_OT_annual_daylight
         self.assertFalse(FENESTRA_OT_annual_daylight.poll(bpy.context))
 
 

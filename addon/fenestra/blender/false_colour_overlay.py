@@ -5,7 +5,7 @@ import bpy
 import numpy as np
 
 from .viewport_drawing import ViewportDrawing
-from . import result_display
+from . import compat, result_display
 from .toward_viewer import toward_viewer
 
 POINT_SIZE = 7.0  # pixels at UI scale 1
@@ -40,7 +40,7 @@ def _draw():
     import gpu
     import gpu_extras.batch
     depsgraph = context.evaluated_depsgraph_get()
-    shader = gpu.shader.from_builtin('3D_SMOOTH_COLOR')
+    shader = gpu.shader.from_builtin(compat.SMOOTH_COLOR_SHADER)
     gpu.state.depth_test_set('LESS_EQUAL')
     gpu.state.point_size_set(POINT_SIZE * context.preferences.system.ui_scale)
     for name, per_vertex in values.items():

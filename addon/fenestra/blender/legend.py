@@ -6,7 +6,7 @@ import bpy
 import numpy as np
 
 from .viewport_drawing import ViewportDrawing
-from . import result_display
+from . import compat, result_display
 
 STEPS = 64                        # colour samples along the bar
 BAR = (240, 14)                   # pixels at UI scale 1
@@ -25,10 +25,7 @@ def _left(context, scale):
 
 
 def _text_size(size):
-    try:
-        blf.size(0, size)
-    except TypeError:  # dpi was still a required argument
-        blf.size(0, size, 72)
+    blf.size(0, size)
 
 
 def _rectangles(shader, boxes, colours):
@@ -64,7 +61,7 @@ def _draw():
     import gpu
     scale = context.preferences.system.ui_scale
     whole, bar = layout(context)
-    shader = gpu.shader.from_builtin('2D_FLAT_COLOR')
+    shader = gpu.shader.from_builtin(compat.FLAT_COLOR_SHADER)
     gpu.state.blend_set('ALPHA')
     _rectangles(shader, [whole], [BACKGROUND])
     t = np.linspace(0.0, 1.0, STEPS + 1)

@@ -1,5 +1,7 @@
 """Blender materials as Fenestra materials (docs/scene-format.md): what daylight sees of a surface."""
 
+from . import compat
+
 GREY = {"type": "diffuse", "reflectance": 0.5}
 CLEAR_PANE = 0.9  # a thin pane cannot transmit more than a clear pane of its index (0.918 at 1.52)
 LUMINANCE = (0.2126, 0.7152, 0.0722)
@@ -19,7 +21,7 @@ def _input(node, name, fallback):
 
 def _surface_node(material):
     """The shader plugged into the active material output's Surface, or None."""
-    if not material.use_nodes or material.node_tree is None:
+    if not compat.uses_nodes(material):
         return None
     outputs = [n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial"]
     active = [n for n in outputs if n.is_active_output] or outputs
@@ -42,7 +44,7 @@ def material_dict(material):
     kind = node.bl_idname
     if kind == "ShaderNodeBsdfPrincipled":
         color = _rgb(_input(node, "Base Color", material.diffuse_color))
-        transmission = float(_input(node, "Transmission", 0.0))
+        transmission = float(_input(node, compat.PRINCIPLED_TRANSMISSION, 0.0))
         if transmission > 0.5:
             lum = sum(c * w for c, w in zip(color, LUMINANCE))
             return {"type": "glass", "transmittance": round(min(CLEAR_PANE, transmission * lum), 4),

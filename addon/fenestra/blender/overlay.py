@@ -11,6 +11,7 @@ import numpy as np
 
 from .viewport_drawing import ViewportDrawing
 from .export import DOMAIN_ATTRIBUTE
+from . import compat
 from .toward_viewer import toward_viewer
 
 _cache = {}  # object name -> world-space triangle corners (n * 3, 3) or None
@@ -52,7 +53,7 @@ def _draw():
     import gpu
     import gpu_extras.batch
     depsgraph = context.evaluated_depsgraph_get()
-    shader = gpu.shader.from_builtin('3D_UNIFORM_COLOR')
+    shader = gpu.shader.from_builtin(compat.UNIFORM_COLOR_SHADER)
     gpu.state.blend_set('ALPHA')
     gpu.state.depth_test_set('LESS_EQUAL')
     gpu.state.depth_mask_set(False)  # translucent: faces behind it still show through

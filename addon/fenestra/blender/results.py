@@ -5,7 +5,7 @@ import bmesh
 import bpy
 import numpy as np
 
-from . import annual_results, climate_goal_properties, climate_results, sky_reference
+from . import annual_results, climate_goal_properties, climate_results, compat, sky_reference
 from .cutter import Cutter
 from .export import BOOLEAN_NAME, OPEN_THROUGH_NAME, is_result_modifier
 
@@ -67,8 +67,8 @@ def _open_through_group():
     if group is not None and group.bl_idname == 'GeometryNodeTree':
         return group
     group = bpy.data.node_groups.new(OPEN_THROUGH_NAME, 'GeometryNodeTree')
-    group.inputs.new('NodeSocketGeometry', "Geometry")
-    group.outputs.new('NodeSocketGeometry', "Geometry")
+    compat.new_group_socket(group, 'INPUT', 'NodeSocketGeometry', "Geometry")
+    compat.new_group_socket(group, 'OUTPUT', 'NodeSocketGeometry', "Geometry")
     nodes, links = group.nodes, group.links
     given, out = nodes.new('NodeGroupInput'), nodes.new('NodeGroupOutput')
     flag = nodes.new('GeometryNodeInputNamedAttribute')
@@ -231,7 +231,7 @@ def apply(context, study, result):
             m.operation = 'DIFFERENCE'
             m.operand_type = 'COLLECTION'
             m.collection = coll
-            m.solver = 'EXACT'
+            m.solver = compat.BOOLEAN_SOLVER
             m.use_hole_tolerant = True
             # A closed mesh is a solid to the Boolean: a room with zero-thickness walls keeps a
             # face across the hole at the cutter's room side; this modifier removes it.

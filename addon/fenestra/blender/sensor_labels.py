@@ -69,10 +69,7 @@ def _draw():
             or context.region_data is None):
         return
     scale = context.preferences.system.ui_scale
-    try:
-        blf.size(0, int(TEXT * scale))
-    except TypeError:
-        blf.size(0, int(TEXT * scale), 72)
+    blf.size(0, int(TEXT * scale))
     blf.color(0, 1.0, 1.0, 1.0, 1.0)
     blf.enable(0, blf.SHADOW)
     blf.shadow(0, 3, 0.0, 0.0, 0.0, 1.0)

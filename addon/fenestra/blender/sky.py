@@ -4,7 +4,7 @@ import math
 
 import bpy
 
-from . import weather_file
+from . import compat, weather_file
 
 WORLD_NODE = "Fenestra Sky"
 
@@ -87,7 +87,7 @@ def show_in_world(scene, image_path, strength):
     reads it) at the given strength."""
     world = scene.world or bpy.data.worlds.new("World")
     scene.world = world
-    world.use_nodes = True
+    compat.use_nodes(world)
     nodes, links = world.node_tree.nodes, world.node_tree.links
     image = bpy.data.images.load(image_path, check_existing=True)
     image.reload()

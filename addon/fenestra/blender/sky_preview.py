@@ -10,7 +10,7 @@ import tempfile
 
 import numpy as np
 
-from . import export, native, sky
+from . import compat, export, native, sky
 
 MID_GREY = 0.18     # scene-linear value that the view transforms show as mid grey
 LUMINANCE = (0.2126, 0.7152, 0.0722)  # linear sRGB (Rec. 709) weights
@@ -52,7 +52,7 @@ def preview(scene):
 def strength_changed(sky_settings, context):
     """Update of *Preview Strength*: the previewed World at the new strength, nothing recomputed."""
     world = context.scene.world
-    if world is None or not world.use_nodes or sky.WORLD_NODE not in world.node_tree.nodes:
+    if world is None or not compat.uses_nodes(world) or sky.WORLD_NODE not in world.node_tree.nodes:
         return  # no preview yet: the next Preview Sky uses the strength
     for link in world.node_tree.nodes[sky.WORLD_NODE].outputs["Color"].links:
         if link.to_node.bl_idname == "ShaderNodeBackground":
