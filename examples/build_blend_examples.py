@@ -382,7 +382,7 @@ BUILDERS = {"room": build_room, "apartment": build_apartment, "museum": build_mu
 
 def export_study(directory):
     """The study as the add-on exports it for a solve: scene.json + scene.obj."""
-    from fenestra.blender import export
+    from fenestra.blender.study import export
     study = export.build(bpy.context)
     study.write(directory)
     return study
@@ -421,7 +421,7 @@ def render(path, cutaway, samples=128, resolution=(640, 360), exposure=-3.0):
         bpy.data.objects[name].visible_camera = False
     # The openings cut for good: the cutters are hidden from renders, so the result's modifiers
     # (the Boolean, then the one that opens the holes) are applied.
-    from fenestra.blender import export
+    from fenestra.blender.study import export
     for obj in list(scene.objects):
         for name in [m.name for m in obj.modifiers if export.is_result_modifier(m)]:
             select_only(obj)

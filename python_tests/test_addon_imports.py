@@ -14,10 +14,9 @@ BLENDER_MODULES = os.path.join(ROOT, "addon", "fenestra", "blender")
 def name_assumptions(folder):
     """file:line: what, for each place that takes the add-on's module name to be `fenestra`."""
     found = []
-    for name in sorted(os.listdir(folder)):
-        if not name.endswith(".py"):
-            continue
-        path = os.path.join(folder, name)
+    paths = sorted(os.path.join(here, f) for here, _, names in os.walk(folder) for f in names if f.endswith(".py"))
+    for path in paths:
+        name = os.path.relpath(path, folder)
         with open(path) as f:
             tree = ast.parse(f.read(), path)
         for node in ast.walk(tree):
@@ -44,11 +43,13 @@ def test_blender_modules_assume_no_package_name():
 
 
 def test_assumptions_are_found(tmp_path):
-    (tmp_path / "bad.py").write_text(
+    (tmp_path / "room").mkdir()
+    (tmp_path / "room" / "bad.py").write_text(
         "import addon_utils\nimport bpy\nimport fenestra.api\nfrom fenestra import api\n"
         "prefs = bpy.context.preferences.addons['fenestra'].preferences\n"
         "addon_utils.enable('fenestra')\n"
         "class P(bpy.types.AddonPreferences):\n    bl_idname = 'fenestra'\n"
         "from . import api as fine\n")
     found = name_assumptions(tmp_path)
+    assert all(line.startswith(os.path.join("room", "bad.py")) for line in found), found
     assert sorted(int(line.split(":")[1]) for line in found) == [3, 4, 5, 6, 7], found

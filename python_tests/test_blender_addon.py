@@ -90,7 +90,7 @@ def test_addon_registers_without_the_native_module(tmp_path):
         "import addon_utils, bpy\n"
         "addon_utils.enable('fenestra', default_set=True, handle_error=None)\n"
         "assert hasattr(bpy.types.Scene, 'fenestra')\n"
-        "from fenestra.blender import native\n"
+        "from fenestra.blender.com import native\n"
         "assert 'make build' in native.unavailable(), native.unavailable()\n"
         "try:\n"
         "    bpy.ops.fenestra.solve_openings()\n"

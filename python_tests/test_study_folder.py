@@ -15,14 +15,15 @@ BLENDER_MODULES = os.path.join(ROOT, "addon", "fenestra", "blender")
 
 def load(name):
     """A module of the add-on that imports no bpy, loaded without the package (which does)."""
-    spec = importlib.util.spec_from_file_location("fenestra_blender_" + name, os.path.join(BLENDER_MODULES, name + ".py"))
+    spec = importlib.util.spec_from_file_location("fenestra_blender_" + name.replace("/", "_"),
+                                                  os.path.join(BLENDER_MODULES, name + ".py"))
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
 
 
-study_folder = load("study_folder")
-study_fingerprint = load("study_fingerprint")
+study_folder = load("com/study_folder")
+study_fingerprint = load("com/study_fingerprint")
 
 
 def write(folder, files):

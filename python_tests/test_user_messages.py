@@ -1,4 +1,4 @@
-"""The add-on's translation of the core's messages (addon/fenestra/blender/user_messages.py), on
+"""The add-on's translation of the core's messages (addon/fenestra/blender/com/user_messages.py), on
 the messages the core really gives for studies written as the add-on writes them: the OBJ groups
 are `<object>` and `<object>.domain`, the settings are fields of the Fenestra tab. The translated
 message names objects, vertices and fields, never a scene-file key, an option or a path.
@@ -17,7 +17,7 @@ import fenestra
 from conftest import ROOT
 
 spec = importlib.util.spec_from_file_location(
-    "user_messages", os.path.join(ROOT, "addon", "fenestra", "blender", "user_messages.py"))
+    "user_messages", os.path.join(ROOT, "addon", "fenestra", "blender", "com", "user_messages.py"))
 user_messages = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(user_messages)
 

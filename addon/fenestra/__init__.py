@@ -24,6 +24,8 @@ bl_info = {
 
 import sys  # noqa: E402
 
+from . import native_status  # noqa: E402
+
 try:
     from .daylight import (
         preetham_radiance,
@@ -64,9 +66,7 @@ except ImportError as exc:
     # Inside Blender the add-on still registers and its panel says why the native module is missing.
     if "bpy" not in sys.modules:
         raise
-    import_error = exc
-else:
-    import_error = None
+    native_status.import_error = exc
 
 
 __all__ = [

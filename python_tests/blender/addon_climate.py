@@ -49,7 +49,7 @@ def add_goal(metric, **values):
 
 
 def exported():
-    export = installed.blender("export")
+    export = installed.blender("study.export")
     return export.build(bpy.context)
 
 
@@ -138,11 +138,11 @@ class Export(unittest.TestCase):
         self.assertEqual([g.metric for g in goals.climate], ['ASE'])
         bpy.ops.fenestra.climate_goal_remove()
         self.assertEqual(len(goals.climate), 0)
-        FENESTRA_OT_climate_goal_remove = installed.blender("climate_panel").FENESTRA_OT_climate_goal_remove
+        FENESTRA_OT_climate_goal_remove = installed.blender("ui.climate_panel").FENESTRA_OT_climate_goal_remove
         self.assertFalse(FENESTRA_OT_climate_goal_remove.poll(bpy.context))
 
     def test_only_goals_and_groups_leave_the_contributions_reusable(self):
-        study_fingerprint = installed.blender("study_fingerprint")
+        study_fingerprint = installed.blender("com.study_fingerprint")
         room()
         add_goal('SDA')
         before = study_fingerprint.contributions_fingerprint(exported())
@@ -208,8 +208,8 @@ class Solved(unittest.TestCase):
         addon_study.reset()
 
     def test_a_solve_on_climate_goals_alone(self):
-        false_colour = installed.blender("false_colour")
-        result_display = installed.blender("result_display")
+        false_colour = installed.blender("com.false_colour")
+        result_display = installed.blender("result.result_display")
         sensors, near = room()
         f = bpy.context.scene.fenestra
         f.goals.source = 'NONE'
@@ -267,7 +267,7 @@ class Solved(unittest.TestCase):
             scale, shown = result_display.current(bpy.context)
             np.testing.assert_allclose(shown["Fenestra Sensors"], factor * np.array(climate["per_sensor"][key]), rtol=1e-5)
             self.assertGreaterEqual(scale.top, np.max(shown["Fenestra Sensors"]))
-        FENESTRA_PT_climate_results = installed.blender("climate_panel").FENESTRA_PT_climate_results
+        FENESTRA_PT_climate_results = installed.blender("ui.climate_panel").FENESTRA_PT_climate_results
         self.assertTrue(FENESTRA_PT_climate_results.poll(bpy.context))
 
         # Each trade-off says whether its openings meet the climate goals (the core's figures).

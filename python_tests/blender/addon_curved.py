@@ -101,7 +101,7 @@ def box(name, lo, hi, uv_map):
 
 
 def setup():
-    export = installed.blender("export")
+    export = installed.blender("study.export")
     reset()
     box("Plinth", (0.3, 0.9, 0.0), (0.6, 1.2, 0.3), uv_map=True)  # before the room: its vt come first
     room()
@@ -137,7 +137,7 @@ def flat_opening():
 
 
 def apply(study):
-    results = installed.blender("results")
+    results = installed.blender("result.results")
     count = sum(c for _, c in study.sensor_objects)
     results.apply(bpy.context, study, {
         "openings": [curved_opening(), flat_opening()],
@@ -221,7 +221,7 @@ class CurvedWall(unittest.TestCase):
             mesh = bpy.data.objects[name].data
             mesh.uv_layers.remove(mesh.uv_layers.active)
             mesh.update()  # (4.5 does not tag the mesh for the depsgraph on its own; the UI's edits do)
-        export = installed.blender("export")
+        export = installed.blender("study.export")
         plain = export.build(bpy.context).obj_text
         stripped = "\n".join(re.sub(r"/\d+", "", line) for line in study.obj_text.splitlines()
                              if not line.startswith("vt ")) + "\n"
@@ -277,7 +277,7 @@ class CurvedWall(unittest.TestCase):
     def test_curved_cutter_follows_the_surface(self):
         """A closed solid through the grid: each grid point's normal line carries a room-side vertex
         (on the room side, flagged faces only) and a far one, the grid's outline the surface."""
-        results = installed.blender("results")
+        results = installed.blender("result.results")
         apply(setup())
         obj = bpy.data.objects["Fenestra Opening 001"]
         mesh = obj.data
@@ -306,7 +306,7 @@ class CurvedWall(unittest.TestCase):
         self.assertGreater(min(offsets), margin)
         self.assertLess(max(offsets), margin + 0.02)
         flags = np.zeros(len(mesh.polygons), bool)
-        mesh.attributes[results.ROOM_SIDE_ATTRIBUTE].data.foreach_get("value", flags)
+        mesh.attributes[installed.blender("com.names").ROOM_SIDE_ATTRIBUTE].data.foreach_get("value", flags)
         self.assertEqual(flags.sum(), (ROWS - 1) * (COLUMNS - 1) + ring)
         radius = np.linalg.norm(verts[:, :2], axis=1)
         for polygon, flag in zip(mesh.polygons, flags):
@@ -347,7 +347,7 @@ class CurvedWall(unittest.TestCase):
 
     def test_flat_opening_gets_a_box(self):
         """A flat opening's cutter is the box it always was: 12 vertices, 10 faces, 5 on the room side."""
-        results = installed.blender("results")
+        results = installed.blender("result.results")
         apply(setup())
         obj = bpy.data.objects["Fenestra Opening 002"]
         mesh = obj.data
@@ -359,7 +359,7 @@ class CurvedWall(unittest.TestCase):
         np.testing.assert_allclose(verts, box, atol=1e-6)
         self.assertEqual(len(mesh.polygons), 10)
         flags = np.zeros(10, bool)
-        mesh.attributes[results.ROOM_SIDE_ATTRIBUTE].data.foreach_get("value", flags)
+        mesh.attributes[installed.blender("com.names").ROOM_SIDE_ATTRIBUTE].data.foreach_get("value", flags)
         self.assertEqual(flags.tolist(), [True] * 5 + [False] * 5)
         for polygon, flag in zip(mesh.polygons, flags):  # the room is at y > 0
             y = [obj.matrix_world @ mesh.vertices[i].co for i in polygon.vertices]

@@ -118,7 +118,7 @@ def reset():
 
 def setup(build, wall_thickness=0.0):
     """The scene, the study as the add-on exports it."""
-    export = installed.blender("export")
+    export = installed.blender("study.export")
     reset()
     walls = build()
     sensors()
@@ -163,7 +163,7 @@ class Holes(unittest.TestCase):
         self.assertEqual(modified, sorted(cut or [w.name for w in walls]))
 
     def apply(self, study, depth):
-        results = installed.blender("results")
+        results = installed.blender("result.results")
         count = sum(c for _, c in study.sensor_objects)
         results.apply(bpy.context, study, result_dict(depth, count))
 

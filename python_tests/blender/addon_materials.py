@@ -42,7 +42,7 @@ class Materials(unittest.TestCase):
     def setUp(self):
         bpy.ops.wm.read_homefile(use_empty=True)
         installed.enable()
-        self.materials = installed.blender("materials")
+        self.materials = installed.blender("study.materials")
 
     def test_principled_transmission_is_glass(self):
         m = principled("Pane", transmission=1.0, base_color=(0.9, 0.9, 0.9, 1.0))

@@ -67,7 +67,7 @@ class SensorValues(unittest.TestCase):
         addon_study.reset()
 
     def test_each_sensor_is_found_by_object_and_vertex(self):
-        sensor_results = installed.blender("sensor_results")
+        sensor_results = installed.blender("result.sensor_results")
         solved()
         r = bpy.context.scene.fenestra.results
         sensors = bpy.data.objects["Fenestra Sensors"]
@@ -89,8 +89,8 @@ class SensorValues(unittest.TestCase):
         self.assertAlmostEqual(abs(rows[0].achieved - rows[0].goal) / rows[0].goal, max(errors), places=6)
 
     def test_false_colour_quantities_and_scales(self):
-        false_colour = installed.blender("false_colour")
-        result_display = installed.blender("result_display")
+        false_colour = installed.blender("com.false_colour")
+        result_display = installed.blender("result.result_display")
         solved()
         display = bpy.context.scene.fenestra.display
         r = bpy.context.scene.fenestra.results
@@ -135,7 +135,7 @@ class SensorValues(unittest.TestCase):
         self.assertIsNone(result_display.current(bpy.context))
 
     def test_nice_scales(self):
-        false_colour = installed.blender("false_colour")
+        false_colour = installed.blender("com.false_colour")
         self.assertEqual(false_colour.nice_top(3712.0), 4000.0)
         self.assertEqual(false_colour.nice_top(41.0), 50.0)
         self.assertEqual(false_colour.nice_top(0.37), 0.4)
@@ -166,7 +166,7 @@ class PreviewSky(unittest.TestCase):
         addon_study.reset()
 
     def test_exposure_brings_the_zenith_to_mid_grey_and_strength_applies_at_once(self):
-        sky_preview = installed.blender("sky_preview")
+        sky_preview = installed.blender("result.sky_preview")
         addon_study.study()
         scene = bpy.context.scene
         s = scene.fenestra.sky
@@ -200,7 +200,7 @@ class DomainHighlight(unittest.TestCase):
         addon_study.reset()
 
     def test_highlight_leaves_the_openings_uncovered_and_follows_edit_mode(self):
-        overlay = installed.blender("overlay")
+        overlay = installed.blender("draw.overlay")
         room = addon_study.study()
         depsgraph = bpy.context.evaluated_depsgraph_get()
         self.assertAlmostEqual(triangles_area(overlay.domain_triangles(room, depsgraph)), WALL_AREA, places=4)
@@ -252,7 +252,7 @@ class Clearing(unittest.TestCase):
         self.assertIn("Fenestra Openings", bpy.data.collections)
 
     def test_clear_domain_counts_and_unmarks_only_marked_selected_faces(self):
-        operators = installed.blender("operators")
+        operators = installed.blender("ui.operators")
         room = addon_study.box_room()
         other = addon_study.box_room()
         for obj in (room, other):

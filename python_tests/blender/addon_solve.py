@@ -117,7 +117,7 @@ class Refusals(unittest.TestCase):
         self.assertGreater(suggested, 0.04)
         self.assertLessEqual(suggested, 0.1)
         # The size it names is accepted by the cost model (the solve itself is not run here).
-        export = installed.blender("export")
+        export = installed.blender("study.export")
         solve_settings.element_size = suggested
         staging = os.path.join(OUT, "suggested")
         path = export.build(bpy.context).write(staging)

@@ -173,7 +173,7 @@ class Solve(unittest.TestCase):
         self.assertNotIn("direct samples for", bpy.context.scene.fenestra.results.warnings)
 
     def test_constraints_reach_the_study_when_set(self):
-        native = installed.blender("native")
+        native = installed.blender("com.native")
         study()
         path = os.path.join(OUT, "study", "scene.json")
         self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
@@ -189,8 +189,8 @@ class Solve(unittest.TestCase):
 
     def test_automatic_constraints_show_greyed_and_choices_reach_the_study(self):
         import fenestra
-        constraint_defaults = installed.blender("constraint_defaults")
-        properties = installed.blender("properties")
+        constraint_defaults = installed.blender("ui.constraint_defaults")
+        properties = installed.blender("props.properties")
         study()
         c = bpy.context.scene.fenestra.solve.constraints
         # Every key left at 0 shows the solver's own automatic value.
@@ -304,7 +304,7 @@ class ClimateDaylight(unittest.TestCase):
         reset()
 
     def test_climate_sky_is_exported(self):
-        export = installed.blender("export")
+        export = installed.blender("study.export")
         study()
         sky = climate()
         sky.occupied_start, sky.occupied_end, sky.patches, sky.ground_reflectance = 7.5, 17.0, '2', 0.3
@@ -326,7 +326,7 @@ class ClimateDaylight(unittest.TestCase):
 
     def test_annual_daylight_of_a_room_with_one_window(self):
         import fenestra
-        result_display = installed.blender("result_display")
+        result_display = installed.blender("result.result_display")
         study()
         climate()
         f = bpy.context.scene.fenestra
@@ -444,7 +444,7 @@ class ClimateDaylight(unittest.TestCase):
         self.assertFalse(os.path.exists(annual_folder()))
         # Another sky: the operator is not available, and says why.
         bpy.context.scene.fenestra.sky.type = 'UNIFORM'
-        FENESTRA_OT_annual_daylight = installed.blender("annual_operator").FENESTRA_OT_annual_daylight
+        FENESTRA_OT_annual_daylight = installed.blender("ui.annual_operator").FENESTRA_OT_annual_daylight
         self.assertFalse(FENESTRA_OT_annual_daylight.poll(bpy.context))
 
 

@@ -33,7 +33,7 @@ class SunPosition(unittest.TestCase):
     def setUp(self):
         bpy.ops.wm.read_homefile(use_empty=True)
         installed.enable()
-        self.sky = installed.blender("sky")
+        self.sky = installed.blender("study.sky")
 
     def test_place_date_and_north_from_sun_position(self):
         sp = enable_sun_position()

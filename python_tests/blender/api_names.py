@@ -76,6 +76,18 @@ CONTEXT_MEMBERS = {"active_object": Struct(bpy.types.Object.bl_rna), "object": S
                    "selected_objects": True, "visible_objects": True, "objects_in_mode": True,
                    "selected_editable_objects": True}
 
+def inherited_from_addon(class_name):
+    """What a registered class of the add-on inherits from the add-on's own classes (a mixin such
+    as JobOperator): methods and attributes that the class's own source does not show."""
+    found = set()
+    for cls in ADDON_CLASSES.values():
+        if cls.__name__ == class_name:
+            for base in cls.__mro__[1:]:
+                if base.__module__.startswith(installed.package().__name__ + "."):
+                    found |= set(vars(base))
+    return found
+
+
 def python_class(rna):
     return ADDON_CLASSES.get(rna.identifier) or getattr(bpy.types, rna.identifier, None)
 
@@ -149,6 +161,7 @@ class Checker(ast.NodeVisitor):
             elif (isinstance(n, ast.Attribute) and isinstance(n.ctx, ast.Store)
                   and isinstance(n.value, ast.Name) and n.value.id == "self"):
                 own.add(n.attr)
+        own |= inherited_from_addon(node.name)
         self.bases.append(base)
         self.own.append(own)
         self.generic_visit(node)
@@ -380,7 +393,7 @@ def sources():
     package = os.path.dirname(installed.package().__file__)
     files = [os.path.join(package, "__init__.py")]
     folder = os.path.join(package, "blender")
-    files += sorted(os.path.join(folder, f) for f in os.listdir(folder) if f.endswith(".py"))
+    files += sorted(os.path.join(here, f) for here, _, names in os.walk(folder) for f in names if f.endswith(".py"))
     extra = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     return [(f, os.path.relpath(f, os.path.dirname(package))) for f in files] + [(f, f) for f in extra]
 

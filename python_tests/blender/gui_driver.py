@@ -73,7 +73,7 @@ def view3d_centre():
 
 def job_state():
     """The last job, numbered in the order jobs started (no bpy: the monitor thread calls it too)."""
-    from fenestra.blender import solve_job
+    from fenestra.blender.com import solve_job
     with JOBS_LOCK:
         job = solve_job.last()
         if job is None:
@@ -100,7 +100,7 @@ def monitor_jobs():
 
 
 def report_state():
-    from fenestra.blender import solve_job
+    from fenestra.blender.com import solve_job
     f = bpy.context.scene.fenestra
     write_json(os.path.join(CHANNEL, "state.json"), {
         "now": time.monotonic(), "running": solve_job.running() is not None, "job": job_state(),

@@ -44,5 +44,5 @@ def package():
 
 
 def blender(name):
-    """The add-on's Blender module `name` (export, results, ...)."""
+    """The add-on's Blender module `name`, by its room (study.export, result.results, ...)."""
     return importlib.import_module("%s.blender.%s" % (package().__name__, name))

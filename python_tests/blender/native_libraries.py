@@ -8,7 +8,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import installed  # noqa: E402
 
 installed.enable()
-native = installed.blender("native")
+native = installed.blender("com.native")
 assert native.unavailable() is None, native.unavailable()
 with open("/proc/self/maps") as f:
     paths = {line.split()[-1] for line in f if "/" in line}

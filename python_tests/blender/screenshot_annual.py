@@ -77,7 +77,7 @@ def setup():
 
 
 def wait_for_the_run():
-    from fenestra.blender import solve_job
+    from fenestra.blender.com import solve_job
     if solve_job.running() is not None or not bpy.context.scene.fenestra.annual.valid:
         if time.time() - state["started"] > RUN_TIMEOUT_S:
             print("the annual run did not finish: %s" % getattr(solve_job.last(), "outcome", None))
@@ -102,7 +102,8 @@ def window_pixels(path):
 
 
 def shoot():
-    from fenestra.blender import legend, result_display
+    from fenestra.blender.draw import legend
+    from fenestra.blender.result import result_display
     window, area, region = view3d()
     with bpy.context.temp_override(window=window):
         bpy.ops.screen.screenshot(filepath=OUT)

@@ -128,7 +128,7 @@ def wait_for_the_goals():
 
 
 def wait_for_the_solve():
-    from fenestra.blender import solve_job
+    from fenestra.blender.com import solve_job
     r = bpy.context.scene.fenestra.results
     if solve_job.running() is not None or not r.valid:
         if time.time() - state["started"] > RUN_TIMEOUT_S:
@@ -158,8 +158,8 @@ def window_pixels(path):
 
 
 def shoot():
-    from fenestra.blender import result_display
-    from fenestra.blender.climate_panel import FENESTRA_PT_climate_results
+    from fenestra.blender.result import result_display
+    from fenestra.blender.ui.climate_panel import FENESTRA_PT_climate_results
     window, area, region = view3d()
     whole = os.path.join(os.path.dirname(OUT), "climate_window.png")
     with bpy.context.temp_override(window=window):

@@ -132,7 +132,8 @@ def check_brighter():
 
 
 def check_legend():
-    from fenestra.blender import legend, result_display
+    from fenestra.blender.draw import legend
+    from fenestra.blender.result import result_display
     pixels, offset = screenshot("results.png")
     window, area, region = view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
@@ -170,7 +171,7 @@ def region_data():
 
 
 def check_hover():
-    from fenestra.blender import sensor_hover
+    from fenestra.blender.draw import sensor_hover
     pixels, (ox, oy) = screenshot("hover.png")
     hovered = dict(sensor_hover.hovered)
     check("hovered_sensor", hovered.get("object") == "Fenestra Sensors" and hovered.get("vertex") == state["target"],
@@ -185,7 +186,7 @@ def check_hover():
 
 
 def finish():
-    from fenestra.blender import sensor_hover
+    from fenestra.blender.draw import sensor_hover
     check("inspect_ends_on_esc", not sensor_hover.hovered, str(sensor_hover.hovered))
     window_script.exit_with_verdict(state["failed"])
 

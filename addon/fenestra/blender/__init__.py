@@ -1,32 +1,27 @@
 """The Blender add-on over the fenestra API: the only part of the package that imports bpy.
 
-properties (scene.fenestra, object.fenestra; display_settings: scene.fenestra.display), export
-(scene -> study files), materials, sky, sky_preview (Preview Sky's World and exposure), results
-(cutters, Booleans, achieved lux), cutter (an opening's cutter as a solid), operators,
-result_operators and sensor_hover (Inspect Sensors), panels and result_panels (3D View sidebar,
-"Fenestra" tab). Drawn in the viewport: overlay (the domain highlighted), false_colour_overlay
-(the sensors in false colour), legend (its colour bar), sensor_labels (goal and achieved next to
-the selected or pointed-at sensors). user_messages (the core's messages in the user's words),
-visibility (hidden marked objects), goal_bounds (the goal fields' ranges), setup_checks and
-check_setup (warnings before a solve), opening_cutters and evaluate_openings (the cutters as the
-user moved them, path-traced), tradeoff_operators (a simpler design from the solve's list).
-A solve: solve_job (the worker), solve_progress (its bar and Cancel button), solve_guard (what
-cancels it), study_folder (replaced only on success), study_fingerprint and contributions_cache
-(the contributions reused when only goals or solver settings changed).
-Climate-based daylight: weather_file (the climate sky's file), annual_operator and annual_job (Annual
-Daylight on the cutters as they stand, a job like a solve's), annual_properties and annual_results
-(its figures in scene.fenestra.annual), annual_panel (the metrics under Results). Climate goals: climate_goal_properties (the goals and a
-solve's figures), climate_goals (their part of the study), climate_results (the result's figures in
-the model), climate_panel (their list under Sensors, what was reached under Results); sensor_table
-(a per-sensor figure by object and vertex).
+Its rooms, bottom to top (each imports only its own and those below; docs/architecture.md):
+- com/: plain logic, no Blender: the names given to Blender's data (names), StudyError, the solve
+  and annual jobs, the study folder and fingerprints, the kept contributions, the native module as
+  the add-on sees it, the core's messages in the user's words, false colour's scale, a cutter's solid;
+- study/: the scene read as a study (export, climate goals, materials, sky, weather file, hidden
+  objects), the checks before a solve, the openings read back from their cutters;
+- result/: a result put into the scene (cutters, Booleans, achieved values, climate and annual
+  figures) and what the viewport shows of it; Preview Sky's World;
+- props/: scene.fenestra and object.fenestra;
+- draw/: what the 3D View draws (domain, false colour, legend, sensor labels, Inspect Sensors);
+- ui/: the operators, the panels, a running job's modal half and progress.
+compat.py (Blender versions' differences) serves every room but com/. This module registers the
+classes in order (the panels' order in the sidebar is their registration order).
 """
 
 import bpy
 
-from . import (annual_operator, annual_panel, check_setup, climate_panel, contributions_cache, evaluate_openings,
-               false_colour_overlay,
-               legend, operators, overlay, panels, properties, result_operators, result_panels, sensor_hover,
-               sensor_labels, solve_guard, solve_job, solve_progress, tradeoff_operators)
+from .com import contributions_cache, solve_job
+from .draw import false_colour_overlay, legend, overlay, sensor_hover, sensor_labels
+from .props import properties
+from .ui import (annual_operator, annual_panel, check_setup, climate_panel, evaluate_openings, operators, panels,
+                 result_operators, result_panels, solve_guard, solve_progress, tradeoff_operators)
 
 classes = (properties.classes + operators.classes + result_operators.classes + sensor_hover.classes
            + evaluate_openings.classes + solve_progress.classes + panels.classes + climate_panel.classes

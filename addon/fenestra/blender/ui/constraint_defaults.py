@@ -1,0 +1,31 @@
+"""The solver's automatic constraints as the Constraints panel shows them, greyed beside the
+fields left at 0 (the values come from the native module: one source of truth)."""
+
+from ..com import native
+
+_cache = {}
+
+# Keys a chosen catalogue replaces: its sizes are the openings' sizes.
+_CATALOGUE_SIZES = ("min_width", "min_height")
+
+
+def _defaults(full_height):
+    if full_height not in _cache:
+        from ...api import automatic_constraints
+        _cache[full_height] = automatic_constraints(full_height=full_height)
+    return _cache[full_height]
+
+
+def _text(key, value):
+    if key == "panel_width_per_opening":
+        return "auto 1 per %g m" % value
+    return "auto %g m" % value
+
+
+def automatic_values(constraints):
+    """{key: greyed text} for the keys left at 0 that the solver fills in."""
+    if not constraints.automatic or native.unavailable() is not None:
+        return {}
+    values = _defaults(bool(constraints.full_height))
+    return {key: _text(key, value) for key, (value, _why) in values.items()
+            if getattr(constraints, key) == 0 and not (constraints.catalogue != 'NONE' and key in _CATALOGUE_SIZES)}
