@@ -157,7 +157,7 @@ def test_an_unreachable_scheduler_is_named_within_seconds():
 
 
 def test_a_version_mismatch_is_named(cluster, monkeypatch):
-    monkeypatch.setattr(distributed, "PROTOCOL", distributed.PROTOCOL + 1)
+    monkeypatch.setattr(distributed.identity, "PROTOCOL", distributed.PROTOCOL + 1)
     with pytest.raises(distributed.ClusterError, match="runs Fenestra .* this client Fenestra .* same Fenestra build"):
         distributed.Cluster._check_workers(cluster, timeout=5)
 
@@ -285,7 +285,7 @@ def test_progress_is_aggregated_and_a_cancel_stops_the_workers(tmp_path, cluster
     assert all(status == "tracing contribution paths" for _, status in seen)
     # The native work stops on the workers (cancelling a Dask task alone would leave it running).
     deadline = time.monotonic() + 15
-    while any(cluster.client.run(lambda: len(distributed._RUNNING)).values()):
+    while any(cluster.client.run(lambda: len(distributed.worker._RUNNING)).values()):
         assert time.monotonic() < deadline, "shards still running on the workers"
         time.sleep(0.1)
 
@@ -293,7 +293,7 @@ def test_progress_is_aggregated_and_a_cancel_stops_the_workers(tmp_path, cluster
 def test_a_shard_too_large_for_its_worker_is_refused_before_any_work(tmp_path):
     path = write_floor(tmp_path, sensors=24, paths=1 << 16)
     estimate = fenestra.estimate_cost(fenestra.load_scene(str(path)), "contributions")
-    blocks = distributed._blocks(24, 2)
+    blocks = distributed.client._blocks(24, 2)
     need = distributed.check_shards_fit(estimate, blocks, {"tcp://a:1": 0})  # no limit: fits, says how much
     assert need > estimate["memory"]["path_records"] / 2
     with pytest.raises(distributed.ClusterError, match=r"a shard of 12 sensors needs about .* MiB .* worker tcp://b:2's "
@@ -303,7 +303,7 @@ def test_a_shard_too_large_for_its_worker_is_refused_before_any_work(tmp_path):
     message = str(pytest.raises(distributed.ClusterError, distributed.check_shards_fit, estimate, blocks,
                                 {"tcp://b:2": need / 3}).value)
     shards = int(message.split("use at least ")[1].split()[0])
-    distributed.check_shards_fit(estimate, distributed._blocks(24, shards), {"tcp://b:2": need / 3})
+    distributed.check_shards_fit(estimate, distributed.client._blocks(24, shards), {"tcp://b:2": need / 3})
 
 
 def test_cli_refuses_shards_larger_than_a_workers_memory(tmp_path):
@@ -335,7 +335,7 @@ def test_fuzzed_scheduler_addresses_are_refused_or_tried_never_crash():
                 text[min(i, len(text) - 1)] = alphabet[rng.integers(0, len(alphabet))]
         address = "".join(text)
         try:
-            distributed._check_address(address)
+            distributed.cluster._check_address(address)
         except ValueError as exc:
             assert repr(address)[:60] in str(exc)
             continue
@@ -343,7 +343,7 @@ def test_fuzzed_scheduler_addresses_are_refused_or_tried_never_crash():
         assert scheme == "tcp" and 1 <= int(rest.rsplit(":", 1)[1]) <= 65535, address
     for bad in (None, 8786, b"tcp://127.0.0.1:8786"):
         with pytest.raises(ValueError):
-            distributed._check_address(bad)
+            distributed.cluster._check_address(bad)
 
 
 def no_connecting(monkeypatch):
@@ -474,7 +474,7 @@ def test_a_worker_killed_mid_solve_leaves_the_answer_unchanged(tmp_path, cluster
     path = write_solve_floor(tmp_path)
     one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
     cluster.client.wait_for_workers(2, timeout=60)
-    asked = distributed._ShardedRecords._ask
+    asked = distributed.client._ShardedRecords._ask
     seen = {"calls": 0, "killed": [], "recomputed": 0}
 
     def ask(records, op, *args):
@@ -489,7 +489,7 @@ def test_a_worker_killed_mid_solve_leaves_the_answer_unchanged(tmp_path, cluster
         seen["recomputed"] = records._study.recomputed_shards
         return result
 
-    monkeypatch.setattr(distributed._ShardedRecords, "_ask", ask)
+    monkeypatch.setattr(distributed.client._ShardedRecords, "_ask", ask)
     many = quietly(distributed.solve, str(path), cluster, shards=2)
     assert len(seen["killed"]) == 2 and seen["killed"][1] == "try"
     assert seen["recomputed"] >= 2
@@ -508,7 +508,7 @@ def test_a_thick_wall_solve_traces_its_finer_grid_on_the_shards(tmp_path, monkey
     path.write_text(json.dumps(scene))
     one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
     assert "thick-wall edges" in one["timings_s"], one["timings_s"]
-    asked = distributed._ShardedRecords._ask
+    asked = distributed.client._ShardedRecords._ask
     seen = {"refined_ops": set(), "killed": 0, "recomputed": 0}
 
     def ask(records, op, *args):
@@ -522,11 +522,11 @@ def test_a_thick_wall_solve_traces_its_finer_grid_on_the_shards(tmp_path, monkey
             seen["recomputed"] += records._study.recomputed_shards
         return result
 
-    monkeypatch.setattr(distributed._ShardedRecords, "_ask", ask)
+    monkeypatch.setattr(distributed.client._ShardedRecords, "_ask", ask)
     # A cluster of its own: the killed worker's restart is not waited for (the shared one stays whole).
     with distributed.Cluster(workers=2, threads_per_worker=1, timeout=30) as cluster:
         many = quietly(distributed.solve, str(path), cluster, shards=3)
-        assert not any(cluster.client.run(lambda: len(distributed._HELD)).values())  # refined shards freed too
+        assert not any(cluster.client.run(lambda: len(distributed.worker._HELD)).values())  # refined shards freed too
     assert {"search", "try"} <= seen["refined_ops"], seen
     assert seen["killed"] == 1 and seen["recomputed"] >= 1, seen
     assert without_timings(many) == without_timings(one)
@@ -551,7 +551,7 @@ def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tm
     one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
     climate = one["climate"]
     assert climate["goals"][0]["verified"] is not None and one["tradeoffs"], climate
-    asked = distributed._ShardedRecords._ask
+    asked = distributed.client._ShardedRecords._ask
     seen = {"ops": set(), "killed": 0, "recomputed": 0}
 
     def ask(records, op, *args):
@@ -563,7 +563,7 @@ def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tm
         seen["recomputed"] = records._study.recomputed_shards
         return result
 
-    monkeypatch.setattr(distributed._ShardedRecords, "_ask", ask)
+    monkeypatch.setattr(distributed.client._ShardedRecords, "_ask", ask)
     # A cluster of its own: the killed worker's restart is not waited for (the shared one stays whole).
     with distributed.Cluster(workers=2, threads_per_worker=1, timeout=30) as cluster:
         many = quietly(distributed.solve, str(path), cluster, shards=3)
@@ -582,7 +582,7 @@ def test_a_solve_under_a_sky_without_light_is_refused_before_any_tracing(tmp_pat
     def traced(*args, **kwargs):
         raise AssertionError("traced contributions for a solve that cannot be met")
 
-    monkeypatch.setattr(distributed, "_contributions", traced)
+    monkeypatch.setattr(distributed.client, "_contributions", traced)
     with pytest.raises(ValueError, match="2026-12-21.*the goals cannot be met"):
         distributed.solve(str(path), cluster)
 
@@ -597,7 +597,7 @@ def test_a_solve_whose_client_would_not_fit_is_refused_before_any_tracing(tmp_pa
     def traced(*args, **kwargs):
         raise AssertionError("traced contributions for a client that cannot hold them")
 
-    monkeypatch.setattr(distributed, "_contributions", traced)
+    monkeypatch.setattr(distributed.client, "_contributions", traced)
     with pytest.raises(ValueError, match=r"the client of a solve on a cluster holds about .* allowed by max_memory"):
         distributed.solve(str(path), cluster, max_memory=int(held) - 1)
     with pytest.raises(ValueError, match="max_memory expects"):

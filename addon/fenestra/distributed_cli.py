@@ -123,7 +123,7 @@ def run(a):
             value, stderr = distributed.evaluate(scene, openings, cluster, shards=a.get("shards"), callback=progress)
             _core.write_evaluation(scene, value, stderr, len(openings), a["output"])  # a list or an (n, 4, 3) array
             print("evaluate: %d sensors, %d shards, %.2f s\nwrote %s"
-                  % (len(value), len(distributed._blocks(len(value), a.get("shards") or len(cluster.workers()))),
+                  % (len(value), len(distributed.client._blocks(len(value), a.get("shards") or len(cluster.workers()))),
                      time.monotonic() - start, a["output"]))
     return 0
 
