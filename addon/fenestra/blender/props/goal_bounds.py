@@ -6,7 +6,7 @@ on the units, so the fields' update callbacks clamp: the edited value to its uni
 the other two values it would cross follow it (as Blender's frame range does).
 """
 
-# The most each unit allows (the core's limits: scene_loader.cpp check_goals).
+# The most each unit allows (the core's limits: native/src/scene/sensor_input.cpp check_goals).
 TOP = {'NORMALIZED': 1.0, 'DAYLIGHT_FACTOR': 100.0, 'LUX': 1e12}
 HARD_MAX = max(TOP.values())
 
