@@ -12,7 +12,7 @@
 #include "daylight/daylight.h"
 #include "daylight/perez_all_weather.h"
 #include "daylight/sky_matrix.h"
-#include "scene/sky_figures.h"
+#include "daylight/sky_figures.h"
 #include "test_scenes.h"
 
 namespace fenestra {
@@ -134,7 +134,7 @@ TEST(PerezScene, AWeatherFileGivesEachStepTheRowOfItsHour) {
                                             R"(", "date": "2026-06-21", "time": "11:10"})");
   EXPECT_EQ(luminance(same.suns.suns()[0].normal_illuminance), luminance(scene.suns.suns()[0].normal_illuminance));
   EXPECT_NE(std::find(same.input_files.begin(), same.input_files.end(), kChicago), same.input_files.end());
-  EXPECT_TRUE(sky_warnings(same).empty());
+  EXPECT_TRUE(sky_warnings(same.daylight.get()).empty());
 }
 
 TEST(PerezScene, BadInputIsRefusedNamingTheKeyAndValue) {
@@ -192,7 +192,7 @@ TEST(ClimateScene, TheChicagoYearGivesAMatrixAndTheCumulativeSkyOfItsOccupiedHou
   EXPECT_NEAR(map_horizontal(*scene.daylight), diffuse, 1e-4 * diffuse);
   EXPECT_NEAR(luminance(scene.suns.horizontal_illuminance()), direct, 1e-4 * direct);
   EXPECT_EQ(scene.daylight->width, 256);
-  EXPECT_TRUE(sky_warnings(scene).empty());
+  EXPECT_TRUE(sky_warnings(scene.daylight.get()).empty());
 }
 
 TEST(ClimateScene, SettingsAreReadAndAFarPlaceIsWarned) {
@@ -212,7 +212,7 @@ TEST(ClimateScene, SettingsAreReadAndAFarPlaceIsWarned) {
   EXPECT_EQ(occupied_hours(scene.climate->sky->hours, s).size(), 2920u);
   EXPECT_EQ(scene.daylight->steps, 2920u);
   EXPECT_EQ(scene.daylight->width, 64);
-  const std::vector<std::string> warnings = sky_warnings(scene);
+  const std::vector<std::string> warnings = sky_warnings(scene.daylight.get());
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("37.98"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[0].find("Chicago"), std::string::npos) << warnings[0];

@@ -12,6 +12,7 @@
 #include "annual/annual_contributions.h"
 #include "daylight/daylight.h"
 #include "scene/domain_estimate.h"
+#include "scene/environment_map.h"
 #include "study/cost_model.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"

@@ -8,6 +8,7 @@
 #include "chi2.h"
 #include "daylight/daylight.h"
 #include "daylight/sky_models.h"
+#include "scene/environment_map.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"

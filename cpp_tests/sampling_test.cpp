@@ -12,7 +12,7 @@
 #include "sampling/distribution.h"
 #include "sampling/ggx.h"
 #include "sampling/warp.h"
-#include "scene/sky.h"
+#include "scene/environment_map.h"
 #include "util/rng.h"
 
 namespace fenestra {

@@ -7,6 +7,7 @@
 #include "format/image_writer.h"
 #include "io/results.h"
 #include "io/sky_output.h"
+#include "scene/environment_map.h"
 #include "solve/solver.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
@@ -409,7 +410,7 @@ TEST(Validation, PolarNightIsRefusedBySolveAndWarnedOtherwise) {
                                          "date": "2026-12-21", "resolution": [64, 32]})"));
   Scene s = load_scene(dir.file("scene.json"));
   s.render.paths_per_sensor = 16;
-  EXPECT_NE(dark_sky_warning(s).find("below the horizon"), std::string::npos);
+  EXPECT_NE(dark_sky_warning(*s.sky, s.daylight.get()).find("below the horizon"), std::string::npos);
   try {
     solve_openings(s);
     FAIL() << "solved under a sky without light";
@@ -421,7 +422,8 @@ TEST(Validation, PolarNightIsRefusedBySolveAndWarnedOtherwise) {
   dir.write("scene.json", scene_text(kDomain, R"({"points": [[2, 1.5, 0.8]]})",
                                      R"({"type": "preetham", "latitude": 48, "longitude": 2, "utc_offset": 1,
                                          "date": "2026-06-21", "resolution": [64, 32]})"));
-  EXPECT_EQ(dark_sky_warning(load_scene(dir.file("scene.json"))), "");
+  const Scene lit = load_scene(dir.file("scene.json"));
+  EXPECT_EQ(dark_sky_warning(*lit.sky, lit.daylight.get()), "");
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "daylight/perez_all_weather.h"
 #include "daylight/sky_matrix.h"
 #include "daylight/weather_site.h"
+#include "scene/environment_map.h"
 #include "study/cost_model.h"
 #include "util/cost_context.h"
 

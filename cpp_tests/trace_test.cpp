@@ -7,6 +7,7 @@
 
 #include "annual/annual_contributions.h"
 #include "scene/bsdf.h"
+#include "scene/environment_map.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"

@@ -18,8 +18,8 @@ FLOORS = [
     ["images"],  # the OpenImageIO module, built apart, behind format's image ABI
     ["math"],
     ["sampling"],
-    ["daylight"],  # daylight skies, weather, sky patches, the annual sources
-    ["scene"],  # what a study is: geometry, sky, sensors, constraints, the sky in figures
+    ["daylight"],  # daylight skies, weather, sky patches, the annual sources, the sky in figures
+    ["scene"],  # what a study is: geometry, sky settings, sensors, constraints
     ["trace"],
     ["annual"],
     ["solve"],

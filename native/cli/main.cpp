@@ -320,9 +320,9 @@ int run(const Args& a) {
   if (a.overrides.count("--seed")) scene.render.seed = static_cast<uint64_t>(a.overrides.at("--seed"));
   if (a.overrides.count("--threads")) scene.render.threads = static_cast<int>(a.overrides.at("--threads"));
   if (!a.quiet) std::fprintf(stderr, "%s\n", scene.to_string().c_str());
-  for (const std::string& w : sky_warnings(scene)) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
+  for (const std::string& w : sky_warnings(scene.daylight.get())) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
   if (a.command == "contributions" || a.command == "evaluate") {
-    const std::string dark = dark_sky_warning(scene);  // solve refuses such a sky
+    const std::string dark = dark_sky_warning(*scene.sky, scene.daylight.get());  // solve refuses such a sky
     if (!dark.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", dark.c_str());
   }
 
@@ -344,7 +344,7 @@ int run(const Args& a) {
   }
   if (a.command == "sky") {
     const nlohmann::json summary = sky_summary(scene);
-    const SkyImage image = sky_image(scene);
+    const SkyImage image = sky_image(*scene.sky, scene.daylight.get());
     std::vector<float> flat;
     flat.reserve(image.pixels.size() * 3);
     for (const Rgb& p : image.pixels) flat.insert(flat.end(), {p[0], p[1], p[2]});
@@ -407,7 +407,7 @@ int run(const Args& a) {
   const SensorValues v = with_progress(progress, a.quiet, [&] { return evaluate_openings(scene, openings, &progress); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_json(a.output, evaluation_json(v, openings.size(), scene.render.paths_per_sensor,
-                                       unobstructed_horizontal_illuminance(scene), setup));
+                                       unobstructed_horizontal_illuminance(*scene.sky, scene.suns, scene.daylight.get()), setup));
   std::printf("evaluate: %zu sensors, %zu openings, %.2f s\nwrote %s\n", scene.sensors.size(), openings.size(), seconds,
               a.output.c_str());
   return 0;

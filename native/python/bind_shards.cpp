@@ -16,7 +16,7 @@
 #include "format/output_pair.h"
 #include "io/results.h"
 #include "scene/scene.h"
-#include "scene/sky_figures.h"
+#include "daylight/sky_figures.h"
 #include "trace/contributions.h"
 #include "trace/contributions_origin.h"
 #include "trace/transport_matrix.h"
@@ -153,7 +153,7 @@ void bind_shards(py::module_& m) {
         const py::ssize_t ns = static_cast<py::ssize_t>(scene.sensors.size());
         const SensorValues v{vector_of(value, ns, "value"), vector_of(stderr_, ns, "stderr")};
         write_json(path, evaluation_json(v, openings, scene.render.paths_per_sensor,
-                                         unobstructed_horizontal_illuminance(scene)));
+                                         unobstructed_horizontal_illuminance(*scene.sky, scene.suns, scene.daylight.get())));
       },
       py::arg("scene"), py::arg("value"), py::arg("stderr"), py::arg("openings"), py::arg("path"),
       "Writes an evaluation's JSON as `fenestra evaluate` does.");

@@ -584,7 +584,7 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "sky_map",
       [](const Scene& scene) {
-        const SkyImage image = sky_image(scene);
+        const SkyImage image = sky_image(*scene.sky, scene.daylight.get());
         py::array_t<float> a({static_cast<py::ssize_t>(image.height), static_cast<py::ssize_t>(image.width),
                               py::ssize_t(3)});
         float* out = a.mutable_data();
@@ -602,21 +602,21 @@ PYBIND11_MODULE(_core, m) {
       [](const Scene& scene, const std::string& path) {
         check_output_path(path, scene.input_files);  // before the map is made; never over an input
         check_value_image_path(path);                 // a format that keeps cd/m^2
-        write_sky_image(path, sky_image(scene));
+        write_sky_image(path, sky_image(*scene.sky, scene.daylight.get()));
       },
       py::arg("scene"), py::arg("path"), "Writes the scene's sky map (.exr or .hdr).");
   m.def(
       "sky_warnings",
       [](const Scene& scene) {
         py::list out;
-        for (const std::string& w : sky_warnings(scene)) out.append(text_of(w));
+        for (const std::string& w : sky_warnings(scene.daylight.get())) out.append(text_of(w));
         return out;
       },
       py::arg("scene"),
       "What the sky's weather file says against itself or the scene (a place far from its station), one "
       "sentence each.");
   m.def(
-      "dark_sky_warning", [](const Scene& scene) { return text_of(dark_sky_warning(scene)); }, py::arg("scene"),
+      "dark_sky_warning", [](const Scene& scene) { return text_of(dark_sky_warning(*scene.sky, scene.daylight.get())); }, py::arg("scene"),
       "A sentence when the scene's daylight sky gives no light at all (the sun never up), else \"\".");
   m.def(
       "goal_error",

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "annual/annual_study.h"  // annual_metric_settings
+#include "scene/environment_map.h"
 #include "scene/scene.h"
 #include "trace/parallel.h"
 #include "trace/path_tracer.h"

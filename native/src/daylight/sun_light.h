@@ -1,6 +1,6 @@
 #pragma once
 // The sun of one time step of a daylight sky, kept apart from the sky's map as an explicit
-// directional source (scene/sun_lights.h samples a list of them).
+// directional source (daylight/sun_lights.h samples a list of them).
 #include <algorithm>
 #include <vector>
 

@@ -6,7 +6,7 @@
 
 #include "daylight/daylight.h"
 #include "format/image_writer.h"
-#include "scene/sky_figures.h"
+#include "daylight/sky_figures.h"
 
 namespace fenestra {
 
@@ -35,7 +35,7 @@ std::string iso_utc(double seconds) {
 nlohmann::json sky_summary(const Scene& scene) {
   nlohmann::json j;
   j["description"] = scene.sky->to_string();
-  const Rgb sky = sky_horizontal(scene);
+  const Rgb sky = sky_horizontal(*scene.sky, scene.daylight.get());
   const Rgb sun = scene.suns.horizontal_illuminance();
   j["horizontal_illuminance"] = {{"sky", luminance(sky)}, {"sun", luminance(sun)}, {"total", luminance(sky + sun)}};
   j["horizontal_illuminance_rgb"] = {{"sky", rgb(sky)}, {"sun", rgb(sun)}};
@@ -46,7 +46,7 @@ nlohmann::json sky_summary(const Scene& scene) {
     j["steps_with_sun"] = d.steps_with_sun;
     j["analytic_sky_horizontal_illuminance"] = luminance(d.analytic_sky_horizontal);
     j["build_seconds"] = d.seconds;
-    if (!dark_sky_warning(scene).empty())
+    if (!dark_sky_warning(*scene.sky, scene.daylight.get()).empty())
       j["warning"] = "the sun is below the horizon at every time step: the sky is dark";
     if (!d.warnings.empty()) j["warnings"] = d.warnings;
   }

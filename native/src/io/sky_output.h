@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "scene/scene.h"
-#include "scene/sky_figures.h"
+#include "daylight/sky_figures.h"
 
 namespace fenestra {
 

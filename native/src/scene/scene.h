@@ -4,14 +4,14 @@
 #include <string>
 #include <vector>
 
+#include "daylight/sky.h"
+#include "daylight/sun_lights.h"
 #include "scene/climate_goals.h"
 #include "scene/material.h"
 #include "scene/mesh.h"
 #include "scene/opening_domain.h"
 #include "scene/site_frame.h"
-#include "scene/sky.h"
 #include "scene/solver_settings.h"
-#include "scene/sun_lights.h"
 
 namespace fenestra {
 

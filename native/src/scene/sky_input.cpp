@@ -12,6 +12,7 @@
 #include "daylight/sky_matrix.h"
 #include "daylight/weather_file.h"
 #include "format/json_keys.h"
+#include "scene/environment_map.h"
 #include "scene/input_limits.h"
 #include "scene/scene.h"
 #include "util/quoted_text.h"

@@ -4,7 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "scene/sky_figures.h"
+#include "daylight/sky_figures.h"
 
 namespace fenestra {
 
@@ -47,7 +47,7 @@ SolverGoals resolve_goals(const Scene& scene, const Contributions& c) {
   g.given = given.level;
 
   // Goal units -> the sensors' units.
-  const double horizontal = s.goal_units == "daylight_factor" ? unobstructed_horizontal_illuminance(scene) : 0.0;
+  const double horizontal = s.goal_units == "daylight_factor" ? unobstructed_horizontal_illuminance(*scene.sky, scene.suns, scene.daylight.get()) : 0.0;
   auto absolute = [&](Eigen::Index i, double v) {
     if (!std::isfinite(v)) return v;
     if (s.goal_units == "normalized") return v * c.all_open.value[i];

@@ -11,7 +11,7 @@
 #include "annual/annual_contributions.h"
 #include "annual/annual_cut_study.h"
 #include "annual/annual_study.h"
-#include "scene/sky_figures.h"
+#include "daylight/sky_figures.h"
 #include "solve/catalogue_snap.h"
 #include "solve/climate_design.h"
 #include "solve/coarse_grid.h"
@@ -42,7 +42,7 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 // A daylight sky without light (the sun never up) makes every value 0: no goal can be met.
 void refuse_dark_sky(const Scene& scene) {
-  const std::string dark = dark_sky_warning(scene);
+  const std::string dark = dark_sky_warning(*scene.sky, scene.daylight.get());
   if (!dark.empty())
     throw std::invalid_argument("scene '" + scene.source + "': sky: " + dark +
                                 "; the goals cannot be met: choose a date and time interval with daylight");

@@ -1,4 +1,4 @@
-#include "scene/sun_lights.h"
+#include "daylight/sun_lights.h"
 
 #include <algorithm>
 #include <cmath>
