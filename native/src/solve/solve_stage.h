@@ -44,7 +44,7 @@ inline constexpr const char* kNoThickWallEdge = "skipped: no edge in a thick wal
 inline constexpr const char* kOutOfMemory = "skipped: the refined records would not fit in memory";
 inline constexpr const char* kNoFacadeRules = "skipped: no facade rules";
 inline constexpr const char* kNoTradeoffs = "skipped: solver.tradeoffs is off";
-inline constexpr const char* kNoLeastGlazing = "skipped: goals.climate.least_glazing is off";
+inline constexpr const char* kNoLeastGlazing = "skipped: goals.least_glazing is off";
 inline constexpr const char* kNoVerify = "skipped: solver.verify is off";
 }  // namespace stop_reason
 

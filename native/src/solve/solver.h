@@ -1,8 +1,11 @@
 #pragma once
 // The opening solver (the paper's section 2): from the contributions and the goals, which
-// elements to open. Stage 1: NNLS on the linear model, excess redistributed, rounded (optionally
-// on coarser grids first); stage 2: a genetic algorithm for error and shape coherence; last, the
-// best states re-ranked with the exact evaluation from the path records.
+// elements to open, then admissible openings. A sequence of named stages (docs/solver.md, "Stages"),
+// each listed in SolveResult::stages with its seconds and why it stopped: the answer in elements
+// (solve/linear_stage.h on per-sensor goals, solve/climate_stage.h on climate goals), rectangles and
+// the local search, the second start, the climate openings, constraint costs, catalogue sizes, edges
+// off the grid (in thick walls too), facade composition, trade-offs, least glazing, verification and
+// the climate figures.
 #include <string>
 #include <vector>
 
