@@ -4,7 +4,9 @@ that the solver and its documentation cannot drift apart."""
 import pathlib
 import re
 
-SOLVER_MD = pathlib.Path(__file__).resolve().parent.parent / "docs" / "solver.md"
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+SOLVER_MD = ROOT / "docs" / "solver.md"
+STOP_REASONS_H = ROOT / "native" / "src" / "solve" / "solve_stage.h"
 PER_SENSOR_ONLY = {"coarse grids", "genetic", "successive linearisation", "exact evaluation"}
 CLIMATE_ONLY = {"climate model", "climate search", "climate linearisation"}
 
@@ -27,6 +29,12 @@ def documented():
     """(the stages in their documented order, the documented reasons a stage stopped)."""
     names, reasons = _first_column_of_tables()[:2]
     return names, set(reasons)
+
+
+def in_the_code():
+    """The reasons the solver's code can give (solve/solve_stage.h, namespace stop_reason)."""
+    section = STOP_REASONS_H.read_text().split("namespace stop_reason {", 1)[1].split("}  // namespace stop_reason")[0]
+    return set(re.findall(r'= "([^"]+)";', section))
 
 
 def check(stages, climate, traced=True):

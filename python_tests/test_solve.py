@@ -170,6 +170,10 @@ def test_a_solve_lists_its_stages_in_order_with_their_seconds_and_why_each_stopp
         name: reason for name, reason in why.items() if name != "contributions"}
 
 
+def test_every_reason_a_stage_can_stop_for_is_documented():
+    assert solve_stages.in_the_code() == solve_stages.documented()[1]
+
+
 LIMITED = [
     ({"time_budget_s": 1e-9}, {"genetic": "time budget"}),
     ({"generations": 0, "coarse_to_fine": False, "improve_iterations": 0, "verify": False, "tradeoffs": False,
