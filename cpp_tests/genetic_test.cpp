@@ -6,6 +6,7 @@
 
 #include <tbb/global_control.h>
 
+#include "scene/solver_settings.h"
 #include "solve/genetic.h"
 #include "util/progress.h"
 #include "util/rng.h"
@@ -345,6 +346,41 @@ TEST(GeneticSearch, StopsOnTimeBudgetBetweenGenerations) {
   EXPECT_GT(r.generations, 0);
   EXPECT_LT(r.generations, settings.generations);
   EXPECT_EQ(r.history.size(), static_cast<size_t>(r.generations));
+  EXPECT_TRUE(r.out_of_time);  // the solve's stages say "time budget"
+}
+
+TEST(GeneticSearch, RunsOutOfGenerationsNotTimeWithinItsBudget) {
+  const Synthetic p = synthetic_problem();
+  GeneticSettings settings;
+  settings.generations = 20;
+  for (double budget : {0.0, 1e6}) {
+    settings.time_budget_s = budget;
+    const GeneticResult r = run_genetic(p.objective, p.grid, {p.truth}, settings);
+    EXPECT_EQ(r.generations, 20);
+    EXPECT_FALSE(r.out_of_time) << budget;
+  }
+}
+
+TEST(GeneticSettingsFrom, TakesEachSolverSetting) {
+  SolverSettings s;
+  s.population = 17;
+  s.generations = 23;
+  s.seed = 29;
+  s.time_budget_s = 3.5;
+  s.elite = 5;
+  s.isolated_weight = 0.25;
+  s.boundary_weight = 0.125;
+  s.regions_weight = 0.0625;
+  const GeneticSettings ga = genetic_settings_from(s);
+  EXPECT_EQ(ga.population, 17);
+  EXPECT_EQ(ga.generations, 23);
+  EXPECT_EQ(ga.seed, 29u);
+  EXPECT_EQ(ga.time_budget_s, 3.5);
+  EXPECT_EQ(ga.elite, 5);
+  EXPECT_EQ(ga.shape.isolated, 0.25);
+  EXPECT_EQ(ga.shape.boundary, 0.125);
+  EXPECT_EQ(ga.shape.regions, 0.0625);
+  EXPECT_TRUE(ga.polish);  // not a scene setting
 }
 
 TEST(GeneticSearch, Cancels) {

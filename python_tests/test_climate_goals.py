@@ -15,6 +15,7 @@ import pytest
 from conftest import CLI, EXAMPLES, box_obj
 
 import fenestra
+import solve_stages
 
 CHICAGO = os.path.join(EXAMPLES, "weather", "USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw")
 
@@ -67,7 +68,17 @@ def test_cli_solves_for_sda_and_ase_with_the_least_glazing(tmp_path):
     run = subprocess.run([CLI, "solve", str(scene), "-o", str(out), "--quiet"], capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     assert "climate goal sDA300/50% >= 50 %:" in run.stdout and "glazing" in run.stdout, run.stdout
-    climate = json.loads(out.read_text())["climate"]
+    result = json.loads(out.read_text())
+    climate = result["climate"]
+    # The climate stages in place of the per-sensor ones, each saying what ended it.
+    why = solve_stages.check(result["stages"], climate=True)
+    assert why["linear start"] == "skipped: no per-sensor goals"
+    assert why["climate model"] == "done" and why["climate search"] == "generation limit"
+    assert why["climate linearisation"] in ("no improvement", "round limit")
+    assert why["climate openings"] in ("goals met", "round limit")
+    assert why["constraint costs"] == "skipped: the climate figures tell what the constraints cost"
+    assert why["least glazing"] == "skipped: solver.tradeoffs is off"
+    assert why["climate figures"] == "done"
     sda, ase = climate["goals"]
     assert (sda["metric"], sda["sense"], sda["unit"], sda["required"]) == ("sda", "at_least", "area fraction", 0.5)
     assert (ase["metric"], ase["sense"]) == ("ase", "at_most")

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import fenestra
+import solve_stages
 from conftest import CLI, box_obj
 
 
@@ -30,7 +31,7 @@ def test_cli_solve_writes_openings_that_evaluate_reads(small_room, tmp_path):
     r = run("solve", scene, "-o", out, "--paths", 512, "--quiet")
     assert r.returncode == 0, r.stderr
     result = json.loads(out.read_text())
-    assert {"openings", "sensors", "error", "open_elements", "timings_s", "genetic"} <= set(result)
+    assert {"openings", "sensors", "error", "open_elements", "timings_s", "stages", "genetic"} <= set(result)
     assert len(result["sensors"]) == 3
     assert result["sensors"][2]["goal"] is None
     assert all(s["predicted"] >= 0 for s in result["sensors"])
@@ -149,6 +150,51 @@ def test_infeasible_constraints_are_refused(small_room, tmp_path):
     assert r.returncode == 1
     assert "min_area" in r.stderr and "max_area" in r.stderr
     assert not (tmp_path / "result.json").exists()
+
+
+def test_a_solve_lists_its_stages_in_order_with_their_seconds_and_why_each_stopped(small_room):
+    scene = fenestra.load_scene(with_goals(small_room, [400.0, 150.0, 250.0]))
+    result = fenestra.solve(scene)
+    why = solve_stages.check(result["stages"], climate=False)
+    assert why["contributions"] == "done"
+    assert why["linear start"] in ("converged", "iteration limit")
+    assert why["genetic"] == "generation limit"  # no time budget
+    assert result["genetic"]["generations"] >= 100  # the first run's, and the linearisation's
+    assert why["successive linearisation"] in ("no improvement", "round limit")
+    assert why["rectangles"] == why["exact evaluation"] == why["verification"] == "done"
+    for stage in ("climate openings", "least glazing", "climate figures"):
+        assert why[stage] == "skipped: no climate goals"
+    # Given contributions, the solve lists the same stages but the tracing.
+    again = fenestra.solve(scene, contributions=fenestra.contributions(scene))
+    assert solve_stages.check(again["stages"], climate=False, traced=False) == {
+        name: reason for name, reason in why.items() if name != "contributions"}
+
+
+def test_every_reason_a_stage_can_stop_for_is_documented():
+    assert solve_stages.in_the_code() == solve_stages.documented()[1]
+
+
+LIMITED = [
+    ({"time_budget_s": 1e-9}, {"genetic": "time budget"}),
+    ({"generations": 0, "coarse_to_fine": False, "improve_iterations": 0, "verify": False, "tradeoffs": False,
+      "refine_edges": False},
+     {"genetic": "generation limit", "successive linearisation": "skipped: solver.generations is 0",
+      "coarse grids": "skipped: solver.coarse_to_fine is off",
+      "local search": "skipped: solver.improve_iterations is 0", "verification": "skipped: solver.verify is off",
+      "trade-offs": "skipped: solver.tradeoffs is off", "edges off the grid": "skipped: solver.refine_edges is off",
+      "thick-wall edges": "skipped: solver.refine_edges is off", "catalogue sizes": "skipped: no catalogue",
+      "composition": "skipped: no facade rules"}),
+]
+
+
+@pytest.mark.parametrize("limits, expected", LIMITED, ids=["time budget", "settings off"])
+def test_a_limited_solve_names_what_stopped_or_skipped_each_stage(small_room, limits, expected):
+    solver = {"generations": 100, "population": 32, "seed": 2, **limits}
+    result = fenestra.solve(fenestra.load_scene(with_goals(small_room, [400.0, 150.0, 250.0], solver=solver)))
+    why = solve_stages.check(result["stages"], climate=False)
+    assert {name: why[name] for name in expected} == expected
+    if "time_budget_s" in limits:
+        assert result["genetic"]["generations"] == 0  # the budget was out before the first generation
 
 
 def test_solve_can_be_cancelled(small_room):

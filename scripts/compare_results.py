@@ -6,7 +6,8 @@
 
 `compare` reads NumPy archives (.npz: every array, its dtype, shape and bytes) and JSON files (every
 key and value exactly; numbers as written) and ignores what measures time. Exit status 1 on any
-difference, naming the file and the key."""
+difference, naming the file and the key. A key or array only in NEW is an addition, listed apart
+("added: ..."): outputs may grow new figures, but every figure REF has must be in NEW, equal."""
 
 import json
 import math
@@ -76,20 +77,22 @@ def ignored(key):
     return any(part in key.lower() for part in IGNORED)
 
 
-def same_json(a, b, where, differences, dirs):
+def same_json(a, b, where, differences, dirs, added):
     if isinstance(a, dict) and isinstance(b, dict):
         for key in sorted(set(a) | set(b)):
             if ignored(key):
                 continue
-            if key not in a or key not in b:
-                differences.append(f"{where}.{key}: only in {'new' if key in b else 'reference'}")
+            if key not in b:
+                differences.append(f"{where}.{key}: only in reference")
+            elif key not in a:
+                added.append(f"{where}.{key}")
             else:
-                same_json(a[key], b[key], f"{where}.{key}", differences, dirs)
+                same_json(a[key], b[key], f"{where}.{key}", differences, dirs, added)
     elif isinstance(a, list) and isinstance(b, list):
         if len(a) != len(b):
             differences.append(f"{where}: {len(a)} items against {len(b)}")
         for i, (x, y) in enumerate(zip(a, b)):
-            same_json(x, y, f"{where}[{i}]", differences, dirs)
+            same_json(x, y, f"{where}[{i}]", differences, dirs, added)
     elif isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
         pass
     elif isinstance(a, str) and isinstance(b, str):
@@ -99,11 +102,14 @@ def same_json(a, b, where, differences, dirs):
         differences.append(f"{where}: {str(a)[:80]} against {str(b)[:80]}")
 
 
-def same_npz(a, b, where, differences):
+def same_npz(a, b, where, differences, added):
     with np.load(a) as x, np.load(b) as y:
         for key in sorted(set(x.files) | set(y.files)):
-            if key not in x.files or key not in y.files:
-                differences.append(f"{where}:{key}: only in {'new' if key in y.files else 'reference'}")
+            if key not in y.files:
+                differences.append(f"{where}:{key}: only in reference")
+                continue
+            if key not in x.files:
+                added.append(f"{where}:{key}")
                 continue
             u, v = x[key], y[key]
             if u.dtype != v.dtype or u.shape != v.shape or u.tobytes() != v.tobytes():
@@ -116,7 +122,7 @@ def printed(path, folder):
 
 
 def compare(reference, new):
-    differences = []
+    differences, added = [], []
     files = sorted(p for p in reference.iterdir() if p.suffix in (".json", ".npz", ".hdr", ".stdout"))
     if not files:
         differences.append(f"{reference}: no result files")
@@ -125,10 +131,10 @@ def compare(reference, new):
         if not other.exists():
             differences.append(f"{other}: missing")
         elif ref.suffix == ".npz":
-            same_npz(ref, other, ref.name, differences)
+            same_npz(ref, other, ref.name, differences, added)
         elif ref.suffix == ".json":
             same_json(json.loads(ref.read_text()), json.loads(other.read_text()), ref.name, differences,
-                      (reference, new))
+                      (reference, new), added)
         elif ref.suffix == ".hdr":
             if ref.read_bytes() != other.read_bytes():
                 differences.append(f"{ref.name}: bytes differ")
@@ -137,7 +143,9 @@ def compare(reference, new):
                 differences.append(f"{ref.name}: printed lines differ")
     for line in differences:
         print(line)
-    print(f"{len(files)} files compared, {len(differences)} differences")
+    for where in added:
+        print(f"added: {where}")
+    print(f"{len(files)} files compared, {len(differences)} differences, {len(added)} added keys")
     return 1 if differences else 0
 
 

@@ -368,8 +368,9 @@ def solve(scene, contributions=None, progress=None, callback=None, max_memory=No
     contributions first unless given. Returns the result as a dict, the same as `fenestra solve`
     writes: "openings" (rectangles, corners in meters, accepted by evaluate()), "open_elements",
     "sensors" (per sensor "goal" and "predicted" in lux, input order), "error" ("relative_rms", ...),
-    "timings_s", "genetic" (with the convergence history), with climate goals (a "climate" sky
-    and goals.climate: sDA, ASE, EN 17037, UDI, annual mean) "climate" (each goal's figure from
+    "timings_s", "stages" (each stage's "name", "seconds" and "stopped_because", in order; see
+    docs/solver.md, "Stages"), "genetic" (with the convergence history), with climate goals (a
+    "climate" sky and goals.climate: sDA, ASE, EN 17037, UDI, annual mean) "climate" (each goal's figure from
     the path records and with real cutters, "unmet", glazing area in m^2, per-sensor DA; see
     docs/solver.md, "Climate goals") and "warnings" (each also issued as a RuntimeWarning: too
     few paths for the elements, a prediction the real-cutter check contradicts, a climate goal

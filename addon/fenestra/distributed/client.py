@@ -587,7 +587,10 @@ def solve(scene, cluster, shards=None, base_dir=".", callback=None, max_memory=N
                 setattr(local.render, name, getattr(scene.render, name))
         _set_render(spec, local, paths_per_sensor=local.solver_paths)
     with _contributions(spec, local, cluster, shards, callback) as study:
-        return study.solve(callback=callback)
+        result = study.solve(callback=callback)
+        # As fenestra.solve lists the tracing it did first.
+        result["stages"].insert(0, {"name": "contributions", "seconds": study.seconds, "stopped_because": "done"})
+        return result
 
 
 # What the client of a solve on a cluster holds, by the cost model's names (docs/cost.md): the

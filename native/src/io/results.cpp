@@ -148,7 +148,7 @@ std::vector<OpeningInput> parse_openings(const json& j, const std::string& sourc
   if (const auto unknown = find_unknown_key(j, {"openings", "units", "goal_units", "open_elements", "element_count",
                                                "element_size", "sensors", "error", "fitness", "warnings",
                                                "constraints_met", "tradeoffs", "composition",
-                                               "constraint_violations", "unconstrained", "timings_s", "genetic",
+                                               "constraint_violations", "unconstrained", "timings_s", "stages", "genetic",
                                                "edge_moves", "second_start", "constraint_costs", "settings",
                                                "climate"}))
     fail(quoted_text(unknown->key) + ": " + unknown->message);

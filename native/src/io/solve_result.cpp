@@ -144,6 +144,9 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
     history.push_back({{"generation", g.generation}, {"best", g.best}, {"mean", g.mean}, {"seconds", g.seconds}});
   json timings = json::object();
   for (const auto& t : r.timings) timings[t.stage] = t.seconds;
+  json stages = json::array();
+  for (const SolveStage& st : r.stages)
+    stages.push_back({{"name", st.name}, {"seconds", st.seconds}, {"stopped_because", st.stopped_because}});
   const SolverSettings& s = scene.solver;
   json out = {
       {"units", "sensor values: luminance-weighted irradiance, lux for a sky in cd/m^2; corners in meters"},
@@ -179,6 +182,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                          {"openings", openings_json(scene.site, r.unconstrained_openings)},
                          {"error", error_json(r.unconstrained_error)}}},
       {"timings_s", timings},
+      {"stages", stages},
       {"genetic", {{"generations", r.generations}, {"coarse_factors", r.coarse_factors}, {"history", history}}},
       {"edge_moves", r.edge_moves},
       {"second_start", {{"run", r.second_start}, {"kept", r.second_start_kept}}},

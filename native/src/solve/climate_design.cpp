@@ -70,13 +70,9 @@ std::vector<Ranked> rank_exactly(RecordQueries& records, const ClimateProblem& p
   std::set<std::vector<uint8_t>> seen;
   for (const auto& open : candidates) {
     if (!seen.insert(open).second) continue;
-    const HourlyFlipModel exact = records.hourly_model(open, p.rows, p.columns, false);
-    double area = 0.0;
-    for (size_t k = 0; k < open.size(); ++k)
-      if (open[k]) area += p.objective->element_area(static_cast<int>(k));
     Ranked r;
     r.open = open;
-    r.error = p.objective->error(exact.total, exact.direct, area);
+    r.error = climate_year(records, p, open).error;
     r.fitness = r.error + shape_penalty(shape, shape_counts(grid, open));
     out.push_back(std::move(r));
   }
@@ -112,6 +108,16 @@ ClimateProblem climate_problem(const Scene& scene, const AnnualRecords* annual, 
   settings.horizontal_openings = annual->metric_settings.en17037_openings == DaylightOpenings::Horizontal;
   p.objective = std::make_unique<ClimateObjective>(goals, p.columns, p.rows, &linear, std::move(area), settings);
   return p;
+}
+
+ClimateYear climate_year(RecordQueries& records, const ClimateProblem& p, const std::vector<uint8_t>& open) {
+  ClimateYear out;
+  out.year = records.hourly_model(open, p.rows, p.columns, false);
+  double area = 0.0;
+  for (size_t k = 0; k < open.size(); ++k)
+    if (open[k]) area += p.objective->element_area(static_cast<int>(k));
+  out.error = p.objective->error(out.year.total, out.year.direct, area);
+  return out;
 }
 
 std::vector<ClimateFigure> climate_figures(const ClimateProblem& p, const Eigen::MatrixXf& total,
@@ -152,7 +158,9 @@ ClimateDesign design_for_climate(RecordQueries& records, const ClimateProblem& p
   const HourlyFlipModel everything = records.hourly_model(within({all_open})[0], p.rows, p.columns, false);
   out.all_open_figures = p.objective->figures(everything.total, everything.direct);
   out.seconds_model += since(t);
+  out.stages.push_back({"climate model", out.seconds_model, stop_reason::kDone});
 
+  const auto search_start = Clock::now();
   std::vector<std::vector<uint8_t>> starts = {closed, all_open};
   const double level = goal_illuminance(p.objective->goals());
   if (level > 0.0)
@@ -168,8 +176,11 @@ ClimateDesign design_for_climate(RecordQueries& records, const ClimateProblem& p
   pool.insert(pool.end(), starts.begin(), starts.end());
   std::vector<Ranked> ranked = rank_exactly(records, p, grid, ga.shape, pool, progress);
   out.seconds_search += since(t);
+  out.stages.push_back({"climate search", since(search_start), genetic_stop_reason(first)});
   // Successive linearisation: the model about the best state is exact for it and its single
   // flips, where the model about "all closed" misses what open elements do together.
+  const auto rounds_start = Clock::now();
+  const char* rounds_stop = ga.generations > 0 ? stop_reason::kRoundLimit : stop_reason::kNoGenerations;
   for (int round = 0; round < kLinearisationRounds && ga.generations > 0; ++round) {
     t = Clock::now();
     if (progress) progress->start("solving: the hourly model about the best state", 1);
@@ -189,9 +200,13 @@ ClimateDesign design_for_climate(RecordQueries& records, const ClimateProblem& p
     const double before = ranked.front().fitness;
     ranked = rank_exactly(records, p, grid, ga.shape, again, progress);
     out.seconds_search += since(t);
-    if (!(ranked.front().fitness < before * (1.0 - 1e-9))) break;
+    if (!(ranked.front().fitness < before * (1.0 - 1e-9))) {
+      rounds_stop = stop_reason::kNoImprovement;
+      break;
+    }
     ++out.linearisations;
   }
+  out.stages.push_back({"climate linearisation", since(rounds_start), rounds_stop});
   if (progress) progress->throw_if_cancelled();
   out.open = ranked.front().open;
   out.error = ranked.front().error;

@@ -13,6 +13,7 @@
 #include "solve/element_grid.h"
 #include "solve/genetic.h"
 #include "solve/goals.h"
+#include "solve/solve_stage.h"
 #include "trace/contributions.h"
 
 namespace fenestra {
@@ -33,6 +34,14 @@ struct ClimateProblem {
 ClimateProblem climate_problem(const Scene& scene, const AnnualRecords* annual, const SolverGoals& linear);
 ClimateProblem climate_problem(const Scene& scene, const Contributions& c, const SolverGoals& linear);
 
+// The year of a set of open elements, exact from the path records at the problem's sensors and
+// hours, and the climate objective's error of it (shape excluded).
+struct ClimateYear {
+  HourlyFlipModel year;
+  double error = 0.0;
+};
+ClimateYear climate_year(RecordQueries& records, const ClimateProblem& problem, const std::vector<uint8_t>& open);
+
 struct ClimateDesign {
   std::vector<uint8_t> open;                     // the answer in elements
   std::vector<std::vector<uint8_t>> candidates;  // the best states seen, exactly ranked, best first
@@ -44,6 +53,8 @@ struct ClimateDesign {
   int linearisations = 0;                        // rounds about a best state that improved it
   double model_bytes = 0.0;                      // the largest hourly model held
   double seconds_model = 0.0, seconds_search = 0.0;
+  // "climate model", "climate search" and "climate linearisation", with why each stopped.
+  std::vector<SolveStage> stages;
 };
 
 // `seeds`: further starting states (e.g. the linear start of per-sensor goals); `excluded`: elements

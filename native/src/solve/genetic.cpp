@@ -1,5 +1,6 @@
 #include "solve/genetic.h"
 
+#include "scene/solver_settings.h"
 #include "solve/genetic_search.h"
 
 namespace fenestra {
@@ -154,6 +155,16 @@ double shape_penalty(const ShapeWeights& shape, const ShapeCounts& counts) {
 double fitness(const LinearObjective& objective, const ElementGrid& grid, const ShapeWeights& shape,
                const std::vector<uint8_t>& open) {
   return objective_error(objective, open) + shape_penalty(shape, shape_counts(grid, open));
+}
+
+ShapeWeights shape_weights_from(const SolverSettings& s) {
+  return {/*isolated=*/s.isolated_weight, /*boundary=*/s.boundary_weight, /*regions=*/s.regions_weight};
+}
+
+GeneticSettings genetic_settings_from(const SolverSettings& s) {
+  // In GeneticSettings' order; `polish` keeps its default.
+  return {/*population=*/s.population, /*generations=*/s.generations, /*seed=*/s.seed,
+          /*time_budget_s=*/s.time_budget_s, /*elite=*/s.elite, /*shape=*/shape_weights_from(s)};
 }
 
 GeneticResult run_genetic(const LinearObjective& objective, const ElementGrid& grid,

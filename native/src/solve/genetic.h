@@ -12,6 +12,7 @@
 namespace fenestra {
 
 class Progress;
+struct SolverSettings;  // scene/solver_settings.h
 
 // The error part of the fitness: sum_i weight_i (p_i - target_i)^2
 //   + bound_weight * sum_i weight_i (max(0, lower_i - p_i)^2 + max(0, p_i - upper_i)^2),
@@ -53,6 +54,10 @@ struct GeneticSettings {
   bool polish = true;          // finish with greedy one- and two-element flips on the best
 };
 
+// The scene's solver settings as the genetic algorithm takes them.
+ShapeWeights shape_weights_from(const SolverSettings& settings);
+GeneticSettings genetic_settings_from(const SolverSettings& settings);
+
 struct GenerationRecord {
   int generation = 0;             // 0: the first one bred from the seeds
   double best = 0.0, mean = 0.0;  // fitness
@@ -69,6 +74,7 @@ struct GeneticResult {
   // generation, and the last); best fitness non-increasing.
   std::vector<GenerationRecord> history;
   int generations = 0;                      // run (fewer than asked when the budget ran out)
+  bool out_of_time = false;                 // the time budget ended it before its last generation
 };
 
 // The error part of the fitness for predictions p (net of the all-closed values), however made.

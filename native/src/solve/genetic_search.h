@@ -608,7 +608,10 @@ GeneticResult run_search(const Error& error, const ElementGrid& grid, const std:
   std::vector<Individual> children(size);
   for (int g = 0; g < settings.generations; ++g) {
     if (progress) progress->throw_if_cancelled();
-    if (settings.time_budget_s > 0.0 && seconds() >= settings.time_budget_s) break;
+    if (settings.time_budget_s > 0.0 && seconds() >= settings.time_budget_s) {
+      result.out_of_time = true;
+      break;
+    }
     tbb::parallel_for(tbb::blocked_range<int>(0, size), [&](const tbb::blocked_range<int>& range) {
       for (int i = range.begin(); i < range.end(); ++i) {
         Rng rng = child_rng(settings.seed, static_cast<uint64_t>(g), static_cast<uint64_t>(i));

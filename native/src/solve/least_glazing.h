@@ -5,6 +5,10 @@
 #include <cstddef>
 #include <vector>
 
+#include "scene/scene.h"
+#include "solve/climate_design.h"
+#include "solve/solve_result.h"
+
 namespace fenestra {
 
 struct GlazingCandidate {
@@ -14,5 +18,15 @@ struct GlazingCandidate {
 
 // The candidates that meet the goals, least glass first (equal areas keep their order).
 std::vector<size_t> passing_by_glazing(const std::vector<GlazingCandidate>& candidates);
+
+class RecordQueries;  // solve/record_queries.h
+
+// The entry of the trade-off list (the answer included) with the least glass among those whose
+// year meets every climate goal, from the path records and, with verification on, with real
+// cutters too. Fills each entry's `climate` (the answer's from `answer_figures`). Returns its
+// index, or -1 when none meets the goals.
+int least_glazing_entry(const Scene& scene, RecordQueries& records, const ClimateProblem& problem,
+                        const std::vector<ClimateFigure>& answer_figures, bool verify, int verify_paths,
+                        std::vector<TradeoffResult>* tradeoffs);
 
 }  // namespace fenestra

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "solve/nnls.h"
+
 namespace fenestra {
 
 namespace {
@@ -54,6 +56,21 @@ std::vector<uint8_t> round_to_binary(const Eigen::VectorXd& o, double threshold)
   std::vector<uint8_t> open(o.size());
   for (Eigen::Index j = 0; j < o.size(); ++j) open[j] = o[j] >= threshold ? 1 : 0;
   return open;
+}
+
+LinearStart linear_start(const LinearObjective& o, const ElementGrid& grid, const Progress* progress) {
+  const Eigen::VectorXd sqrt_w = o.weight.cwiseSqrt();
+  const Eigen::MatrixXd A = sqrt_w.asDiagonal() * o.E;
+  const Eigen::VectorXd b = sqrt_w.cwiseProduct(o.target);
+  const NnlsResult r = nnls(A, b, 0, 0.0, progress);
+  Eigen::VectorXd x = r.x;
+  redistribute_excess(grid, &x);
+  LinearStart s;
+  s.open = round_to_binary(x);
+  s.relative_rms = r.residual_norm;  // weights make it relative
+  s.iterations = r.iterations;
+  s.converged = r.converged;
+  return s;
 }
 
 }  // namespace fenestra

@@ -7,8 +7,11 @@
 #include <Eigen/Dense>
 
 #include "solve/element_grid.h"
+#include "solve/genetic.h"
 
 namespace fenestra {
+
+class Progress;
 
 // Moves the excess of every o_j > 1 to j's N-8 neighbours in its panel (in proportion to the
 // room they have below 1), repeating while any element exceeds 1 and its neighbourhood has
@@ -20,5 +23,15 @@ namespace fenestra {
 double redistribute_excess(const ElementGrid& grid, Eigen::VectorXd* o);
 // 1 where o_j >= threshold.
 std::vector<uint8_t> round_to_binary(const Eigen::VectorXd& o, double threshold = 0.5);
+
+struct LinearStart {
+  std::vector<uint8_t> open;
+  double relative_rms = 0.0;  // of the continuous solution
+  int iterations = 0;
+  bool converged = false;     // NNLS met its optimality conditions (else its iteration limit ended it)
+};
+// The stage on the weighted system of `objective`: NNLS, the excess over 1 to the neighbours,
+// rounded. `progress` is polled for cancellation.
+LinearStart linear_start(const LinearObjective& objective, const ElementGrid& grid, const Progress* progress);
 
 }  // namespace fenestra

@@ -61,6 +61,8 @@ class SolveJob:
             timings = result.setdefault("timings_s", {})
             timings["contributions"] = contributions.seconds
             timings["total"] = timings.get("total", 0.0) + contributions.seconds
+            result.setdefault("stages", []).insert(
+                0, {"name": "contributions", "seconds": contributions.seconds, "stopped_because": "done"})
         return result
 
     def _work(self):

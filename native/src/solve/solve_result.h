@@ -1,0 +1,86 @@
+#pragma once
+// What a solve returns (solve_openings, solve/solver.h): the final openings and their predictions,
+// the stages' errors and figures, the trade-offs, the warnings, and each stage's seconds and why it
+// stopped. io/solve_result.h writes it.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solve/climate_design.h"
+#include "solve/composition.h"
+#include "solve/constraint_costs.h"
+#include "solve/genetic.h"
+#include "solve/goals.h"
+#include "solve/rectangles.h"
+#include "solve/solve_stage.h"
+
+namespace fenestra {
+
+// One entry of the choice of trade-offs (solve/tradeoffs.h): a set of openings and its prediction.
+struct TradeoffResult {
+  std::vector<OpeningRectangle> openings;
+  Eigen::VectorXd predicted, predicted_stderr;  // per sensor
+  GoalError error;
+  bool cut = false;     // predicted by real cutters (thick walls), not the path records
+  bool answer = false;  // the solver's answer (the one with the most openings, unless least glazing took a
+                        // trade-off that meets the climate goals with less glass)
+  // With climate goals: each goal's figure for these openings, from the path records (empty when
+  // they cannot tell), or from real cutters where least glazing checked them so (climate_cut).
+  std::vector<ClimateFigure> climate;
+  bool climate_cut = false;
+};
+
+struct SolveResult {
+  std::vector<uint8_t> open;                 // per element: the final openings' elements
+  std::vector<OpeningRectangle> openings;    // the final openings: admissible rectangles
+  // Before the architectural refinement: the genetic algorithm's (exactly re-ranked) elements,
+  // merged into rectangles, and their exact error; after the paper's refinement alone.
+  std::vector<uint8_t> unconstrained_open;
+  std::vector<OpeningRectangle> unconstrained_openings;
+  GoalError unconstrained_error, refined_error;
+  SolverGoals goals;
+  // Per sensor, for the chosen state: the exact value from the path records (what the user sees),
+  // its standard error, the linear model and the paper's compensated estimate (Eq. 3).
+  Eigen::VectorXd predicted, predicted_stderr, linear, compensated;
+  GoalError error, linear_error, compensated_error;
+  GoalError start_error;                     // the rounded stage-1 state (exact evaluation)
+  // The final openings path-traced with real cutters (`evaluate`), when solver.verify is on.
+  bool verified = false;
+  Eigen::VectorXd verified_value, verified_stderr;
+  GoalError verified_error;
+  double nnls_relative_rms = 0.0;            // the continuous NNLS solution in the linear model
+  int nnls_iterations = 0;
+  std::vector<GenerationRecord> history;     // the fine-grid genetic stage
+  int generations = 0;
+  int edge_moves = 0;  // edges moved off the element grid (refine_edges)
+  // Whether the constraints stage also started from a search without the elements no admissible
+  // opening can cover (run when the free answer opened some), and whether that start was kept.
+  bool second_start = false, second_start_kept = false;
+  // When the constraints cost much light (constraints_cost_much), the error without each family
+  // of limits, least first (solve/constraint_costs.h); else empty.
+  std::vector<ConstraintCost> constraint_costs;
+  double fitness = 0.0;                      // the chosen state's fitness with exact predictions
+  std::vector<int> coarse_factors;           // coarse grids solved first (e.g. 4, 2)
+  struct Timing {
+    std::string stage;
+    double seconds = 0.0;
+  };
+  std::vector<Timing> timings;               // seconds by the groups of stages of `timings_s`
+  std::vector<SolveStage> stages;            // each stage run or skipped, in order (solve/solve_stage.h)
+  // What the user should know before trusting the result (too few paths, a prediction the
+  // real-cutter check contradicts), in words.
+  std::vector<std::string> warnings;
+  // What the final openings break of the constraints (solved_constraint_violations): empty unless
+  // no admissible answer was found; each line is also a warning.
+  std::vector<std::string> constraint_violations;
+  // Facade composition (solve/composition.h): each rule applied and what it cost.
+  std::vector<CompositionStep> composition;
+  // The answer, then the best found with fewer openings, down to one (solver.tradeoffs).
+  std::vector<TradeoffResult> tradeoffs;
+  // Climate goals (scene goals.climate): each goal's figures and the year of the final openings.
+  ClimateOutcome climate;
+};
+
+}  // namespace fenestra
