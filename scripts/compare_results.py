@@ -37,6 +37,9 @@ RUNS = [
     ("annual_design", ["solve", "annual_room/design.json", "--paths", "256"]),
 ]
 
+# Where `run` notes the checkout it ran from, so two clones' outputs compare equal.
+CHECKOUT_FILE = "checkout.txt"
+
 # Keys whose values are measured times or depend on the machine, not on the computation.
 IGNORED = ("seconds", "timings", "time_s", "elapsed", "build_seconds", "threads", "memory")
 
@@ -55,6 +58,7 @@ def run(build, outdir):
     scenes.mkdir(parents=True, exist_ok=True)
     catalogue_room(scenes)
     program = pathlib.Path(build).resolve() / "fenestra"
+    (outdir / CHECKOUT_FILE).write_text(str(ROOT))  # outputs name the examples' paths: see same_text
     for name, args in RUNS:
         command, scene, rest = args[0], args[1], args[2:]
         if command == "sky":
@@ -96,7 +100,7 @@ def same_json(a, b, where, differences, dirs, added):
     elif isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
         pass
     elif isinstance(a, str) and isinstance(b, str):
-        if a.replace(str(dirs[0]), "OUT") != b.replace(str(dirs[1]), "OUT"):
+        if same_text(a, dirs[0]) != same_text(b, dirs[1]):
             differences.append(f"{where}: {a[:80]!r} against {b[:80]!r}")
     elif type(a) is not type(b) or a != b:
         differences.append(f"{where}: {str(a)[:80]} against {str(b)[:80]}")
@@ -116,8 +120,15 @@ def same_npz(a, b, where, differences, added):
                 differences.append(f"{where}:{key}: arrays differ")
 
 
+def same_text(text, folder):
+    """A string with its output folder and its checkout's path put as OUT and CHECKOUT."""
+    text = text.replace(str(folder), "OUT")
+    checkout = folder / CHECKOUT_FILE
+    return text.replace(checkout.read_text().strip(), "CHECKOUT") if checkout.exists() else text
+
+
 def printed(path, folder):
-    text = path.read_text().replace(str(folder), "OUT")
+    text = same_text(path.read_text(), folder)
     return re.sub(r"[0-9.]+ s\b", "T s", text)
 
 
