@@ -29,4 +29,9 @@ void parallel_tasks(size_t count, int threads, Progress* progress, const std::fu
   if (progress) progress->throw_if_cancelled();
 }
 
+void for_each_sensor(size_t count, const Progress* progress, const std::function<void(size_t)>& fn) {
+  tbb::parallel_for(size_t(0), count, [&](size_t sensor) { fn(sensor); });
+  if (progress) progress->throw_if_cancelled();
+}
+
 }  // namespace fenestra
