@@ -629,6 +629,7 @@ SolveResult solve_openings(const Scene& scene, RecordQueries& records, Progress*
   refuse_dark_sky(scene);
   const auto start = Clock::now();
   SolveResult out;
+  out.dropped = c.dropped;
   out.goals = resolve_goals(scene, c);
   const bool climate = !scene.sensors.climate_goals.empty();
   SolverSettings settings = scene.solver;

@@ -161,23 +161,18 @@ Contributions trace_contributions(const Scene& scene, Progress* progress, bool t
   const size_t sensors = range.size();
   const size_t elements = scene.domain.element_count();
   const int paths = scene.render.paths_per_sensor;
-  const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
+  const size_t tasks_per_sensor = path_tasks_per_sensor(paths);
   std::vector<SensorRecord> chunks(sensors * tasks_per_sensor);
   std::vector<DropCounts> dropped(chunks.size());  // per task: the same totals for any thread count
   Contributions c;
   try {
     if (progress) progress->start("tracing contribution paths", chunks.size());
-    parallel_tasks(chunks.size(), scene.render.threads, progress, [&](size_t task) {
-      const size_t sensor = range.begin + task / tasks_per_sensor;  // the scene's index: it seeds the paths
-      const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
-      const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
-      SensorRecord& rec = chunks[task];
+    parallel_path_tasks(range, paths, scene.render.threads, progress, [&](const PathTask& task) {
+      SensorRecord& rec = chunks[task.index];
       rec.sourced = pass != nullptr;
-      for (size_t p = first; p < last; ++p) {
-        Rng rng = path_rng(scene.render.seed, sensor, p);
-        const std::optional<PathSamples> samples = path_samples(scene.render, scene.render.seed, sensor, p);
-        tracer.record_sensor_path(sensor, p, samples ? &*samples : nullptr, rng, &rec, &dropped[task]);
-      }
+      task.for_each_path(scene.render, scene.render.seed, [&](size_t p, Rng& rng, const PathSamples* samples) {
+        tracer.record_sensor_path(task.sensor, p, samples, rng, &rec, &dropped[task.index]);
+      });
       if (pass) pass->chunk_traced(&rec);
     });
 

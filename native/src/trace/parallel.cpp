@@ -1,5 +1,7 @@
 #include "trace/parallel.h"
 
+#include <algorithm>
+
 #include "trace/ray_scene.h"
 
 #include <tbb/blocked_range.h>
@@ -27,6 +29,19 @@ void parallel_tasks(size_t count, int threads, Progress* progress, const std::fu
     });
   });
   if (progress) progress->throw_if_cancelled();
+}
+
+void parallel_path_tasks(SensorRange sensors, int paths, int threads, Progress* progress,
+                         const std::function<void(const PathTask&)>& fn) {
+  const size_t per_sensor = path_tasks_per_sensor(paths);
+  parallel_tasks(sensors.size() * per_sensor, threads, progress, [&](size_t task) {
+    PathTask t;
+    t.index = task;
+    t.sensor = sensors.begin + task / per_sensor;
+    t.first = (task % per_sensor) * kPathsPerTask;
+    t.last = std::min<size_t>(static_cast<size_t>(paths), t.first + kPathsPerTask);
+    fn(t);
+  });
 }
 
 void for_each_sensor(size_t count, const Progress* progress, const std::function<void(size_t)>& fn) {

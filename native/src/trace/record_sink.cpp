@@ -5,6 +5,20 @@
 
 namespace fenestra {
 
+std::string dropped_warning(const DropCounts& d) {
+  if (!d.any()) return "";
+  std::string parts;
+  if (d.non_finite > 0)
+    parts = std::to_string(d.non_finite) + " light value" + (d.non_finite == 1 ? "" : "s") +
+            " that were not finite numbers (NaN or infinite radiance: check the sky and the materials)";
+  if (d.truncated_conditions > 0)
+    parts += (parts.empty() ? "" : " and ") + std::to_string(d.truncated_conditions) + " light value" +
+             (d.truncated_conditions == 1 ? "" : "s") + " or sub-path" + (d.truncated_conditions == 1 ? "" : "s") +
+             " that crossed more than " + std::to_string(RecordSink::kMaxConditions) +
+             " elements on one segment (stacked panels of the opening domain, or a fine element grid in a thick wall)";
+  return "the tracer left out " + parts + "; the results do not count them (\"dropped\" in the output)";
+}
+
 void RecordSink::light(float v, const Crossing* crossed, int count, uint16_t source) {
   if (!std::isfinite(v)) {
     ++dropped_.non_finite;

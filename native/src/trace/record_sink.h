@@ -6,6 +6,7 @@
 // (trace/path_tracer.h) hands it light; the sink decides what is kept, and counts what it drops.
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "scene/opening_domain.h"
@@ -35,6 +36,10 @@ struct DropCounts {
   }
   bool any() const { return non_finite > 0 || truncated_conditions > 0; }
 };
+
+// The warning a front end shows when the tracer dropped anything, in the user's words; empty when
+// it dropped nothing.
+std::string dropped_warning(const DropCounts& dropped);
 
 class RecordSink {
  public:
