@@ -1,7 +1,9 @@
 #pragma once
-// Unidirectional path tracer from sensor points: cosine-weighted sampling at the sensor, next-event
-// estimation toward the sky with multiple importance sampling (sky sampling + BSDF sampling) and
-// toward the sun disks of a daylight sky (next-event estimation only), and Russian roulette.
+// Unidirectional path tracer from sensor points (the integrator; what it samples and where its light
+// goes have rooms of their own: light_sampling.h, portal_sampler.h, record_sink.h, scene_hits.h):
+// cosine-weighted sampling at the sensor, next-event estimation toward the sky with multiple
+// importance sampling (sky sampling + BSDF sampling) and toward the sun disks of a daylight sky
+// (next-event estimation only), and Russian roulette.
 //
 // Two modes share one loop:
 //  - recording (one pass for all elements): the opening domain is closed, and every time a path
