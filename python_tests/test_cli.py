@@ -120,5 +120,5 @@ def test_contributions_report_what_the_tracer_dropped(tmp_path):
     assert r.returncode == 0, r.stderr
     dropped = json.loads((tmp_path / "contrib.json").read_text())["dropped"]
     assert dropped["truncated_conditions"] > 0 and dropped["non_finite"] == 0
-    assert "fenestra: warning: the tracer left out %d light values or sub-paths that crossed more than 32 " \
+    assert "fenestra: warning: the tracer left out %d light values or sub-paths that met more than 32 " \
            "elements" % dropped["truncated_conditions"] in r.stderr

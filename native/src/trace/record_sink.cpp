@@ -14,8 +14,9 @@ std::string dropped_warning(const DropCounts& d) {
   if (d.truncated_conditions > 0)
     parts += (parts.empty() ? "" : " and ") + std::to_string(d.truncated_conditions) + " light value" +
              (d.truncated_conditions == 1 ? "" : "s") + " or sub-path" + (d.truncated_conditions == 1 ? "" : "s") +
-             " that crossed more than " + std::to_string(RecordSink::kMaxConditions) +
-             " elements on one segment (stacked panels of the opening domain, or a fine element grid in a thick wall)";
+             " that met more than " + std::to_string(RecordSink::kMaxConditions) +
+             " elements outside the room (stacked panels of the opening domain, or a fine element grid in a thick "
+             "wall)";
   return "the tracer left out " + parts + "; the results do not count them (\"dropped\" in the output)";
 }
 
