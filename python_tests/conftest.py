@@ -62,6 +62,27 @@ def write_small_room(folder, offset=(0.0, 0.0, 0.0), paths=4096, seed=3):
     return path
 
 
+def write_stacked_panels(folder, panels=40):
+    """A sensor under `panels` stacked horizontal panels of the opening domain, 5 cm apart: a ray
+    to the sky crosses more elements than an event's conditions hold."""
+    lines = ["o floor", "usemtl grey", "v -5 -5 0", "v 5 -5 0", "v 5 5 0", "v -5 5 0", "f 1 2 3 4"]
+    for i in range(panels):
+        z, n = 1.0 + 0.05 * i, 4 * (i + 1)
+        lines += ["o louvre%d" % i, "usemtl screen"] + ["v %g %g %g" % (x, y, z) for x, y in
+                                                        ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+        lines.append("f %d %d %d %d" % (n + 1, n + 2, n + 3, n + 4))
+    (folder / "stack.obj").write_text("\n".join(lines) + "\n")
+    scene = {"fenestra": 1, "geometry": "stack.obj",
+             "materials": {"grey": {"reflectance": 0.5}, "screen": {"reflectance": 0.5}},
+             "opening_domain": {"materials": ["screen"], "element_size": 2.0},
+             "sensors": {"points": [[0, 0, 0.5]], "normals": [0, 0, 1]},
+             "sky": {"type": "uniform", "radiance": 100},
+             "render": {"paths_per_sensor": 64, "max_bounces": 3, "seed": 1}}
+    path = folder / "scene.json"
+    path.write_text(json.dumps(scene))
+    return path
+
+
 @pytest.fixture
 def small_room(tmp_path):
     """A grey 3 x 3 x 2.5 m room whose south wall (y = 0) is the opening domain; writes scene.json."""

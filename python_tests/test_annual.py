@@ -42,6 +42,7 @@ def test_cli_writes_the_year_and_its_metrics(small_room, tmp_path):
     assert arrays["illuminance"].shape == (3, 8760) and arrays["illuminance"].dtype == np.float32
     assert arrays["direct_sun"].shape == (3, 8760)
     assert summary["format"] == "fenestra-annual" and summary["occupied_hours"] == int(arrays["occupied"].sum()) == 3650
+    assert summary["dropped"] == {"non_finite": 0, "truncated_conditions": 0}
     e, d = arrays["illuminance"], arrays["direct_sun"]
     assert np.all(e >= 0) and np.all(d >= 0) and np.all(d <= e * (1 + 1e-5) + 1e-3)
     night = (arrays["hour_clock"] < 3) | (arrays["hour_clock"] > 22)

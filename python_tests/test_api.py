@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import fenestra
+from conftest import write_stacked_panels
 
 WINDOW = [[1.0, 0, 1.0], [2.0, 0, 1.0], [2.0, 0, 2.0], [1.0, 0, 2.0]]
 
@@ -183,3 +184,17 @@ def test_both_samplers_estimate_the_same_light(small_room):
     (a, sa), (b, sb) = values["sobol"], values["independent"]
     assert np.all(a > 0)
     assert np.all(np.abs(a - b) <= bound * np.hypot(sa, sb)), (a, b, sa, sb)
+
+
+def test_contributions_count_what_the_tracer_dropped(small_room, tmp_path):
+    scene = fenestra.load_scene(small_room)
+    scene.render.paths_per_sensor = 256
+    assert fenestra.contributions(scene).dropped == {"non_finite": 0, "truncated_conditions": 0}
+    folder = tmp_path / "stacked"
+    folder.mkdir()
+    stacked = fenestra.contributions(fenestra.load_scene(write_stacked_panels(folder)))
+    assert stacked.dropped["truncated_conditions"] > 0 and stacked.dropped["non_finite"] == 0
+    # The same totals for any thread count (counted per task of paths).
+    one = fenestra.load_scene(write_stacked_panels(folder))
+    one.render.threads = 1
+    assert fenestra.contributions(one).dropped == stacked.dropped

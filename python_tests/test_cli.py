@@ -7,7 +7,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import CLI, EXAMPLES
+from conftest import CLI, EXAMPLES, write_stacked_panels
 
 
 def run(*args):
@@ -29,6 +29,8 @@ def test_contributions_writes_npz_and_summary(small_room, tmp_path):
     assert np.array(first["corners"]).shape == (4, 3)
     assert len(summary["all_open"]) == 3
     assert np.isfinite(E).all()
+    assert summary["dropped"] == {"non_finite": 0, "truncated_conditions": 0}  # a sound scene drops nothing
+    assert "left out" not in r.stderr
 
 
 def test_evaluate_reads_openings_and_writes_values(small_room, tmp_path):
@@ -109,3 +111,14 @@ def test_missing_output_directory_is_an_error(small_room, tmp_path):
 def test_usage_errors_exit_2(args):
     r = run(*args)
     assert r.returncode == 2 and "usage" in r.stderr
+
+
+def test_contributions_report_what_the_tracer_dropped(tmp_path):
+    scene = write_stacked_panels(tmp_path)
+    out = tmp_path / "contrib.npz"
+    r = run("contributions", scene, "-o", out, "--quiet")
+    assert r.returncode == 0, r.stderr
+    dropped = json.loads((tmp_path / "contrib.json").read_text())["dropped"]
+    assert dropped["truncated_conditions"] > 0 and dropped["non_finite"] == 0
+    assert "fenestra: warning: the tracer left out %d light values or sub-paths that met more than 32 " \
+           "elements" % dropped["truncated_conditions"] in r.stderr

@@ -32,6 +32,7 @@ def test_cli_solve_writes_openings_that_evaluate_reads(small_room, tmp_path):
     assert r.returncode == 0, r.stderr
     result = json.loads(out.read_text())
     assert {"openings", "sensors", "error", "open_elements", "timings_s", "stages", "genetic"} <= set(result)
+    assert result["dropped"] == {"non_finite": 0, "truncated_conditions": 0}  # what tracing the records dropped
     assert len(result["sensors"]) == 3
     assert result["sensors"][2]["goal"] is None
     assert all(s["predicted"] >= 0 for s in result["sensors"])

@@ -69,6 +69,8 @@ class Contributions:
     paths_per_sensor: int
     seconds: float
     events: int
+    @property
+    def dropped(self) -> dict[str, int]: ...  # {"non_finite", "truncated_conditions"}: what the tracer left out
     memory_bytes: int
     warnings: list[str]  # the setup checks' (fenestra.contributions sets them; save() writes them)
     def evaluate(self, open: npt.ArrayLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...  # bools or 0/1
@@ -97,11 +99,13 @@ def transport_matrix_from_entries(shards: list[tuple], elements: int, paths_per_
 def contributions_from_arrays(scene: Scene, paths_per_sensor: int, E: npt.ArrayLike, E_stderr: npt.ArrayLike,
                               A: npt.ArrayLike, T: npt.ArrayLike, closed: npt.ArrayLike, closed_stderr: npt.ArrayLike,
                               all_open: npt.ArrayLike, all_open_stderr: npt.ArrayLike, seconds: float = 0.0,
-                              events: int = 0) -> Contributions: ...  # no path records
+                              events: int = 0, dropped_non_finite: int = 0,
+                              dropped_truncated_conditions: int = 0) -> Contributions: ...  # no path records
 def keep_records_only(contributions: Contributions) -> None: ...  # frees E, E_stderr and A
 def check_output_paths(outputs: list[str], inputs: list[str]) -> None: ...
 def npz_json_pair(out: str) -> Tuple[str, str]: ...  # (OUT.npz, OUT.json); ValueError beside a device
 def write_json_text(path: str, text: str) -> None: ...
+def dropped_warning(dropped: dict[str, int]) -> str: ...  # "" when nothing was dropped
 # The solver's queries of path records (solve/record_queries.h); rectangles are (n, 5) float64
 # arrays [panel, u0, u1, v0, v1], meters in the panel's parameter domain.
 class RegionSearch:

@@ -29,6 +29,14 @@ class UsageError(Exception):
     pass
 
 
+def warn_if_dropped(dropped):
+    """The warning `fenestra` prints when the tracer dropped light (docs/outputs.md, "dropped")."""
+    from fenestra import _core
+    message = _core.dropped_warning(dropped) if dropped else ""
+    if message:
+        print("fenestra: warning: %s" % message, file=sys.stderr)
+
+
 def parse(argv):
     a = {"positional": [], "quiet": False, "strict": False}
     flags = {"-o": "output", "--output": "output", "--openings": "openings", "--workers": "workers",
@@ -118,6 +126,7 @@ def run(a):
                 print("contributions: %d sensors x %d elements, %d paths per sensor, %d shards, %.2f s"
                       % (c.E.shape[0], c.E.shape[1], c.paths_per_sensor, len(c.shards), seconds))
                 print("wrote %s\nwrote %s" % tuple(written))
+                warn_if_dropped(c.dropped)
         else:
             openings = fenestra.read_openings(a["openings"])
             value, stderr = distributed.evaluate(scene, openings, cluster, shards=a.get("shards"), callback=progress)
@@ -207,6 +216,7 @@ def run_solve(a, scene, setup=()):
     print_climate_summary(r.get("climate"))
     for message in own:
         print("fenestra: warning: %s" % message, file=sys.stderr)
+    warn_if_dropped(r.get("dropped"))
     return 0
 
 

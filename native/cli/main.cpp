@@ -265,6 +265,12 @@ void print_climate_summary(const fenestra::Scene& scene, const fenestra::SolveRe
   std::printf("glazing %.2f m2 of %.2f m2 of opening domain\n", c.glazing_area_m2, c.domain_area_m2);
 }
 
+// What the tracer dropped (non-finite light, conditions past their limit): a warning when anything.
+void warn_if_dropped(const fenestra::DropCounts& dropped) {
+  const std::string w = fenestra::dropped_warning(dropped);
+  if (!w.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
+}
+
 int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& progress,
                const std::vector<std::string>& setup) {
   using namespace fenestra;
@@ -294,6 +300,7 @@ int run_annual(const Args& a, const fenestra::Scene& scene, fenestra::Progress& 
               "%s\nwrote %s\nwrote %s\n",
               c.sensor_count(), m.hours, m.occupied_hours, c.paths_per_sensor, c.seconds, study.seconds,
               m.to_string().c_str(), paths.first.c_str(), paths.second.c_str());
+  warn_if_dropped(c.dropped);
   return 0;
 }
 
@@ -385,6 +392,7 @@ int run(const Args& a) {
                   100 * r.verified_error.relative_rms, 100 * r.verified_error.max_relative);
     print_climate_summary(scene, r);
     for (const std::string& w : own) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
+    warn_if_dropped(r.dropped);
     return 0;
   }
   if (a.command == "contributions") {
@@ -399,6 +407,7 @@ int run(const Args& a) {
     std::printf("wrote %s\nwrote %s\n", paths.first.c_str(), paths.second.c_str());
     const std::string sparse = sparse_sampling_warning(c.paths_per_sensor, c.element_count());
     if (!sparse.empty()) std::fprintf(stderr, "fenestra: warning: %s\n", sparse.c_str());
+    warn_if_dropped(c.dropped);
     return 0;
   }
   if (a.command == "annual") return run_annual(a, scene, progress, setup);

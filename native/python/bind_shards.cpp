@@ -95,7 +95,8 @@ void bind_shards(py::module_& m) {
       "contributions_from_arrays",
       [](const Scene& scene, int paths_per_sensor, const DoubleArray& E, const DoubleArray& E_stderr,
          const DoubleArray& A, const DoubleArray& T, const DoubleArray& closed, const DoubleArray& closed_stderr,
-         const DoubleArray& all_open, const DoubleArray& all_open_stderr, double seconds, uint64_t events) {
+         const DoubleArray& all_open, const DoubleArray& all_open_stderr, double seconds, uint64_t events,
+         uint64_t dropped_non_finite, uint64_t dropped_truncated_conditions) {
         const py::ssize_t ns = static_cast<py::ssize_t>(scene.sensors.size());
         const py::ssize_t no = static_cast<py::ssize_t>(scene.domain.element_count());
         auto c = std::make_shared<Contributions>();
@@ -109,12 +110,14 @@ void bind_shards(py::module_& m) {
         c->records.resize(static_cast<size_t>(ns));  // none kept here: the shards hold them
         c->seconds = seconds;
         c->events = events;
+        c->dropped = {dropped_non_finite, dropped_truncated_conditions};
         c->origin = contributions_origin(scene);
         return c;
       },
       py::arg("scene"), py::arg("paths_per_sensor"), py::arg("E"), py::arg("E_stderr"), py::arg("A"), py::arg("T"),
       py::arg("closed"), py::arg("closed_stderr"), py::arg("all_open"), py::arg("all_open_stderr"),
-      py::arg("seconds") = 0.0, py::arg("events") = 0,
+      py::arg("seconds") = 0.0, py::arg("events") = 0, py::arg("dropped_non_finite") = 0,
+      py::arg("dropped_truncated_conditions") = 0,
       "Contributions of the scene from their arrays, without path records (a study whose records stay in its "
       "shards): save() writes them as a single process would.");
   m.def(
@@ -146,6 +149,14 @@ void bind_shards(py::module_& m) {
       },
       py::arg("path"), py::arg("text"),
       "Writes JSON text as the command line writes its results (indented, whole or not at all).");
+  m.def(
+      "dropped_warning",
+      [](const py::dict& dropped) {
+        return dropped_warning({dropped["non_finite"].cast<uint64_t>(), dropped["truncated_conditions"].cast<uint64_t>()});
+      },
+      py::arg("dropped"),
+      "The command line's warning for what the tracer dropped (Contributions.dropped, a result's \"dropped\"), or "
+      "\"\" when nothing was.");
   m.def(
       "write_evaluation",
       [](const Scene& scene, const DoubleArray& value, const DoubleArray& stderr_, size_t openings,

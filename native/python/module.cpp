@@ -377,6 +377,16 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("paths_per_sensor", &Contributions::paths_per_sensor)
       .def_readonly("seconds", &Contributions::seconds)
       .def_readonly("events", &Contributions::events)
+      .def_property_readonly(
+          "dropped",
+          [](const Contributions& c) {
+            py::dict d;
+            d["non_finite"] = c.dropped.non_finite;
+            d["truncated_conditions"] = c.dropped.truncated_conditions;
+            return d;
+          },
+          "What the tracer left out while recording: {\"non_finite\": light values that were NaN or infinite, "
+          "\"truncated_conditions\": light values or sub-paths past the limit of conditions}; both 0 in a sound scene.")
       .def_property_readonly("memory_bytes", &Contributions::memory_bytes)
       .def_readwrite("warnings", &Contributions::warnings,
                      "The setup checks' warnings (fenestra.contributions sets them; save() writes them).")

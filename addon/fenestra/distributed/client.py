@@ -201,6 +201,7 @@ class DistributedContributions:
                   if parts[0]["transport"] is not None else np.zeros((0, 0)))  # a solve's refined grid: no T
         self.seconds = max(p["seconds"] for p in parts)
         self.events = sum(p["events"] for p in parts)
+        self.dropped = {key: sum(p["dropped"][key] for p in parts) for key in ("non_finite", "truncated_conditions")}
         self.shard_memory_bytes = [p["memory_bytes"] for p in parts]
         self.memory_bytes = sum(self.shard_memory_bytes)
         self.recomputed_shards = 0
@@ -324,7 +325,8 @@ class DistributedContributions:
         """A fenestra.Contributions with these arrays and no path records (save(), solve's inputs)."""
         return _core.contributions_from_arrays(
             self.scene, self.paths_per_sensor, self.E, self.E_stderr, self.A, self.T, self.closed, self.closed_stderr,
-            self.all_open, self.all_open_stderr, self.seconds, self.events)
+            self.all_open, self.all_open_stderr, self.seconds, self.events, self.dropped["non_finite"],
+            self.dropped["truncated_conditions"])
 
     def save(self, path):
         """Writes PATH.npz and PATH.json as fenestra.Contributions.save does."""

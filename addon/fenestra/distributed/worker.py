@@ -63,7 +63,7 @@ def _compute_shard(spec, key, begin, end):
         "closed": np.array(c.closed), "closed_stderr": np.array(c.closed_stderr),
         "all_open": np.array(c.all_open), "all_open_stderr": np.array(c.all_open_stderr),
         "transport": _core.transport_entries(c) if spec.get("transport", True) else None,
-        "seconds": c.seconds, "events": c.events,
+        "seconds": c.seconds, "events": c.events, "dropped": c.dropped,
         "paths_per_sensor": c.paths_per_sensor,
     }
     _core.keep_records_only(c)  # the rows travel to the client; the worker keeps what evaluations read

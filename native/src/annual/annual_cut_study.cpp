@@ -45,7 +45,7 @@ AnnualCutCoefficients annual_cut_coefficients(const Scene& scene, const std::vec
   const size_t sensors = range.size();
   const size_t sources = static_cast<size_t>(annual->sources.count());
   const int paths = paths_per_sensor > 0 ? paths_per_sensor : scene.render.paths_per_sensor;
-  const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
+  const size_t tasks_per_sensor = path_tasks_per_sensor(paths);
   const size_t batch = std::max<size_t>(1, kAnnualCutBatchBytes / (sizeof(double) * sources * tasks_per_sensor));
   AnnualCutCoefficients out;
   out.paths_per_sensor = paths;
@@ -62,19 +62,15 @@ AnnualCutCoefficients annual_cut_coefficients(const Scene& scene, const std::vec
     const size_t count = std::min(batch, sensors - first);
     Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(sources),
                                                  static_cast<Eigen::Index>(count * tasks_per_sensor));
-    parallel_tasks(count * tasks_per_sensor, scene.render.threads, progress, [&](size_t t) {
-      const size_t sensor = range.begin + first + t / tasks_per_sensor;  // the scene's index: it seeds the paths
-      const size_t task = first * tasks_per_sensor + t;
-      const size_t from = (t % tasks_per_sensor) * kPathsPerTask;
-      const size_t to = std::min<size_t>(paths, from + kPathsPerTask);
-      auto row = rows.col(static_cast<Eigen::Index>(t));
+    const SensorRange batch_range{range.begin + first, range.begin + first + count};
+    parallel_path_tasks(batch_range, paths, scene.render.threads, progress, [&](const PathTask& t) {
+      const size_t task = first * tasks_per_sensor + t.index;
+      auto row = rows.col(static_cast<Eigen::Index>(t.index));
       std::vector<PathTracer::SourceLight> lights;
-      for (size_t p = from; p < to; ++p) {
-        const uint64_t seed = scene.render.seed ^ kAnnualCutStream;
-        Rng rng = path_rng(seed, sensor, p);
-        const std::optional<PathSamples> samples = path_samples(scene.render, seed, sensor, p);
+      const uint64_t seed = scene.render.seed ^ kAnnualCutStream;
+      t.for_each_path(scene.render, seed, [&](size_t p, Rng& rng, const PathSamples* samples) {
         lights.clear();
-        tracer.sensor_sample_by_source(sensor, samples ? &*samples : nullptr, rng, &lights);
+        tracer.sensor_sample_by_source(t.sensor, samples, rng, &lights);
         double design = 0.0;
         for (const PathTracer::SourceLight& l : lights) {
           // The sun a sensor's own sample finds straight away: the exact hourly sun counts it below.
@@ -84,7 +80,7 @@ AnnualCutCoefficients annual_cut_coefficients(const Scene& scene, const std::vec
           design += unit * annual->design_strength[l.source];
         }
         sum[task].add(p, design);
-      }
+      });
     });
     for (size_t i = 0; i < count; ++i)
       k.sources.row(static_cast<Eigen::Index>(first + i)) =

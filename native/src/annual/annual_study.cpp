@@ -23,6 +23,7 @@ AnnualStudy study(const Contributions& c, Open is_open, const SensorValues& mean
   const auto start = std::chrono::steady_clock::now();
   AnnualStudy s = annual_study_of(annual_coefficients(c.records, *c.annual, is_open, progress), c.annual, mean);
   s.paths_per_sensor = c.paths_per_sensor;
+  s.dropped = c.dropped;
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
 }

@@ -31,6 +31,8 @@ struct AnnualStudy {
   int paths_per_sensor = 0;
   bool cutters = false;
   std::vector<std::string> warnings;  // the setup checks' (study/setup_checks.h), set by the front end
+  // From the records (not `cutters`): what the tracer dropped while recording them (record_sink.h).
+  DropCounts dropped;
 };
 
 // The metric settings of a climate scene: the standards' defaults, its occupied hours.

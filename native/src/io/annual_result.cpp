@@ -6,6 +6,7 @@
 #include "format/atomic_file.h"
 #include "format/npz_writer.h"
 #include "format/output_pair.h"
+#include "io/results.h"
 
 namespace fenestra {
 namespace {
@@ -67,7 +68,7 @@ json annual_json(const AnnualStudy& s) {
                      {"ase_hours", ase_hours}};
   // With the openings cut, the occupied hours' mean is the year's own: there are no records.
   if (!s.cutters) per_sensor["mean_illuminance_from_records_lux"] = to_vector(s.occupied_mean.value);
-  return {
+  json j = {
       {"format", "fenestra-annual"},
       {"version", 1},
       {"scene", a.scene_source},
@@ -94,6 +95,8 @@ json annual_json(const AnnualStudy& s) {
       {"seconds", s.seconds},
       {"warnings", s.warnings},
   };
+  if (!s.cutters) j["dropped"] = dropped_json(s.dropped);  // the records' (cut paths record nothing)
+  return j;
 }
 
 std::pair<std::string, std::string> write_annual(const Scene& scene, const AnnualStudy& s, const std::string& out) {

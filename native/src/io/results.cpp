@@ -37,6 +37,10 @@ json vec_json(const Vec3d& p) { return json::array({p.x(), p.y(), p.z()}); }
 
 }  // namespace
 
+json dropped_json(const DropCounts& d) {
+  return {{"non_finite", d.non_finite}, {"truncated_conditions", d.truncated_conditions}};
+}
+
 json elements_json(const Scene& scene) {
   json list = json::array();
   const auto& elements = scene.domain.elements();
@@ -103,6 +107,7 @@ std::pair<std::string, std::string> write_contributions(const Scene& scene, cons
       {"panels", panels},
       {"elements", elements_json(scene)},
       {"warnings", c.warnings},
+      {"dropped", dropped_json(c.dropped)},
   };
   // The pair appears together or not at all (format/atomic_file.h); the summary, which names the
   // arrays, is renamed into place last.
@@ -146,7 +151,7 @@ std::vector<OpeningInput> parse_openings(const json& j, const std::string& sourc
   };
   // An openings file, or a solve's result (docs/solver.md), whose other keys are read past.
   if (const auto unknown = find_unknown_key(j, {"openings", "units", "goal_units", "open_elements", "element_count",
-                                               "element_size", "sensors", "error", "fitness", "warnings",
+                                               "element_size", "sensors", "error", "fitness", "warnings", "dropped",
                                                "constraints_met", "tradeoffs", "composition",
                                                "constraint_violations", "unconstrained", "timings_s", "stages", "genetic",
                                                "edge_moves", "second_start", "constraint_costs", "settings",

@@ -14,6 +14,9 @@ namespace fenestra {
 // scene's input coordinates).
 nlohmann::json elements_json(const Scene& scene);
 
+// What the tracer dropped (record_sink.h), as the outputs' "dropped": {"non_finite", "truncated_conditions"}.
+nlohmann::json dropped_json(const DropCounts& dropped);
+
 // Writes OUT.npz (arrays) and OUT.json (summary); `out` may end in .npz or be the stem.
 // Returns the two paths written.
 std::pair<std::string, std::string> write_contributions(const Scene& scene, const Contributions& c,

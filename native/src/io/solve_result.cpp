@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "io/climate_result.h"
+#include "io/results.h"
 
 namespace fenestra {
 namespace {
@@ -168,6 +169,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                  {"nnls_relative_rms", r.nnls_relative_rms}}},
       {"fitness", r.fitness},
       {"warnings", r.warnings},
+      {"dropped", dropped_json(r.dropped)},
       {"constraints_met", r.constraint_violations.empty()},
       {"tradeoffs", tradeoffs_json(scene, r)},
       {"composition", [&] {

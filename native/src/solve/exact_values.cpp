@@ -1,9 +1,8 @@
 #include "solve/exact_values.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 
+#include "trace/parallel.h"
 #include "trace/path_record.h"
 #include "util/progress.h"
 
@@ -52,7 +51,8 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   SensorValues out;
   out.value.resize(static_cast<Eigen::Index>(sensors));
   out.standard_error.resize(static_cast<Eigen::Index>(sensors));
-  tbb::parallel_for(size_t(0), sensors, [&](size_t i) {
+  // A cancelled pass leaves some sensors unevaluated: the bookkeeping below runs before it throws.
+  for_each_sensor(sensors, nullptr, [&](size_t i) {
     if (progress_ && progress_->cancelled()) return;
     const int reference = reference_of_[i];
     bool full = false;
@@ -107,7 +107,7 @@ void ExactValues::build_index() {
   const size_t sensors = c_.records.size(), elements = c_.element_count();
   element_begin_.resize(sensors);
   element_paths_.resize(sensors);
-  tbb::parallel_for(size_t(0), sensors, [&](size_t i) {
+  for_each_sensor(sensors, nullptr, [&](size_t i) {
     const SensorRecord& r = c_.records[i];
     std::vector<uint32_t>& begin = element_begin_[i];
     std::vector<uint32_t>& paths = element_paths_[i];

@@ -1,10 +1,9 @@
 #include "solve/region_search.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 
+#include "trace/parallel.h"
 #include "util/progress.h"
 
 namespace fenestra {
@@ -13,8 +12,6 @@ namespace {
 // Meters added around a strip: met points are stored as floats, and a path found in excess is only
 // evaluated once more, unchanged.
 constexpr double kStripSlack = 1e-5;
-// Paths between two polls of cancellation while the index is built.
-constexpr size_t kPollPaths = 4096;
 
 double value_of_flags(const SensorRecord& r, size_t p, const std::vector<uint8_t>& event, const std::vector<uint8_t>& condition) {
   return path_value_by_point(r, p, [&](uint32_t i) { return event[i] != 0; }, [&](uint32_t i) { return condition[i] != 0; });
@@ -77,7 +74,7 @@ RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, 
   tries_.resize(sensors);
   values_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sensors));
   const OpenRegion region(domain, start);
-  tbb::parallel_for(size_t(0), sensors, [&](size_t i) {
+  for_each_sensor(sensors, progress, [&](size_t i) {
     const SensorRecord& r = c.records[i];
     std::vector<uint32_t>& begin = element_begin_[i];
     std::vector<Met>& met = met_[i];
@@ -85,7 +82,7 @@ RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, 
     // Every point where a path met an element: its escapes' and its conditions'.
     auto for_each_point = [&](auto visit) {
       for (size_t p = 0; p < r.path_count(); ++p) {
-        if (progress && p % kPollPaths == 0 && progress->cancelled()) return;
+        if (cancelled_at(progress, p)) return;
         r.walk(p, [&](uint32_t e, const PathEvent& ev, const EventConditions& c) {
           if (ev.is_escape() || ev.own_condition()) visit(ev.element(), r.event_points[e], p, e, true);
           if (c.stored)
@@ -116,7 +113,6 @@ RegionSearch::RegionSearch(const Contributions& c, const OpeningDomain& domain, 
     for (size_t p = 0; p < r.path_count(); ++p) sum += path_values_[i][p] = value_of_flags(r, p, open.event, open.condition);
     values_[static_cast<Eigen::Index>(i)] = r.path_count() ? sum / static_cast<double>(r.path_count()) : 0.0;
   });
-  if (progress) progress->throw_if_cancelled();
 }
 
 template <typename Visit>
@@ -146,7 +142,7 @@ const Eigen::VectorXd& RegionSearch::try_region(const std::vector<PanelRectangle
   candidate_region_.set_rectangles(candidate);
   const OpenRegion& region = candidate_region_;
   std::atomic<size_t> evaluated{0};
-  tbb::parallel_for(size_t(0), c_.records.size(), [&](size_t i) {
+  for_each_sensor(c_.records.size(), nullptr, [&](size_t i) {
     const SensorRecord& r = c_.records[i];
     PointFlags& open = open_[i];
     Try& t = tries_[i];

@@ -15,6 +15,7 @@
 #include "solve/goals.h"
 #include "solve/rectangles.h"
 #include "solve/solve_stage.h"
+#include "trace/record_sink.h"
 
 namespace fenestra {
 
@@ -81,6 +82,8 @@ struct SolveResult {
   std::vector<TradeoffResult> tradeoffs;
   // Climate goals (scene goals.climate): each goal's figures and the year of the final openings.
   ClimateOutcome climate;
+  // What the tracer dropped while recording the contributions solved from (record_sink.h).
+  DropCounts dropped;
 };
 
 }  // namespace fenestra

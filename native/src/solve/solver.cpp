@@ -97,6 +97,7 @@ class OpeningSolve {
         constraints_(measured_constraints(scene)) {
     // In thick walls the records give a year only for edges on the grid lines: climate answers keep them there.
     if (climate_ && has_thick_panel(scene.domain)) settings_.refine_edges = false;
+    out_.dropped = c_.dropped;
     out_.goals = resolve_goals(scene, c_);
     objective_ = linear_objective(c_, out_.goals, settings_.bound_weight);
     // With a catalogue, the grid's openings keep near its sizes; they take them exactly below.
@@ -588,8 +589,366 @@ SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress*
 SolveResult solve_openings(const Scene& scene, RecordQueries& records, Progress* progress) {
   check_contributions_match(scene, records.contributions(), "solve");
   refuse_dark_sky(scene);
+<<<<<<< HEAD
   OpeningSolve solve(scene, records, progress);
   return solve.solve();
+=======
+  const auto start = Clock::now();
+  SolveResult out;
+  out.dropped = c.dropped;
+  out.goals = resolve_goals(scene, c);
+  const bool climate = !scene.sensors.climate_goals.empty();
+  SolverSettings settings = scene.solver;
+  // In thick walls the records give a year only for edges on the grid lines: climate answers keep them there.
+  if (climate && has_thick_panel(scene.domain)) settings.refine_edges = false;
+  LinearObjective objective = linear_objective(c, out.goals, settings.bound_weight);
+  std::optional<ClimateProblem> climate_problem_of;
+  const ElementGrid grid = ElementGrid::from_domain(scene.domain);
+  const ShapeWeights shape = shape_of(settings);
+  GeneticSettings ga;
+  ga.population = settings.population;
+  ga.generations = settings.generations;
+  ga.seed = settings.seed;
+  ga.time_budget_s = settings.time_budget_s;
+  ga.elite = settings.elite;
+  ga.shape = shape;
+
+  auto t = Clock::now();
+  const ElementStage stage = climate ? climate_element_stage(scene, c, grid, shape, ga, records, &objective, out, &climate_problem_of, progress)
+                                     : linear_element_stage(scene, c, objective, grid, shape, ga, records, out, progress);
+  double best = stage.fitness;
+  SensorValues chosen = stage.values;
+
+  // Architectural refinement: regions become admissible rectangles (the paper's final step),
+  // then a local search over whole openings; the exact evaluation has the last word.
+  if (progress) progress->start("solving: openings within the constraints", 1);
+  t = Clock::now();
+  const OpeningConstraints constraints = measured_constraints(scene);
+  auto exact_of = [&](const std::vector<GridRectangle>& rects, SensorValues* values) {
+    const std::vector<uint8_t> open = rectangles_mask(scene.domain, rects);
+    *values = records.exact(open);
+    return exact_fitness(objective, grid, shape, open, values->value - c.closed.value);
+  };
+  // With a catalogue, the grid's openings keep near its sizes; they take them exactly below.
+  const OpeningConstraints grid_constraints = grid_search_constraints(scene.domain, constraints);
+  // Openings within the constraints from a set of open elements, and the exact linear model about
+  // them (the local search's, then the edge search's screen).
+  struct Constrained {
+    std::vector<GridRectangle> rects;
+    SensorValues values;
+    double fitness = 0.0;
+    GoalError refined_error;
+    std::optional<LinearObjective> about;
+  };
+  auto constrain = [&](const std::vector<uint8_t>& open, const SensorValues& open_values,
+                       const OpeningConstraints& grid_constraints) {
+    Constrained k;
+    // Rectangles are scored by the exact linear model about the state (the elements' joint light).
+    const LinearObjective about_open = linearised_objective(objective, records, open, open_values.value);
+    k.rects = refine_openings(scene.domain, open, about_open, grid_constraints, progress);
+    k.fitness = exact_of(k.rects, &k.values);
+    k.refined_error = goal_error(out.goals, k.values.value);
+    if (settings.improve_iterations <= 0) return k;
+    if (progress) progress->start("solving: local search over openings", 1);
+    // Each round searches the exact linear model about the current openings, and is kept only if
+    // the exact evaluation agrees; the next round linearises about its answer.
+    auto linearise = [&] {
+      k.about = linearised_objective(objective, records, rectangles_mask(scene.domain, k.rects), k.values.value);
+    };
+    linearise();
+    for (int round = 0; round < kLinearisationRounds; ++round) {
+      const std::vector<GridRectangle> improved = improve_rectangles(
+          scene.domain, k.rects, *k.about, grid_constraints, settings.seed + round, settings.improve_iterations,
+          progress);
+      SensorValues improved_values;
+      const double f = exact_of(improved, &improved_values);
+      if (!(f < k.fitness * (1.0 - 1e-6))) break;
+      k.fitness = f;
+      k.rects = improved;
+      k.values = improved_values;
+      linearise();
+    }
+    return k;
+  };
+  const SensorValues free_values = chosen;
+  Constrained kept = constrain(out.open, chosen, grid_constraints);
+  // When the free answer takes light from elements no admissible opening can cover (margins,
+  // rows below the sill or above the head limits), the openings made from it can land far from
+  // the best: a second start searches the elements again without those, and the better is kept.
+  const std::vector<uint8_t> out_of_bounds = elements_out_of_bounds(scene.domain, grid_constraints);
+  if (opens_any(out.open, out_of_bounds)) {
+    if (progress) progress->start("solving: elements within the constraints", 1);
+    const ElementChoice within = search_within_bounds(objective, c, grid, shape, ga, records, stage.start_open,
+                                                      out.open, out_of_bounds, progress);
+    Constrained second = constrain(within.open, within.values, grid_constraints);
+    out.second_start = true;
+    if (second.fitness < kept.fitness) kept = std::move(second), out.second_start_kept = true;
+  }
+  // Climate goals: openings that follow the element answer's light can still fall short of a goal
+  // it met (a sensor just over its threshold drops below). The constraints stage again with the
+  // followed light raised, kept when the year of its openings is better.
+  if (climate) {
+    if (progress) progress->start("solving: openings for the climate goals", 1);
+    const ClimateProblem& problem = *climate_problem_of;
+    auto climate_score = [&](const std::vector<GridRectangle>& rects) {
+      return climate_error_of(records, problem, rectangles_mask(scene.domain, rects));
+    };
+    ClimateScore kept_score = climate_score(kept.rects);
+    const SolverGoals followed = out.goals;
+    for (double gain : kClimateFollowGains) {
+      if (kept_score.all_met) break;
+      const SolverGoals raised = raised_goals(followed, problem.rows, scene_goal_weight(scene, c), gain);
+      const LinearObjective previous = objective;
+      objective = linear_objective(c, raised, settings.bound_weight);
+      Constrained k = constrain(stage.open, stage.values, grid_constraints);
+      const ClimateScore score = climate_score(k.rects);
+      if (score.error < kept_score.error) {
+        kept = std::move(k), kept_score = score, out.goals = raised;
+      } else {
+        objective = previous;
+      }
+    }
+  }
+  // When the constraints cost much light, which of them: each family lifted in turn.
+  const double free_rms = out.unconstrained_error.relative_rms;
+  const double constrained_rms = goal_error(out.goals, kept.values.value).relative_rms;
+  // (With climate goals the per-sensor goals are the element answer's light: the climate figures
+  // tell what the constraints cost, in report_climate.)
+  if (!climate && constraints_cost_much(free_rms, constrained_rms)) {
+    if (progress) progress->start("solving: what the constraints cost", 1);
+    // Searched from the free answer and from the openings found within the constraints (which
+    // stay admissible when a limit is lifted), so lifting never reports more error than keeping.
+    const std::vector<uint8_t> kept_open = rectangles_mask(scene.domain, kept.rects);
+    out.constraint_costs = constraint_costs(constraints, [&](const OpeningConstraints& lifted) {
+      const OpeningConstraints lifted_grid = grid_search_constraints(scene.domain, lifted);
+      const Constrained from_free = constrain(out.open, free_values, lifted_grid);
+      const Constrained from_kept = constrain(kept_open, kept.values, lifted_grid);
+      return std::min({constrained_rms, goal_error(out.goals, from_free.values.value).relative_rms,
+                       goal_error(out.goals, from_kept.values.value).relative_rms});
+    }, free_rms, constrained_rms);
+    out.warnings.push_back(constraint_cost_warning(free_rms, constrained_rms, out.constraint_costs));
+  }
+  std::vector<GridRectangle> rects = std::move(kept.rects);
+  chosen = kept.values;
+  best = kept.fitness;
+  out.refined_error = kept.refined_error;
+  std::optional<LinearObjective> about = std::move(kept.about);
+  auto linearise_about_rects = [&] {
+    about = linearised_objective(objective, records, rectangles_mask(scene.domain, rects), chosen.value);
+  };
+  out.open = rectangles_mask(scene.domain, rects);
+  out.openings.clear();
+  for (const GridRectangle& r : rects) out.openings.push_back(to_world(scene.domain, r));
+  out.fitness = best;
+  std::vector<PanelRectangle> final_rects;
+  for (const GridRectangle& r : rects) final_rects.push_back(panel_rectangle(r, scene.domain.element_size()));
+  // Whether `chosen` holds the records' exact values of final_rects (not so for catalogue sizes in
+  // thick walls until their refined grid is traced).
+  bool chosen_exact = true;
+  if (uses_catalogue(scene.domain, constraints) && !rects.empty()) {
+    if (progress) progress->start("solving: catalogue sizes", 1);
+    if (!about) linearise_about_rects();
+    const CatalogueSnap snap =
+        snap_to_catalogue(scene.domain, records, objective, constraints, about->E, final_rects, progress);
+    const double grid_error = prediction_error(objective, chosen.value - c.closed.value);
+    final_rects = snap.openings;
+    chosen_exact = snap.exact;
+    if (snap.exact) chosen = records.evaluate(final_rects);
+    else chosen.value = snap.values;
+    out.fitness += prediction_error(objective, chosen.value - c.closed.value) - grid_error;
+    out.warnings.insert(out.warnings.end(), snap.notes.begin(), snap.notes.end());
+  }
+  // Edges below the element size, where the exact error says so.
+  double thick_seconds = 0.0;
+  if (settings.refine_edges && !final_rects.empty()) {
+    if (progress) progress->start("solving: edges off the element grid", 1);
+    if (!about) linearise_about_rects();
+    EdgeSearchScope scope;
+    scope.opening_light = &about->E;
+    const EdgeRefinement edges = refine_edges(scene.domain, records, objective, constraints, final_rects, progress, scope);
+    out.edge_moves = edges.moves;
+    if (edges.moves > 0 && !chosen_exact) {
+      final_rects = edges.openings;  // the prediction comes from the refined grid or real cutters below
+    } else if (edges.moves > 0) {
+      const SensorValues v = records.evaluate(edges.openings);
+      const double grid_error = prediction_error(objective, chosen.value - c.closed.value);
+      const double error = prediction_error(objective, v.value - c.closed.value);
+      if (error < grid_error) {
+        chosen = v;
+        out.fitness += error - grid_error;
+        final_rects = edges.openings;
+      }
+    }
+    // In thick walls, below the element size: the paths traced again on a grid refined about the
+    // openings' edges. Its records then give the prediction, unless its openings are refused.
+    std::string skipped;
+    const auto thick_start = Clock::now();
+    std::optional<ThickWallEdges> thick =
+        refine_thick_wall_edges(scene, records, objective, constraints, final_rects, progress, &skipped);
+    if (!skipped.empty()) out.warnings.push_back(skipped);
+    const bool traced_thick = thick.has_value();
+    // The refined records are noisier than the element grid's (one way at each tube side), and a
+    // search over many candidates picks their noise too: with verification on, real cutters
+    // decide between the openings before and after (the same random numbers for both).
+    if (thick && thick->edges.moves > 0 && settings.verify &&
+        !refined_edges_verified_better(records, final_rects, thick->edges.openings, out.goals))
+      thick.reset();
+    if (thick) {
+      // Errors within one set of records: the first round's start is these openings.
+      out.edge_moves += thick->edges.moves;
+      out.fitness += thick->error - (chosen_exact ? thick->start_error
+                                                  : prediction_error(objective, chosen.value - c.closed.value));
+      chosen = thick->values;
+      chosen_exact = true;
+      final_rects = thick->edges.openings;
+    }
+    if (traced_thick) thick_seconds = since(thick_start);
+  }
+  if (!chosen_exact) {
+    // Catalogue sizes in thick walls without their refined records: cut for real.
+    std::vector<OpeningInput> cutters(final_rects.begin(), final_rects.end());
+    chosen = records.cut(cutters, 0);
+  }
+  out.openings.clear();
+  for (const PanelRectangle& r : final_rects) out.openings.push_back(to_world(scene.domain, r));
+  out.open = open_elements(scene.domain, final_rects);
+  // Facade composition: the rules' candidates scored by the exact error (records on thin walls,
+  // real cutters when an opening is in a thick wall).
+  std::function<SensorValues(const std::vector<PanelRectangle>&)> values_of =
+      [&](const std::vector<PanelRectangle>& set) {
+        const bool thick = std::any_of(set.begin(), set.end(), [&](const PanelRectangle& r) {
+          return scene.domain.panels()[static_cast<size_t>(r.panel)].thickness > 0.0f;
+        });
+        if (!thick) return records.evaluate(set);
+        std::vector<OpeningInput> cutters(set.begin(), set.end());
+        return records.cut(cutters, settings.verify_paths);
+      };
+  // (Outside the block below: the trade-offs call `compose`, which refers to it, after it.)
+  const std::function<double(const std::vector<PanelRectangle>&)> error_of =
+      [&](const std::vector<PanelRectangle>& set) { return goal_error(out.goals, values_of(set).value).relative_rms; };
+  std::function<std::vector<PanelRectangle>(const std::vector<PanelRectangle>&)> compose;
+  double compose_seconds = 0.0;
+  if (composes(scene.domain, constraints) && !final_rects.empty()) {
+    const auto compose_start = Clock::now();
+    if (progress) progress->start("solving: facade composition", 1);
+    const Composition composed = compose_facades(scene.domain, constraints, final_rects, error_of, progress);
+    out.composition = composed.steps;
+    for (const CompositionStep& step : composed.steps)
+      if (!step.met)
+        out.warnings.push_back(step.rule + ": no admissible way to meet it was found on every facade; left as it was");
+      else if (step.error_after > step.error_before + 1e-3)
+        out.warnings.push_back(step.rule + " raises the error from " + percent_text(step.error_before) + " to " +
+                               percent_text(step.error_after));
+    if (composed.openings != final_rects) {
+      final_rects = composed.openings;
+      chosen = values_of(final_rects);
+      out.openings.clear();
+      for (const PanelRectangle& r : final_rects) out.openings.push_back(to_world(scene.domain, r));
+      out.open = open_elements(scene.domain, final_rects);
+    }
+    compose = [&](const std::vector<PanelRectangle>& set) {
+      return compose_facades(scene.domain, constraints, set, error_of, progress).openings;
+    };
+    compose_seconds = since(compose_start);
+    out.timings.push_back({"composition", compose_seconds});
+  }
+  out.constraint_violations = all_violations(scene.domain, final_rects, constraints);
+  for (const std::string& v : out.constraint_violations) out.warnings.push_back("constraints: " + v);
+  out.predicted = chosen.value;
+  out.predicted_stderr = chosen.standard_error;
+  out.linear = linear_prediction(c, out.open);
+  out.compensated = compensated_prediction(c, out.open);
+  out.error = goal_error(out.goals, out.predicted);
+  out.linear_error = goal_error(out.goals, out.linear);
+  out.compensated_error = goal_error(out.goals, out.compensated);
+  out.timings.push_back({"constraints", since(t) - thick_seconds - compose_seconds});
+  if (thick_seconds > 0.0) out.timings.push_back({"thick-wall edges", thick_seconds});
+  if (progress) progress->throw_if_cancelled();
+
+  if (settings.tradeoffs && !out.openings.empty()) {
+    t = Clock::now();
+    if (progress) progress->start("solving: fewer openings", 1);
+    TradeoffResult answer;
+    answer.openings = out.openings;
+    answer.predicted = out.predicted;
+    answer.predicted_stderr = out.predicted_stderr;
+    answer.error = out.error;
+    answer.answer = true;
+    out.tradeoffs.push_back(answer);
+    for (const Tradeoff& f : fewer_openings(scene, records, objective, constraints, final_rects,
+                                            about ? &about->E : nullptr, settings.verify_paths, compose, progress)) {
+      TradeoffResult entry;
+      for (const PanelRectangle& r : f.openings) entry.openings.push_back(to_world(scene.domain, r));
+      entry.predicted = f.values.value;
+      entry.predicted_stderr = f.values.standard_error;
+      entry.error = goal_error(out.goals, f.values.value);
+      entry.cut = f.cut;
+      out.tradeoffs.push_back(std::move(entry));
+    }
+    out.timings.push_back({"trade-offs", since(t)});
+    // Least glazing: a trade-off that meets every climate goal with less glass than the answer
+    // becomes the answer (the list is of designs the solver evaluated; none passing with less
+    // glass is shown beside it).
+    if (climate && scene.sensors.climate_goals.least_glazing) {
+      std::vector<ClimateFigure> answer_figures;
+      try {
+        const AnnualStudy year = records.annual_study(final_rects);
+        answer_figures = climate_figures(*climate_problem_of, year.illuminance.total, year.illuminance.direct);
+      } catch (const std::invalid_argument&) {
+        // Edges off the grid lines of a thick wall: the records cannot tell; the answer stays.
+      }
+      const int least = answer_figures.empty() ? -1
+                                                : least_glazing_entry(scene, records, *climate_problem_of, answer_figures,
+                                                                      settings.verify, settings.verify_paths, &out.tradeoffs);
+      if (least >= 0 && !out.tradeoffs[static_cast<size_t>(least)].answer) {
+        for (TradeoffResult& entry : out.tradeoffs) entry.answer = false;
+        TradeoffResult& chosen_entry = out.tradeoffs[static_cast<size_t>(least)];
+        chosen_entry.answer = true;
+        out.openings = chosen_entry.openings;
+        final_rects.clear();
+        for (const OpeningRectangle& o : out.openings) final_rects.push_back(o.parameter);
+        out.open = open_elements(scene.domain, final_rects);
+        out.predicted = chosen_entry.predicted;
+        out.predicted_stderr = chosen_entry.predicted_stderr;
+        out.linear = linear_prediction(c, out.open);
+        out.compensated = compensated_prediction(c, out.open);
+        out.error = chosen_entry.error;
+        out.linear_error = goal_error(out.goals, out.linear);
+        out.compensated_error = goal_error(out.goals, out.compensated);
+        out.warnings.erase(std::remove_if(out.warnings.begin(), out.warnings.end(),
+                                          [](const std::string& w) { return w.rfind("constraints: ", 0) == 0; }),
+                           out.warnings.end());
+        out.constraint_violations = all_violations(scene.domain, final_rects, constraints);
+        for (const std::string& v : out.constraint_violations) out.warnings.push_back("constraints: " + v);
+        out.climate.answer_from_tradeoffs = true;
+      }
+    }
+  }
+  if (settings.verify) {
+    t = Clock::now();
+    std::vector<OpeningInput> cutters;
+    for (const OpeningRectangle& o : out.openings) cutters.emplace_back(o.parameter);
+    const SensorValues v = records.cut(cutters, settings.verify_paths);
+    out.verified = true;
+    out.verified_value = v.value;
+    out.verified_stderr = v.standard_error;
+    out.verified_error = goal_error(out.goals, v.value);
+    out.timings.push_back({"verification", since(t)});
+  }
+  if (climate) {
+    t = Clock::now();
+    report_climate(scene, records, *climate_problem_of, final_rects, settings.verify, settings.verify_paths, &out, progress);
+    for (TradeoffResult& entry : out.tradeoffs)
+      if (entry.answer || entry.climate.empty()) entry.climate = tradeoff_climate(records, *climate_problem_of, entry, out);
+    out.timings.push_back({"climate figures", since(t)});
+  }
+  for (const std::string& w : {sparse_sampling_warning(c.paths_per_sensor, c.element_count()),
+                               prediction_mismatch_warning(out)})
+    if (!w.empty()) out.warnings.push_back(w);
+  out.timings.push_back({"total", since(start)});
+  if (progress) progress->advance();
+  return out;
+>>>>>>> i37-trace
 }
 
 SolveResult solve_openings(const Scene& scene, Progress* progress) {

@@ -1,7 +1,5 @@
 #include "trace/contributions.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,9 +13,6 @@
 
 namespace fenestra {
 namespace {
-
-// Paths between two polls of cancellation in loops over path records (well under a millisecond).
-constexpr size_t kPollPaths = 4096;
 
 
 struct Touched {
@@ -38,7 +33,7 @@ void analyse_sensor(const SensorRecord& rec, size_t sensor, size_t elements, Con
   std::vector<double> base_suffix, all_suffix;
   const std::vector<uint8_t> all_open_mask(elements, 1);
   for (size_t p = 0; p < n_paths; ++p) {
-    if (progress && p % kPollPaths == 0) progress->throw_if_cancelled();  // a sensor's record may be huge
+    if (cancelled_at(progress, p)) progress->throw_if_cancelled();  // a sensor's record may be huge
     const uint32_t b = rec.path_begin[p], e = rec.path_begin[p + 1];
     const size_t m = e - b;
     base_suffix.assign(m + 1, 0.0);
@@ -117,15 +112,14 @@ SensorValues evaluate_records(const std::vector<SensorRecord>& records, IsOpen i
   SensorValues out;
   out.value.resize(records.size());
   out.standard_error.resize(records.size());
-  tbb::parallel_for(size_t(0), records.size(), [&](size_t i) {
+  for_each_sensor(records.size(), progress, [&](size_t i) {
     ReplicateSums sums;
     for (size_t p = 0; p < records[i].path_count(); ++p) {
-      if (progress && p % kPollPaths == 0 && progress->cancelled()) return;
+      if (cancelled_at(progress, p)) return;
       sums.add(p, path_value_in_region(records[i], p, is_open));
     }
     sums.estimate(records[i].path_count(), &out.value[i], &out.standard_error[i]);
   });
-  if (progress) progress->throw_if_cancelled();
   return out;
 }
 
@@ -167,22 +161,18 @@ Contributions trace_contributions(const Scene& scene, Progress* progress, bool t
   const size_t sensors = range.size();
   const size_t elements = scene.domain.element_count();
   const int paths = scene.render.paths_per_sensor;
-  const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
+  const size_t tasks_per_sensor = path_tasks_per_sensor(paths);
   std::vector<SensorRecord> chunks(sensors * tasks_per_sensor);
+  std::vector<DropCounts> dropped(chunks.size());  // per task: the same totals for any thread count
   Contributions c;
   try {
     if (progress) progress->start("tracing contribution paths", chunks.size());
-    parallel_tasks(chunks.size(), scene.render.threads, progress, [&](size_t task) {
-      const size_t sensor = range.begin + task / tasks_per_sensor;  // the scene's index: it seeds the paths
-      const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
-      const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
-      SensorRecord& rec = chunks[task];
+    parallel_path_tasks(range, paths, scene.render.threads, progress, [&](const PathTask& task) {
+      SensorRecord& rec = chunks[task.index];
       rec.sourced = pass != nullptr;
-      for (size_t p = first; p < last; ++p) {
-        Rng rng = path_rng(scene.render.seed, sensor, p);
-        const std::optional<PathSamples> samples = path_samples(scene.render, scene.render.seed, sensor, p);
-        tracer.record_sensor_path(sensor, p, samples ? &*samples : nullptr, rng, &rec);
-      }
+      task.for_each_path(scene.render, scene.render.seed, [&](size_t p, Rng& rng, const PathSamples* samples) {
+        tracer.record_sensor_path(task.sensor, p, samples, rng, &rec, &dropped[task.index]);
+      });
       if (pass) pass->chunk_traced(&rec);
     });
 
@@ -212,6 +202,7 @@ Contributions trace_contributions(const Scene& scene, Progress* progress, bool t
     throw;
   }
   for (const auto& r : c.records) c.events += r.events.size();
+  for (const DropCounts& d : dropped) c.dropped += d;
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return c;
 }

@@ -9,6 +9,7 @@
 #include "trace/contributions_origin.h"
 #include "trace/open_region.h"
 #include "trace/path_record.h"
+#include "trace/record_sink.h"
 #include "trace/sensor_range.h"
 #include "util/progress.h"
 
@@ -35,6 +36,9 @@ struct Contributions {
   std::vector<SensorRecord> records;  // per sensor, per path: events for exact evaluation
   double seconds = 0.0;
   uint64_t events = 0;
+  // What the tracer dropped while recording (record_sink.h): non-finite light, and light or
+  // sub-paths beyond the limit of conditions. Both 0 in a sound scene; written to the summary's "dropped".
+  DropCounts dropped;
   // The scene it was computed for (set by the callers that hand it on: Python, solve_openings).
   ContributionsOrigin origin;
   // A climate scene's annual pass: the records' events name their sources (sky patches, sun

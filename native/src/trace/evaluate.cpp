@@ -112,21 +112,16 @@ SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInpu
 
   const size_t sensors = range.size();
   const int paths = paths_per_sensor > 0 ? paths_per_sensor : scene.render.paths_per_sensor;
-  const size_t tasks_per_sensor = (paths + kPathsPerTask - 1) / kPathsPerTask;
+  const size_t tasks_per_sensor = path_tasks_per_sensor(paths);
   // Per task, its paths' sums by replicate group: stratified paths are not independent, the
   // groups are (replicates.h).
   std::vector<ReplicateSums> sums(sensors * tasks_per_sensor);
   const uint64_t seed = scene.render.seed ^ kEvaluateStream;
   if (progress) progress->start("tracing the scene with its openings", sums.size());
-  parallel_tasks(sums.size(), scene.render.threads, progress, [&](size_t task) {
-    const size_t sensor = range.begin + task / tasks_per_sensor;  // the scene's index: it seeds the paths
-    const size_t first = (task % tasks_per_sensor) * kPathsPerTask;
-    const size_t last = std::min<size_t>(paths, first + kPathsPerTask);
-    for (size_t p = first; p < last; ++p) {
-      Rng rng = path_rng(seed, sensor, p);
-      const std::optional<PathSamples> samples = path_samples(scene.render, seed, sensor, p);
-      sums[task].add(p, tracer.sensor_sample(sensor, samples ? &*samples : nullptr, rng));
-    }
+  parallel_path_tasks(range, paths, scene.render.threads, progress, [&](const PathTask& task) {
+    task.for_each_path(scene.render, seed, [&](size_t p, Rng& rng, const PathSamples* samples) {
+      sums[task.index].add(p, tracer.sensor_sample(task.sensor, samples, rng));
+    });
   });
   SensorValues out;
   out.value.resize(sensors);

@@ -1,12 +1,12 @@
 #include "trace/flip_effects.h"
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "trace/parallel.h"
 #include "util/progress.h"
 
 namespace fenestra {
@@ -156,18 +156,17 @@ Eigen::MatrixXd flip_effects(const Contributions& c, const std::vector<uint8_t>&
     throw std::invalid_argument("open-element mask has " + std::to_string(open.size()) + " entries, expected " +
                                 std::to_string(c.element_count()));
   Eigen::MatrixXd D = Eigen::MatrixXd::Zero(c.records.size(), c.element_count());
-  tbb::parallel_for(size_t(0), c.records.size(), [&](size_t i) {
+  for_each_sensor(c.records.size(), progress, [&](size_t i) {
     const SensorRecord& r = c.records[i];
     std::vector<double> row(c.element_count(), 0.0);
     PathFlips flips;
     for (size_t p = 0; p < r.path_count(); ++p) {
-      if (progress && p % 4096 == 0 && progress->cancelled()) return;
+      if (cancelled_at(progress, p)) return;
       flips.add(r, p, open, row.data());
     }
     for (size_t k = 0; k < row.size(); ++k)
       D(i, k) = r.path_count() > 0 ? row[k] / static_cast<double>(r.path_count()) : 0.0;
   });
-  if (progress) progress->throw_if_cancelled();
   return D;
 }
 

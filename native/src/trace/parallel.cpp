@@ -1,5 +1,7 @@
 #include "trace/parallel.h"
 
+#include <algorithm>
+
 #include "trace/ray_scene.h"
 
 #include <tbb/blocked_range.h>
@@ -26,6 +28,24 @@ void parallel_tasks(size_t count, int threads, Progress* progress, const std::fu
       add_rays_traced(thread_ray_count() - rays_before);
     });
   });
+  if (progress) progress->throw_if_cancelled();
+}
+
+void parallel_path_tasks(SensorRange sensors, int paths, int threads, Progress* progress,
+                         const std::function<void(const PathTask&)>& fn) {
+  const size_t per_sensor = path_tasks_per_sensor(paths);
+  parallel_tasks(sensors.size() * per_sensor, threads, progress, [&](size_t task) {
+    PathTask t;
+    t.index = task;
+    t.sensor = sensors.begin + task / per_sensor;
+    t.first = (task % per_sensor) * kPathsPerTask;
+    t.last = std::min<size_t>(static_cast<size_t>(paths), t.first + kPathsPerTask);
+    fn(t);
+  });
+}
+
+void for_each_sensor(size_t count, const Progress* progress, const std::function<void(size_t)>& fn) {
+  tbb::parallel_for(size_t(0), count, [&](size_t sensor) { fn(sensor); });
   if (progress) progress->throw_if_cancelled();
 }
 

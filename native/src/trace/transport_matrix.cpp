@@ -13,8 +13,6 @@ namespace {
 // Columns per block: a block of T is a few megabytes at most for the largest domains the cost
 // model admits, written in milliseconds (page faults included).
 constexpr Eigen::Index kBlock = 32;
-// Paths between two polls while accumulating (well under a millisecond).
-constexpr size_t kPollPaths = 4096;
 
 Eigen::Index blocks_of(Eigen::Index n) { return (n + kBlock - 1) / kBlock; }
 
@@ -23,7 +21,7 @@ Eigen::Index blocks_of(Eigen::Index n) { return (n + kBlock - 1) / kBlock; }
 template <typename Add>
 void for_each_entry(const SensorRecord& rec, const Progress* progress, Add add) {
   for (size_t p = 0; p < rec.path_count(); ++p) {
-    if (progress && p % kPollPaths == 0) progress->throw_if_cancelled();
+    if (cancelled_at(progress, p)) progress->throw_if_cancelled();
     const uint32_t b = rec.path_begin[p], e = rec.path_begin[p + 1];
     for (uint32_t j = b; j < e; ++j) {
       const PathEvent& first = rec.events[j];
