@@ -122,3 +122,21 @@ def test_contributions_report_what_the_tracer_dropped(tmp_path):
     assert dropped["truncated_conditions"] > 0 and dropped["non_finite"] == 0
     assert "fenestra: warning: the tracer left out %d light values or sub-paths that met more than 32 " \
            "elements" % dropped["truncated_conditions"] in r.stderr
+
+
+def test_a_solve_that_dropped_light_says_so_among_its_warnings(tmp_path):
+    """The warning travels in the result's "warnings" (what the Python API and Blender show), and is
+    printed once."""
+    scene_path = write_stacked_panels(tmp_path)
+    scene = json.loads(scene_path.read_text())
+    scene["sensors"]["goals"] = [0.3]  # a uniform sky: in normalized units
+    scene["solver"] = {"generations": 5, "population": 8, "verify": False, "tradeoffs": False}
+    scene_path.write_text(json.dumps(scene))
+    out = tmp_path / "result.json"
+    r = run("solve", scene_path, "-o", out, "--quiet")
+    assert r.returncode == 0, r.stderr
+    result = json.loads(out.read_text())
+    assert result["dropped"]["truncated_conditions"] > 0
+    said = [w for w in result["warnings"] if w.startswith("the tracer left out")]
+    assert len(said) == 1 and str(result["dropped"]["truncated_conditions"]) in said[0]
+    assert r.stderr.count("fenestra: warning: the tracer left out") == 1

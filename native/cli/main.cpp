@@ -391,8 +391,7 @@ int run(const Args& a) {
       std::printf("checked with real cutters: relative RMS error %.2f%%, worst sensor %.1f%%\n",
                   100 * r.verified_error.relative_rms, 100 * r.verified_error.max_relative);
     print_climate_summary(scene, r);
-    for (const std::string& w : own) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
-    warn_if_dropped(r.dropped);
+    for (const std::string& w : own) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());  // with any drop
     return 0;
   }
   if (a.command == "contributions") {

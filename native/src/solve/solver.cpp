@@ -98,6 +98,8 @@ class OpeningSolve {
     // In thick walls the records give a year only for edges on the grid lines: climate answers keep them there.
     if (climate_ && has_thick_panel(scene.domain)) settings_.refine_edges = false;
     out_.dropped = c_.dropped;
+    // Said with the result's other warnings, so the Python API and Blender show it too.
+    if (const std::string w = dropped_warning(c_.dropped); !w.empty()) out_.warnings.push_back(w);
     out_.goals = resolve_goals(scene, c_);
     objective_ = linear_objective(c_, out_.goals, settings_.bound_weight);
     // With a catalogue, the grid's openings keep near its sizes; they take them exactly below.
