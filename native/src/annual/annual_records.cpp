@@ -29,6 +29,7 @@ Scene annual_tracing_scene(const Scene& scene, const AnnualSources& sources) {
   Scene traced = scene;
   traced.sky = std::make_shared<UniformSky>(Rgb::Ones());
   std::vector<SunLight> suns;
+  suns.reserve(sources.suns.size());  // exactly the clusters (the cost model counts them: traced_scene)
   for (size_t c = 0; c < sources.suns.size(); ++c) {
     SunLight sun;
     sun.direction = sources.suns.direction[c];

@@ -12,6 +12,7 @@
 
 #include "daylight/daylight.h"
 #include "daylight/sky_matrix.h"
+#include "daylight/sky_patches.h"
 #include "scene/domain_estimate.h"
 #include "scene/element_size_hint.h"
 #include "scene/scene.h"
@@ -53,6 +54,21 @@ constexpr double kEdgeSearchIndexShare = 2.0;
 constexpr double kExactValuesIndexShare = 0.5;
 // Embree's BVH, the tracer's triangle data and the mesh copies, per triangle.
 constexpr double kRaySceneBytesPerTriangle = 256.0;
+// And whatever the triangles: Embree's scene and its builder's first blocks, the tracer's tables.
+// Building the tracer of a 12-triangle room (annual --cutters) added 8-52 kB resident (20 kB in
+// 19 of 20 runs, 2 cores under load), 8 kB of it malloc'd; the per-triangle term gives 3 kB.
+constexpr double kRaySceneFixedBytes = 64e3;
+// An annual pass traces a copy of the scene (annual_tracing_scene) whose suns are the sun
+// clusters: a SunLight each and 20 bytes of the choice among them (Distribution1D: two doubles and
+// an int). The rest of the copy: per triangle the mesh's arrays (positions, indices, material,
+// group, UVs) and the domain's triangle lists, at most 100 bytes; per element the domain's element
+// and portal and its grid cell; per sensor its point, normal, goal and weight; names, materials and
+// panels about 6 kB measured on a 12-triangle room (the copy's 56 kB less its 654 clusters' 50).
+constexpr double kSunChoiceBytes = 20.0;
+constexpr double kSceneCopyBytesPerTriangle = 100.0;
+constexpr double kSceneCopyBytesPerElement = 2.0 * sizeof(Element) + 4.0;
+constexpr double kSceneCopyBytesPerSensor = 2.0 * sizeof(Vec3) + 2.0 * sizeof(double);
+constexpr double kSceneCopyFixedBytes = 16e3;
 // Per worker thread while analysing a sensor: 16 replicate sums and A's sum per element.
 constexpr double kAnalysisBytesPerElement = 8.0 * 17.0;
 // The solver's copies of sensors x elements matrices: the weighted objective, the
@@ -86,6 +102,8 @@ double expected_vertices(const Scene& scene) {
   return sum;
 }
 
+double ray_scene_bytes(double triangles) { return kRaySceneFixedBytes + kRaySceneBytesPerTriangle * triangles; }
+
 int worker_threads(const Scene& scene) {
   if (scene.render.threads > 0) return scene.render.threads;
   return std::max(1u, std::thread::hardware_concurrency());
@@ -95,6 +113,59 @@ std::string element_size_text(const Scene& scene) {
   std::ostringstream s;
   s << scene.domain.element_size();
   return s.str();
+}
+
+// What an annual pass is prepared from (annual/annual_records.cpp): the sky matrix's hours, those
+// with light and with a sun cluster's sun, the sky patches and the sun clusters.
+struct AnnualCounts {
+  double hours = 0.0, day_hours = 0.0, sun_hours = 0.0, patches = 0.0, clusters = 0.0;
+  double clustering_patches = 0.0;  // the finer patches the suns are clustered on
+  double sources() const { return patches + clusters; }
+};
+
+AnnualCounts annual_counts(const SkyMatrix& sky) {
+  const SunClusters suns = cluster_suns(sky);
+  AnnualCounts n;
+  for (size_t h = 0; h < sky.hours.size(); ++h) {
+    const bool sunny = sky.sun_normal_illuminance[h] > 0.0f && suns.cluster_of_hour[h] >= 0;
+    n.sun_hours += sunny;
+    n.day_hours += sunny || sky.radiance.col(static_cast<Eigen::Index>(h)).maxCoeff() > 0.0f;
+  }
+  n.hours = static_cast<double>(sky.hours.size());
+  n.patches = static_cast<double>(sky.patches.count());
+  n.clusters = static_cast<double>(suns.size());
+  n.clustering_patches = static_cast<double>(SkyPatches(suns.subdivision).count());
+  return n;
+}
+
+// Every annual pass (the records' and the cutters'), besides the sources' day sky: the records'
+// tables (each hour's sun cluster; the day and sun hours, lists grown up to twice their length;
+// the clusters' directions and lux hours, grown likewise; each source's design strength and unit
+// scale), and the scene it traces, held until the pass ends. Two temporaries are counted as kept:
+// glibc returns a freed heap chunk's pages only from the top of the heap, so what the pass frees
+// before tracing (the scene's own suns, copied with the traced scene until the clusters replace
+// them; the clustering's cluster per patch and its growing sums) mostly stays resident, and the
+// later allocations reuse it or not as the heap's layout falls (measured on a 12-triangle room,
+// 2 cores under load: at the peak, 0.18-0.20 MB resident beyond what the run held in 4 of 24
+// runs, 0.38-0.68 MB less in the others, where the first run's freed pages were reused).
+void add_annual_preparation(const Scene& scene, const AnnualCounts& n, CostEstimate* e) {
+  e->memory.push_back({"annual_tables", "the annual pass's hourly tables (sun clusters, day and sun hours)",
+                       4.0 * n.hours + 2.0 * 4.0 * (n.day_hours + n.sun_hours) +
+                           2.0 * (sizeof(Vec3) + sizeof(double)) * n.clusters + 2.0 * sizeof(double) * n.sources(),
+                       "", "a weather file of fewer hours"});
+  e->memory.push_back({"traced_scene", "the scene traced under the annual sources (a copy, with the sun clusters)",
+                       (sizeof(SunLight) + kSunChoiceBytes) * n.clusters +
+                           kSceneCopyBytesPerTriangle * static_cast<double>(e->triangles) +
+                           kSceneCopyBytesPerElement * static_cast<double>(e->elements) +
+                           kSceneCopyBytesPerSensor * static_cast<double>(e->sensors) + kSceneCopyFixedBytes,
+                       "", "fewer triangles or sensors"});
+  e->memory.push_back({"scene_suns_copy", "the scene's suns, copied with the traced scene until the clusters replace "
+                       "them (freed, their pages kept by the heap)",
+                       (sizeof(SunLight) + kSunChoiceBytes) * static_cast<double>(scene.suns.suns().size()), "",
+                       "a shorter sky.occupied period"});
+  e->memory.push_back({"sun_clustering", "the sun clustering's working arrays (freed, their pages kept by the heap)",
+                       sizeof(int) * n.clustering_patches + 3.0 * sizeof(Eigen::Vector3d) * n.clusters, "",
+                       "a weather file of fewer hours"});
 }
 
 // A climate sky's annual pass: each event's source and coefficient (6 bytes), the sun straight to
@@ -113,6 +184,10 @@ void add_annual(const Scene& scene, double records, CostEstimate* e) {
                        "fewer sensors"});
   e->memory.push_back({"annual_illuminance", "the hourly illuminance of an annual study (sensors x hours, twice, and "
                        "its file)", 4.0 * 4.0 * S * hours, "writing", "fewer sensors"});
+  const AnnualCounts n = annual_counts(sky);
+  e->memory.push_back({"annual_day_sky", "the sources' day sky (sky patches x day hours)", 4.0 * n.patches * n.day_hours,
+                       "", "fewer sky patches (sky.patches)"});
+  add_annual_preparation(scene, n, e);
 }
 
 void add_contributions(const Scene& scene, long long paths, CostEstimate* e) {
@@ -177,7 +252,7 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                        "fewer sensors or " + std::string(kLargerElementSize)});
   if (s.verify)
     e->memory.push_back({"verification_scene", "the ray-tracing scene of the verification",
-                         kRaySceneBytesPerTriangle * static_cast<double>(e->triangles), "solving", "fewer triangles"});
+                         ray_scene_bytes(static_cast<double>(e->triangles)), "solving", "fewer triangles"});
   e->memory.push_back({"population", "the genetic algorithm's populations", 3 * pop * (N + 8 * S + 64), "solving",
                        "a smaller solver.population"});
   if (!scene.sensors.climate_goals.empty() && scene.climate && scene.climate->sky) add_climate_goals(scene, e);
@@ -230,15 +305,8 @@ void add_solver(const Scene& scene, CostEstimate* e) {
 // day sky; the year's illuminance while it is written.
 void add_annual_cutters(const Scene& scene, CostEstimate* e) {
   const double S = static_cast<double>(e->sensors), P = static_cast<double>(e->paths_per_sensor);
-  const SkyMatrix& sky = *scene.climate->sky;
-  const SunClusters suns = cluster_suns(sky);
-  double sun_hours = 0.0, day_hours = 0.0;
-  for (size_t h = 0; h < sky.hours.size(); ++h) {
-    const bool sunny = sky.sun_normal_illuminance[h] > 0.0f && suns.cluster_of_hour[h] >= 0;
-    sun_hours += sunny;
-    day_hours += sunny || sky.radiance.col(static_cast<Eigen::Index>(h)).maxCoeff() > 0.0f;
-  }
-  const double sources = static_cast<double>(sky.patches.count()) + static_cast<double>(suns.size());
+  const AnnualCounts n = annual_counts(*scene.climate->sky);
+  const double sources = n.sources(), sun_hours = n.sun_hours;
   const double tasks = std::ceil(P / kPathsPerTask);
   const double row_bytes = sizeof(double) * sources * tasks;  // one sensor's rows
   const double batch = std::min(S, std::max(1.0, std::floor(kAnnualCutBatchBytes / row_bytes)));
@@ -250,9 +318,10 @@ void add_annual_cutters(const Scene& scene, CostEstimate* e) {
   e->memory.push_back({"annual_coefficients", "the sensors' daylight coefficients (sensors x sources and sun hours)",
                        S * (8.0 * sources + 4.0 * sun_hours), "", "fewer sensors"});
   e->memory.push_back({"annual_sources", "the sources' day sky (sky patches x day hours)",
-                       4.0 * static_cast<double>(sky.patches.count()) * day_hours, "", "fewer sky patches (sky.patches)"});
+                       4.0 * n.patches * n.day_hours, "", "fewer sky patches (sky.patches)"});
   e->memory.push_back({"annual_illuminance", "the hourly illuminance of an annual study (sensors x hours, twice, and "
-                       "its file)", 4.0 * 4.0 * S * static_cast<double>(sky.hours.size()), "writing", "fewer sensors"});
+                       "its file)", 4.0 * 4.0 * S * n.hours, "writing", "fewer sensors"});
+  add_annual_preparation(scene, n, e);
   e->time.push_back({"tracing", "tracing the year's paths with the openings cut",
                      S * P * expected_vertices(scene) * kTraceSecondsPerVertex *
                          (scene.domain.has_thick_walls() ? kThickWallTraceFactor : 1.0),
@@ -359,7 +428,7 @@ CostEstimate estimate_cost(const Scene& scene, CostCommand command, double eleme
     e.paths_per_sensor = scene.solver.paths_per_sensor;
   if (paths >= 0.0) e.paths_per_sensor = static_cast<int>(std::llround(paths));
   e.bytes_per_path = path_record_bytes(scene);
-  const double ray_scene = kRaySceneBytesPerTriangle * static_cast<double>(e.triangles);
+  const double ray_scene = ray_scene_bytes(static_cast<double>(e.triangles));
   switch (command) {
     case CostCommand::Any:
     case CostCommand::Contributions:
