@@ -41,6 +41,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "addon"))
 import fenestra  # noqa: E402
+from two_room_study import write_two_room_study  # noqa: E402
 
 EXAMPLES = os.path.join(ROOT, "examples")
 TARGET = 0.02  # relative RMS error of the solution against the goals
@@ -131,6 +132,26 @@ SCENES = {
         "solver": dict(SOLVER, constraints={"catalogue": [[0.9, 1.2], [1.2, 1.5], [1.6, 1.6], [2.0, 1.6],
                                                           [1.8, 2.1]]}),
     },
+    # Two rooms joined by a door, three panels (room A's south and west walls, room B's roof),
+    # generated (scripts/two_room_study.py): each row its own room sizes and random truth, so no
+    # row repeats another. Solid walls are slabs of 0.3 m on every side.
+    "two_rooms_solid_on_grid": {
+        "two_rooms": {"widths": (4.0, 3.5), "depth": 4.5, "height": 2.8, "wall": 0.3, "on_grid": True, "seed": 1},
+        "paths": 131072,
+        "solver": SOLVER,
+    },
+    "two_rooms_solid_off_grid": {
+        "two_rooms": {"widths": (3.75, 4.25), "depth": 5.0, "height": 3.0, "wall": 0.3, "on_grid": False,
+                      "seed": 2},
+        "paths": 131072,
+        "solver": SOLVER,
+    },
+    "two_rooms_thin_off_grid": {
+        "two_rooms": {"widths": (4.5, 3.25), "depth": 4.0, "height": 2.7, "wall": 0.0, "on_grid": False,
+                      "seed": 3},
+        "paths": 131072,
+        "solver": SOLVER,
+    },
     "thick_walls_off_grid_catalogue": {
         "source": os.path.join(EXAMPLES, "thick_walls_study"),
         "truth_shift": [0.125, 0.0, 0.125],
@@ -209,6 +230,9 @@ def validate_scene(name, config, out_root, scale):
     source = config.get("source", os.path.join(EXAMPLES, name))
     out = os.path.join(out_root, name)
     os.makedirs(out, exist_ok=True)
+    if "two_rooms" in config:
+        source = os.path.join(out, "source")
+        write_two_room_study(source, **config["two_rooms"])
     with open(os.path.join(source, "scene.json")) as f:
         scene_dict = json.load(f)
     if "truth_cells" in config:
@@ -757,7 +781,7 @@ def main():
     rows = []
     for name in names:
         source = SCENES[name].get("source", os.path.join(EXAMPLES, name))
-        if not os.path.exists(os.path.join(source, "scene.json")):
+        if "two_rooms" not in SCENES[name] and not os.path.exists(os.path.join(source, "scene.json")):
             print("== %s: skipped, %s is not built (make examples-blend)" % (name, source), flush=True)
             continue
         print("== %s" % name, flush=True)

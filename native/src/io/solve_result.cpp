@@ -146,8 +146,14 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
   json timings = json::object();
   for (const auto& t : r.timings) timings[t.stage] = t.seconds;
   json stages = json::array();
-  for (const SolveStage& st : r.stages)
-    stages.push_back({{"name", st.name}, {"seconds", st.seconds}, {"stopped_because", st.stopped_because}});
+  for (const SolveStage& st : r.stages) {
+    json stage = {{"name", st.name}, {"seconds", st.seconds}, {"stopped_because", st.stopped_because}};
+    if (std::isfinite(st.error_before) && std::isfinite(st.error_after)) {
+      stage["error_before"] = st.error_before;
+      stage["error_after"] = st.error_after;
+    }
+    stages.push_back(std::move(stage));
+  }
   const SolverSettings& s = scene.solver;
   json out = {
       {"units", "sensor values: luminance-weighted irradiance, lux for a sky in cd/m^2; corners in meters"},
@@ -188,6 +194,13 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
       {"genetic", {{"generations", r.generations}, {"coarse_factors", r.coarse_factors}, {"history", history}}},
       {"edge_moves", r.edge_moves},
       {"second_start", {{"run", r.second_start}, {"kept", r.second_start_kept}}},
+      {"opening_search", {{"run", r.opening_search.ran},
+                          {"starts", r.opening_search.starts},
+                          {"best_start", r.opening_search.best_start},
+                          {"evaluations", r.opening_search.evaluations},
+                          {"moves", r.opening_search.moves},
+                          {"restarts", r.opening_search.restarts},
+                          {"kept", r.opening_search.kept}}},
       {"constraint_costs", [&] {
          json costs = json::array();
          for (const ConstraintCost& c : r.constraint_costs)
@@ -211,6 +224,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                        return per_panel;
                      }()},
                     {"improve_iterations", s.improve_iterations},
+                    {"search_evaluations", s.search_evaluations},
                     {"refine_edges", s.refine_edges},
                     {"verify", s.verify},
                     {"verify_paths", s.verify_paths},

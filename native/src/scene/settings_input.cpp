@@ -19,7 +19,7 @@ SolverSettings parse_solver(const ScenePath& sp, const json& j) {
   check_known_keys(sp, j, "solver",
                    {"element_size", "paths", "population", "generations", "seed", "time_budget_s", "shape_weights",
                     "bound_weight", "coarse_to_fine", "elite", "constraints", "panel_constraints", "improve_iterations",
-                    "verify", "verify_paths", "refine_edges", "tradeoffs"});
+                    "search_evaluations", "verify", "verify_paths", "refine_edges", "tradeoffs"});
   auto integer = [&](const char* name, int lo, int hi, int fallback) {
     if (!j.contains(name)) return fallback;
     const double v = number(sp, j.at(name), std::string("solver.") + name);
@@ -42,6 +42,7 @@ SolverSettings parse_solver(const ScenePath& sp, const json& j) {
     s.coarse_to_fine = j.at("coarse_to_fine").get<bool>();
   }
   s.improve_iterations = integer("improve_iterations", 0, 100000000, s.improve_iterations);
+  s.search_evaluations = integer("search_evaluations", 0, 10000000, s.search_evaluations);
   if (j.contains("refine_edges")) {
     if (!j.at("refine_edges").is_boolean()) sp.fail("solver.refine_edges", "expected true or false");
     s.refine_edges = j.at("refine_edges").get<bool>();

@@ -30,6 +30,8 @@ struct SolverSettings {
   int elite = 8;               // best genetic states re-ranked with the exact evaluation
   OpeningConstraints constraints;  // what an opening may be (docs/solver.md)
   int improve_iterations = 20000;  // local search over whole openings after the refinement; 0: none
+  // Sets of openings the exact search over whole openings may score (solve/opening_search.h); 0: none.
+  int search_evaluations = 3000;
   bool refine_edges = true;        // move openings' edges off the element grid (thick walls: on a refined grid)
   bool verify = true;              // path-trace the final openings with real cutters (evaluate)
   int verify_paths = 0;            // paths per sensor of that check; 0: as many as the contributions'

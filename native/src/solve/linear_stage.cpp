@@ -1,6 +1,7 @@
 #include "solve/linear_stage.h"
 
 #include <algorithm>
+#include <set>
 
 #include "solve/coarse_grid.h"
 #include "solve/linear_objective.h"
@@ -146,15 +147,21 @@ ElementStage exact_choice(const ElementSearch& s, std::vector<std::vector<uint8_
   SolveResult& out = s.out;
   const double seconds = run_stage(&out.stages, "exact evaluation", [&] {
     candidates.push_back(fine_start.open);
-    for (const auto& open : candidates) {
+    std::vector<std::pair<double, size_t>> ranked;  // distinct states by fitness
+    std::set<std::vector<uint8_t>> seen;
+    for (size_t k = 0; k < candidates.size(); ++k) {
+      const std::vector<uint8_t>& open = candidates[k];
       const SensorValues& exact = s.records.exact(open);
       const double f = s.fitness_of(open, exact);
+      if (seen.insert(open).second) ranked.push_back({f, k});
       if (f < stage.fitness) {
         stage.fitness = f;
         out.open = open;
         stage.values = exact;
       }
     }
+    std::sort(ranked.begin(), ranked.end());
+    for (const auto& [f, k] : ranked) stage.candidates.push_back(candidates[k]);
     out.start_error = goal_error(out.goals, s.records.exact(fine_start.open).value);
     out.unconstrained_open = out.open;
     out.unconstrained_openings = merge_into_rectangles(s.scene.domain, out.open);
@@ -163,6 +170,7 @@ ElementStage exact_choice(const ElementSearch& s, std::vector<std::vector<uint8_
   });
   out.timings.push_back({"exact evaluation", seconds});
   stage.start_open = fine_start.open;
+  stage.start_continuous = fine_start.continuous;
   stage.open = out.open;
   return stage;
 }

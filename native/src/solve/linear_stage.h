@@ -3,6 +3,7 @@
 // (NNLS, rounded), starts from coarser grids, the genetic algorithm, successive linearisation about
 // its best state, and the exact choice among the best states. Each stage is listed in the result's
 // `stages` with its seconds and why it stopped.
+#include <Eigen/Core>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -22,6 +23,10 @@ class RecordQueries;  // solve/record_queries.h
 // fitness, and the start the second search within the constraints begins from.
 struct ElementStage {
   std::vector<uint8_t> open, start_open;
+  Eigen::VectorXd start_continuous;  // the linear start before rounding (empty on climate goals)
+  // The best states the element search evaluated exactly, best first (the search over whole
+  // openings starts from some of them).
+  std::vector<std::vector<uint8_t>> candidates;
   SensorValues values;
   double fitness = std::numeric_limits<double>::infinity();
 };

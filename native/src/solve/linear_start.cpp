@@ -67,6 +67,7 @@ LinearStart linear_start(const LinearObjective& o, const ElementGrid& grid, cons
   redistribute_excess(grid, &x);
   LinearStart s;
   s.open = round_to_binary(x);
+  s.continuous = std::move(x);
   s.relative_rms = r.residual_norm;  // weights make it relative
   s.iterations = r.iterations;
   s.converged = r.converged;

@@ -26,6 +26,7 @@ std::vector<uint8_t> round_to_binary(const Eigen::VectorXd& o, double threshold 
 
 struct LinearStart {
   std::vector<uint8_t> open;
+  Eigen::VectorXd continuous;  // before rounding: NNLS's answer with its excess moved, in [0, 1]
   double relative_rms = 0.0;  // of the continuous solution
   int iterations = 0;
   bool converged = false;     // NNLS met its optimality conditions (else its iteration limit ended it)

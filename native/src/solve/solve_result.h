@@ -33,6 +33,15 @@ struct TradeoffResult {
   bool climate_cut = false;
 };
 
+// What the exact search over whole openings did (solve/opening_search.h).
+struct OpeningSearchSummary {
+  bool ran = false;
+  std::vector<std::string> starts;  // where it started, in order
+  std::string best_start;           // the start its best answer descends from ("" when a restart found it)
+  int evaluations = 0, moves = 0, restarts = 0;
+  bool kept = false;  // its answer replaced the openings within the constraints
+};
+
 struct SolveResult {
   std::vector<uint8_t> open;                 // per element: the final openings' elements
   std::vector<OpeningRectangle> openings;    // the final openings: admissible rectangles
@@ -59,6 +68,7 @@ struct SolveResult {
   // Whether the constraints stage also started from a search without the elements no admissible
   // opening can cover (run when the free answer opened some), and whether that start was kept.
   bool second_start = false, second_start_kept = false;
+  OpeningSearchSummary opening_search;
   // When the constraints cost much light (constraints_cost_much), the error without each family
   // of limits, least first (solve/constraint_costs.h); else empty.
   std::vector<ConstraintCost> constraint_costs;

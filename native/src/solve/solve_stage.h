@@ -2,6 +2,7 @@
 // A stage of the opening solver as its result reports it (docs/solver.md, "Stages"): its name, its
 // seconds and why it stopped, so that a solve tells where its time went and what ended each part.
 #include <chrono>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,10 @@ struct SolveStage {
   std::string name;
   double seconds = 0.0;
   std::string stopped_because;  // one of stop_reason's
+  // The relative RMS error against the goals before and after the stage, where it changes the
+  // answer's openings (NaN elsewhere).
+  double error_before = std::numeric_limits<double>::quiet_NaN();
+  double error_after = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Why a stage stopped: it ran to its end, or a limit or a test ended it, or it did not run
@@ -46,6 +51,10 @@ inline constexpr const char* kNoFacadeRules = "skipped: no facade rules";
 inline constexpr const char* kNoTradeoffs = "skipped: solver.tradeoffs is off";
 inline constexpr const char* kNoLeastGlazing = "skipped: goals.least_glazing is off";
 inline constexpr const char* kNoVerify = "skipped: solver.verify is off";
+inline constexpr const char* kNoSearchEvaluations = "skipped: solver.search_evaluations is 0";
+inline constexpr const char* kEvaluationLimit = "evaluation limit";  // solver.search_evaluations ran out first
+inline constexpr const char* kClimateFollowsLight =
+    "skipped: on climate goals the openings follow the element answer's light";
 }  // namespace stop_reason
 
 // Why a genetic run stopped.

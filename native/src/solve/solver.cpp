@@ -4,6 +4,7 @@
 #include <chrono>
 #include <functional>
 #include <optional>
+#include <set>
 #include <stdexcept>
 
 #include "annual/annual_contributions.h"
@@ -17,6 +18,8 @@
 #include "solve/least_glazing.h"
 #include "solve/linear_objective.h"
 #include "solve/linear_stage.h"
+#include "solve/linear_start.h"
+#include "solve/opening_search.h"
 #include "solve/prediction_check.h"
 #include "solve/refine_openings.h"
 #include "solve/thick_wall_edges.h"
@@ -88,6 +91,11 @@ struct Constrained {
 
 // One solve: the stages in the order they run (solve()), sharing what they hand each other. Each
 // stage is listed in out.stages with its seconds and why it stopped, or why it was skipped.
+// The search over whole openings starts from the linear start rounded at these levels, and from
+// the element search's best states up to this many in all.
+constexpr double kSearchRoundingLevels[] = {0.25, 0.5, 0.75};
+constexpr size_t kSearchElementStarts = 3;
+
 class OpeningSolve {
  public:
   OpeningSolve(const Scene& scene, RecordQueries& records, Progress* progress)
@@ -117,6 +125,7 @@ class OpeningSolve {
     const auto constraints_start = Clock::now();
     openings_within_constraints();
     second_start();
+    opening_search();
     climate_openings();
     constraint_costs_stage();
     take_kept_openings();
@@ -216,6 +225,76 @@ class OpeningSolve {
       if (second.fitness < kept_.fitness) kept_ = std::move(second), out_.second_start_kept = true;
       return stop_reason::kDone;
     });
+  }
+
+  // Admissible openings made from an open set: its regions as rectangles, scored by the exact linear
+  // model about it.
+  std::vector<GridRectangle> openings_from(const std::vector<uint8_t>& open) {
+    const SensorValues& values = records_.exact(open);
+    const LinearObjective about = linearised_objective(objective_, records_, open, values.value);
+    return refine_openings(scene_.domain, open, about, grid_constraints_, progress_);
+  }
+
+  // Where the search over whole openings starts: the openings within the constraints so far, the
+  // linear start rounded at several levels, and the element search's next best states.
+  std::vector<std::vector<GridRectangle>> opening_search_starts(std::vector<std::string>* names) {
+    std::vector<std::vector<GridRectangle>> starts = {kept_.rects};
+    names->push_back("the openings within the constraints");
+    const std::vector<uint8_t> out_of_bounds = elements_out_of_bounds(scene_.domain, grid_constraints_);
+    std::set<std::vector<uint8_t>> tried = {out_.open};
+    auto add = [&](std::vector<uint8_t> open, const std::string& name) {
+      for (size_t k = 0; k < open.size(); ++k) open[k] &= static_cast<uint8_t>(!out_of_bounds[k]);
+      if (std::none_of(open.begin(), open.end(), [](uint8_t o) { return o != 0; })) return false;
+      if (!tried.insert(open).second) return false;
+      starts.push_back(openings_from(open));
+      names->push_back(name);
+      return true;
+    };
+    if (element_.start_continuous.size() == static_cast<Eigen::Index>(grid_.size()))
+      for (double level : kSearchRoundingLevels)
+        add(round_to_binary(element_.start_continuous, level), "the linear start rounded at " + decimal_text(level));
+    size_t states = 0;
+    for (size_t k = 1; k < element_.candidates.size() && states < kSearchElementStarts; ++k)
+      states += add(element_.candidates[k], "the element search's state " + std::to_string(k + 1)) ? 1 : 0;
+    return starts;
+  }
+
+  // The exact search over whole openings from several starts (solve/opening_search.h): the linear
+  // models that made the openings misjudge what elements do together; the records do not.
+  void opening_search() {
+    if (climate_) return skip_stage(&out_.stages, "opening search", stop_reason::kClimateFollowsLight);
+    if (settings_.search_evaluations <= 0)
+      return skip_stage(&out_.stages, "opening search", stop_reason::kNoSearchEvaluations);
+    const double before = kept_.refined_error.relative_rms;
+    run_stage(&out_.stages, "opening search", [&] {
+      if (progress_) progress_->start("solving: searching whole openings", 1);
+      const OpeningScore score = [&](const std::vector<GridRectangle>& rects) {
+        SensorValues unused;
+        return exact_of(rects, &unused);
+      };
+      std::vector<std::string> names;
+      const std::vector<std::vector<GridRectangle>> starts = opening_search_starts(&names);
+      const OpeningSearchResult found =
+          search_whole_openings(scene_.domain, grid_constraints_, starts, score, settings_.search_evaluations, progress_);
+      OpeningSearchSummary& summary = out_.opening_search;
+      summary.ran = true;
+      summary.starts = names;
+      summary.evaluations = found.evaluations;
+      summary.moves = found.moves;
+      summary.restarts = found.restarts;
+      if (found.best_start >= 0) summary.best_start = names[static_cast<size_t>(found.best_start)];
+      summary.kept = found.score < kept_.fitness;
+      if (found.score < kept_.fitness) {
+        kept_.fitness = exact_of(found.rects, &kept_.values);
+        kept_.rects = found.rects;
+        kept_.refined_error = goal_error(out_.goals, kept_.values.value);
+        kept_.about = linearised_objective(objective_, records_, rectangles_mask(scene_.domain, kept_.rects),
+                                           kept_.values.value);
+      }
+      return found.out_of_evaluations ? stop_reason::kEvaluationLimit : stop_reason::kNoImprovement;
+    });
+    out_.stages.back().error_before = before;
+    out_.stages.back().error_after = kept_.refined_error.relative_rms;
   }
 
   // Climate goals: openings that follow the element answer's light can still fall short of a goal

@@ -10,7 +10,7 @@ import os
 # element size do, so they are not listed; an unknown key counts as one that does.
 SOLVER_ONLY_KEYS = frozenset({
     "population", "generations", "seed", "time_budget_s", "shape_weights", "bound_weight", "coarse_to_fine",
-    "elite", "constraints", "panel_constraints", "improve_iterations", "verify", "verify_paths",
+    "elite", "constraints", "panel_constraints", "improve_iterations", "search_evaluations", "verify", "verify_paths",
     "refine_edges",
 })
 GOAL_KEYS = frozenset({"goals", "goal_units", "groups"})  # of the sensors section (groups: of climate goals)

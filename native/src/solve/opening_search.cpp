@@ -1,0 +1,261 @@
+#include "solve/opening_search.h"
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <tuple>
+#include <cstdio>
+#include <cstdlib>
+
+#include "util/progress.h"
+
+namespace fenestra {
+namespace {
+
+using Openings = std::vector<GridRectangle>;
+
+// A move smaller than this share of the score is no gain (rounding, not light).
+constexpr double kRelativeGain = 1e-9;
+
+GridRectangle moved(GridRectangle r, int rows, int cols) {
+  r.row0 += rows, r.row1 += rows, r.col0 += cols, r.col1 += cols;
+  return r;
+}
+
+// Side 0..3 (left, right, bottom, top) moved out (step 1) or in (step -1) by an element.
+GridRectangle side_moved(GridRectangle r, int side, int step) {
+  switch (side) {
+    case 0: r.col0 -= step; break;
+    case 1: r.col1 += step; break;
+    case 2: r.row0 -= step; break;
+    default: r.row1 += step; break;
+  }
+  return r;
+}
+
+GridRectangle holding_both(const GridRectangle& a, const GridRectangle& b) {
+  return {a.panel, std::min(a.row0, b.row0), std::max(a.row1, b.row1), std::min(a.col0, b.col0),
+          std::max(a.col1, b.col1)};
+}
+
+bool well_formed(const GridRectangle& r) { return r.row0 <= r.row1 && r.col0 <= r.col1 && r.row0 >= 0 && r.col0 >= 0; }
+
+Openings replaced(const Openings& set, size_t i, const GridRectangle& r) {
+  Openings out = set;
+  out[i] = r;
+  return out;
+}
+
+Openings without(const Openings& set, size_t i) {
+  Openings out = set;
+  out.erase(out.begin() + static_cast<std::ptrdiff_t>(i));
+  return out;
+}
+
+// Opening i changed alone: moved, a side or both sides of an axis out or in, width traded for
+// height (its place in the set kept).
+void moves_of_one_opening(const Openings& set, size_t i, std::vector<Openings>* out) {
+  const GridRectangle& r = set[i];
+  for (auto [dr, dc] : {std::pair{0, -1}, {0, 1}, {-1, 0}, {1, 0}}) out->push_back(replaced(set, i, moved(r, dr, dc)));
+  for (int side = 0; side < 4; ++side)
+    for (int step : {1, -1}) out->push_back(replaced(set, i, side_moved(r, side, step)));
+  for (int first_side : {0, 2})  // both sides of an axis out or in: wider or narrower about its centre
+    for (int step : {1, -1}) out->push_back(replaced(set, i, side_moved(side_moved(r, first_side, step), first_side + 1, step)));
+  for (int grow = 0; grow < 4; ++grow)
+    for (int shrink = grow < 2 ? 2 : 0; shrink < (grow < 2 ? 4 : 2); ++shrink)
+      out->push_back(replaced(set, i, side_moved(side_moved(r, grow, 1), shrink, -1)));
+}
+
+// Opening i with each of its sides moved by at most one element, all at once (81 rectangles).
+void box_moves_of_one_opening(const Openings& set, size_t i, std::vector<Openings>* out) {
+  const GridRectangle& r = set[i];
+  for (int a = -1; a <= 1; ++a)
+    for (int b = -1; b <= 1; ++b)
+      for (int c = -1; c <= 1; ++c)
+        for (int d = -1; d <= 1; ++d)
+          if (a || b || c || d) out->push_back(replaced(set, i, {r.panel, r.row0 + a, r.row1 + b, r.col0 + c, r.col1 + d}));
+}
+
+// Each opening removed, or changed alone.
+void single_opening_moves(const Openings& set, std::vector<Openings>* out) {
+  for (size_t i = 0; i < set.size(); ++i) {
+    moves_of_one_opening(set, i, out);
+    out->push_back(without(set, i));
+  }
+}
+
+// Two openings of a panel merged.
+void merges(const Openings& set, std::vector<Openings>* out) {
+  for (size_t i = 0; i < set.size(); ++i)
+    for (size_t j = i + 1; j < set.size(); ++j)
+      if (set[i].panel == set[j].panel) {
+        Openings merged = without(set, j);
+        merged[i] = holding_both(set[i], set[j]);
+        out->push_back(std::move(merged));
+      }
+}
+
+class Search {
+ public:
+  Search(const OpeningDomain& domain, const OpeningConstraints& constraints, const OpeningScore& score,
+         int max_evaluations, const Progress* progress)
+      : domain_(domain), constraints_(constraints), score_(score), max_evaluations_(max_evaluations),
+        progress_(progress) {}
+
+  // The score of an admissible set (sorted), once per set; nullopt when it breaks the constraints
+  // or the evaluations ran out.
+  std::optional<double> scored(Openings set) {
+    std::sort(set.begin(), set.end());
+    const auto known = known_.find(set);
+    if (known != known_.end()) return known->second;
+    if (!std::all_of(set.begin(), set.end(), well_formed) || !satisfies_all(domain_, set, constraints_)) {
+      known_.emplace(std::move(set), std::nullopt);
+      return std::nullopt;
+    }
+    if (max_evaluations_ > 0 && result.evaluations >= max_evaluations_) {
+      result.out_of_evaluations = true;
+      return std::nullopt;
+    }
+    if (progress_) progress_->throw_if_cancelled();
+    const double s = score_(set);
+    ++result.evaluations;
+    known_.emplace(std::move(set), s);
+    return s;
+  }
+
+  // Descent from `set` (admissible, scored `s`): the first neighbour that gains is taken and the
+  // scan goes on from the next one (round the openings, so that no one opening takes every move),
+  // until a whole scan gains nothing; a move costs a few scores rather than all its neighbours'.
+  // With `only` >= 0, over the moves of that opening alone, never removing it (an opening just
+  // added finds its place and size before the others may move or take it away).
+  std::pair<Openings, double> descend(Openings set, double s, int only = -1) {
+    size_t next = 0;
+    while (!result.out_of_evaluations) {
+      std::vector<Openings> candidates;
+      if (only >= 0) {
+        moves_of_one_opening(set, static_cast<size_t>(only), &candidates);
+      } else {
+        single_opening_moves(set, &candidates);
+        merges(set, &candidates);
+      }
+      bool gained = false;
+      for (size_t t = 0; t < candidates.size() && !gained; ++t) {
+        const size_t k = (next + t) % candidates.size();
+        const std::optional<double> cs = scored(candidates[k]);
+        if (!cs || !(*cs < s - kRelativeGain * std::abs(s))) continue;
+        set = std::move(candidates[k]), s = *cs, next = k + 1, gained = true;
+        if (only < 0) std::sort(set.begin(), set.end());
+        ++result.moves;
+      }
+      if (!gained) break;
+    }
+    return {std::move(set), s};
+  }
+
+  void take(const Openings& set, double s, int start) {
+    if (s < result.score) {
+      result.rects = set, result.score = s;
+      if (start >= 0) result.best_start = start;
+    }
+  }
+
+  // The best, each opening in turn refitted with every side moved by at most one element at once
+  // (what single moves cannot reach through worse sets), then descent. Whether it gained.
+  bool refit_round() {
+    const double before = result.score;
+    for (size_t i = 0; i < result.rects.size() && !result.out_of_evaluations; ++i) {
+      std::vector<Openings> candidates;
+      box_moves_of_one_opening(result.rects, i, &candidates);
+      std::optional<Openings> best;
+      double best_score = result.score;
+      for (Openings& c : candidates) {
+        const std::optional<double> cs = scored(c);
+        if (cs && *cs < best_score) best_score = *cs, best = std::move(c);
+      }
+      if (!best || !(best_score < result.score - kRelativeGain * std::abs(result.score))) continue;
+      std::sort(best->begin(), best->end());
+      auto [set, score] = descend(std::move(*best), best_score);
+      take(set, score, -1);
+      i = static_cast<size_t>(-1);  // the openings changed: from the first again
+    }
+    return result.score < before - kRelativeGain * std::abs(before);
+  }
+
+  // Restarts from the best: each opening removed, or moved by two elements; each opening of the
+  // pool added (fitted alone first), or put in place of one on its panel. Then descent.
+  bool restart_round() {
+    const Openings best = result.rects;
+    const double before = result.score;
+    std::vector<std::pair<Openings, int>> kicks;  // and the opening to fit first (-1: none)
+    for (size_t i = 0; i < best.size(); ++i) {
+      kicks.push_back({without(best, i), -1});
+      for (auto [dr, dc] : {std::pair{0, -2}, {0, 2}, {-2, 0}, {2, 0}})
+        kicks.push_back({replaced(best, i, moved(best[i], dr, dc)), -1});
+    }
+    for (const GridRectangle& p : pool) {
+      if (std::find(best.begin(), best.end(), p) != best.end()) continue;
+      Openings added = best;
+      added.push_back(p);
+      kicks.push_back({std::move(added), static_cast<int>(best.size())});
+      for (size_t i = 0; i < best.size(); ++i)
+        if (best[i].panel == p.panel) kicks.push_back({replaced(best, i, p), static_cast<int>(i)});
+    }
+    for (auto& [k, fit_first] : kicks) {
+      if (result.out_of_evaluations) break;
+      std::optional<double> s = scored(k);
+      if (!s) continue;
+      ++result.restarts;
+      if (fit_first >= 0) std::tie(k, *s) = descend(std::move(k), *s, fit_first);
+      std::sort(k.begin(), k.end());
+      auto [set, score] = descend(std::move(k), *s);
+      take(set, score, -1);
+    }
+    return result.score < before - kRelativeGain * std::abs(before);
+  }
+
+  Openings pool;
+  OpeningSearchResult result;
+
+ private:
+  const OpeningDomain& domain_;
+  const OpeningConstraints& constraints_;
+  const OpeningScore& score_;
+  const int max_evaluations_;
+  const Progress* progress_;
+  std::map<Openings, std::optional<double>> known_;
+};
+
+}  // namespace
+
+OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const OpeningConstraints& constraints,
+                                          const std::vector<std::vector<GridRectangle>>& starts,
+                                          const OpeningScore& score, int max_evaluations, const Progress* progress) {
+  Search search(domain, constraints, score, max_evaluations, progress);
+  for (const Openings& start : starts)
+    for (const GridRectangle& r : start)
+      if (std::find(search.pool.begin(), search.pool.end(), r) == search.pool.end()) search.pool.push_back(r);
+  std::sort(search.pool.begin(), search.pool.end());
+  // Descent from the best start first (the evaluations may run out).
+  std::vector<std::pair<double, size_t>> order;
+  for (size_t k = 0; k < starts.size(); ++k)
+    if (const std::optional<double> s = search.scored(starts[k])) order.push_back({*s, k});
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [start_score, k] : order) {
+    const std::optional<double> s = start_score;
+    if (*s < search.result.start_score) search.result.start_score = *s;
+    Openings sorted = starts[k];
+    std::sort(sorted.begin(), sorted.end());
+    auto [set, descended] = search.descend(std::move(sorted), *s);
+    if (getenv("FENESTRA_DEBUG_SEARCH")) { fprintf(stderr, "start %zu: %g -> %g:", k, *s, descended); for (auto& r : set) fprintf(stderr, " %s", r.to_string().c_str()); fprintf(stderr, "\n"); }
+    search.take(set, descended, static_cast<int>(k));
+  }
+  // Restarts, then refits, while either gains.
+  while (search.result.best_start >= 0 && !search.result.out_of_evaluations) {
+    const bool restarts_gained = search.restart_round();
+    if (!search.refit_round() && !restarts_gained) break;
+  }
+  return std::move(search.result);
+}
+
+}  // namespace fenestra

@@ -1,0 +1,53 @@
+#pragma once
+// A search over whole openings on the element grid, every candidate scored exactly (the solver
+// scores it from the path records). The linear models that guide the earlier stages misjudge whole
+// openings where elements light the room together (in thick walls each element's light depends
+// on its neighbours by tens of percent); this search trusts only the exact score.
+//
+//  1. Descent from each start, the best scored first: the neighbours of the current openings are
+//     scored in turn and the first that gains is taken, the scan going on from the next, until a
+//     whole scan gains nothing. Neighbours: an opening removed; moved by an element along either
+//     axis; one side, or both sides of an axis, out or in by an element; a side of one axis out and one of the other in (width
+//     traded for height); two openings of a panel merged into the rectangle holding both. Only
+//     sets within the constraints (satisfies_all) are scored.
+//  2. Restarts from the best: each of its openings removed, or moved by two elements along either
+//     axis; each opening of the pool (every start's openings) added, or put in place of one on its
+//     panel, and fitted alone first (its own moves, while they improve). Then descent again.
+//  3. Refits of the best: each opening with every side moved by at most one element at once (81
+//     rectangles, reaching what single moves cannot through worse sets), then descent. Restarts
+//     and refits repeat while either gains.
+// Every set is scored once (kept by its openings). The same starts and score give the same answer.
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "scene/opening_constraints.h"
+#include "scene/opening_domain.h"
+
+namespace fenestra {
+
+class Progress;
+
+// Lower is better; the openings given satisfy_all().
+using OpeningScore = std::function<double(const std::vector<GridRectangle>&)>;
+
+struct OpeningSearchResult {
+  std::vector<GridRectangle> rects;  // sorted
+  double score = std::numeric_limits<double>::infinity();
+  double start_score = std::numeric_limits<double>::infinity();  // the best start's, before any move
+  int best_start = -1;   // which start the answer descends from
+  int evaluations = 0;   // distinct sets scored
+  int moves = 0;         // moves taken, over every descent
+  int restarts = 0;      // restarts run
+  bool out_of_evaluations = false;  // max_evaluations ended it
+};
+
+// `starts`: sets of openings; those breaking the constraints are skipped (none left: the result
+// is empty with an infinite score). `max_evaluations` bounds the sets scored (0: no bound).
+OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const OpeningConstraints& constraints,
+                                          const std::vector<std::vector<GridRectangle>>& starts,
+                                          const OpeningScore& score, int max_evaluations,
+                                          const Progress* progress = nullptr);
+
+}  // namespace fenestra
