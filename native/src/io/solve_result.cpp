@@ -198,8 +198,10 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                           {"starts", r.opening_search.starts},
                           {"best_start", r.opening_search.best_start},
                           {"evaluations", r.opening_search.evaluations},
+                          {"best_found_after", r.opening_search.best_found_after},
                           {"moves", r.opening_search.moves},
                           {"restarts", r.opening_search.restarts},
+                          {"pair_moves", r.opening_search.pair_moves},
                           {"kept", r.opening_search.kept}}},
       {"constraint_costs", [&] {
          json costs = json::array();

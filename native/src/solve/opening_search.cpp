@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +17,10 @@ using Openings = std::vector<GridRectangle>;
 
 // A move smaller than this share of the score is no gain (rounding, not light).
 constexpr double kRelativeGain = 1e-9;
+// Restarts per round that descend: the kicks that score best once kicked (and fitted).
+constexpr size_t kRestartDescents = 4;
+// Pair moves per round scored: those the screen ranks best.
+constexpr size_t kPairScores = 8;
 
 GridRectangle moved(GridRectangle r, int rows, int cols) {
   r.row0 += rows, r.row1 += rows, r.col0 += cols, r.col1 += cols;
@@ -154,7 +159,7 @@ class Search {
 
   void take(const Openings& set, double s, int start) {
     if (s < result.score) {
-      result.rects = set, result.score = s;
+      result.rects = set, result.score = s, result.best_found_after = result.evaluations;
       if (start >= 0) result.best_start = start;
     }
   }
@@ -181,6 +186,48 @@ class Search {
     return result.score < before - kRelativeGain * std::abs(before);
   }
 
+  // Pair moves of the best, ranked by the screen; the best few scored, descent from the first
+  // that gains. Whether it gained.
+  bool pair_round(const OpeningScreen& screen) {
+    const Openings best = result.rects;
+    const double before = result.score;
+    std::vector<Openings> fresh;  // both moves at once: admissible, not scored yet, once each
+    std::vector<std::array<Openings, 2>> singles;  // each move alone
+    std::set<Openings> seen;
+    for (size_t i = 0; i < best.size(); ++i)
+      for (size_t j = i + 1; j < best.size(); ++j) {
+        std::vector<Openings> moves_i, moves_j;
+        moves_of_one_opening(best, i, &moves_i);
+        moves_of_one_opening(best, j, &moves_j);
+        for (const Openings& a : moves_i)
+          for (const Openings& b : moves_j) {
+            Openings both = a;
+            both[j] = b[j];
+            std::sort(both.begin(), both.end());
+            if (known_.count(both) || !seen.insert(both).second || !std::all_of(both.begin(), both.end(), well_formed) ||
+                !satisfies_all(domain_, both, constraints_))
+              continue;
+            fresh.push_back(std::move(both));
+            singles.push_back({a, b});
+          }
+      }
+    if (fresh.empty()) return false;
+    const std::vector<double> predicted = screen(best, singles);
+    std::vector<size_t> order(fresh.size());
+    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return predicted[a] < predicted[b]; });
+    for (size_t n = 0; n < order.size() && n < kPairScores && !result.out_of_evaluations; ++n) {
+      Openings& c = fresh[order[n]];
+      const std::optional<double> s = scored(c);
+      if (!s || !(*s < before - kRelativeGain * std::abs(before))) continue;
+      ++result.pair_moves;
+      auto [set, score] = descend(std::move(c), *s);
+      take(set, score, -1);
+      break;
+    }
+    return result.score < before - kRelativeGain * std::abs(before);
+  }
+
   // Restarts from the best: each opening removed, or moved by two elements; each opening of the
   // pool added (fitted alone first), or put in place of one on its panel. Then descent.
   bool restart_round() {
@@ -200,14 +247,22 @@ class Search {
       for (size_t i = 0; i < best.size(); ++i)
         if (best[i].panel == p.panel) kicks.push_back({replaced(best, i, p), static_cast<int>(i)});
     }
+    // Each kick scored (an added opening fitted first); descent from the most promising only.
+    std::vector<std::pair<double, Openings>> kicked;
     for (auto& [k, fit_first] : kicks) {
       if (result.out_of_evaluations) break;
       std::optional<double> s = scored(k);
       if (!s) continue;
-      ++result.restarts;
       if (fit_first >= 0) std::tie(k, *s) = descend(std::move(k), *s, fit_first);
       std::sort(k.begin(), k.end());
-      auto [set, score] = descend(std::move(k), *s);
+      kicked.push_back({*s, std::move(k)});
+    }
+    std::stable_sort(kicked.begin(), kicked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    if (kicked.size() > kRestartDescents) kicked.resize(kRestartDescents);
+    for (auto& [s, k] : kicked) {
+      if (result.out_of_evaluations) break;
+      ++result.restarts;
+      auto [set, score] = descend(std::move(k), s);
       take(set, score, -1);
     }
     return result.score < before - kRelativeGain * std::abs(before);
@@ -229,7 +284,8 @@ class Search {
 
 OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const OpeningConstraints& constraints,
                                           const std::vector<std::vector<GridRectangle>>& starts,
-                                          const OpeningScore& score, int max_evaluations, const Progress* progress) {
+                                          const OpeningScore& score, int max_evaluations, const Progress* progress,
+                                          const OpeningScreen& screen) {
   Search search(domain, constraints, score, max_evaluations, progress);
   for (const Openings& start : starts)
     for (const GridRectangle& r : start)
@@ -250,10 +306,12 @@ OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const Ope
     if (getenv("FENESTRA_DEBUG_SEARCH")) { fprintf(stderr, "start %zu: %g -> %g:", k, *s, descended); for (auto& r : set) fprintf(stderr, " %s", r.to_string().c_str()); fprintf(stderr, "\n"); }
     search.take(set, descended, static_cast<int>(k));
   }
-  // Restarts, then refits, while either gains.
+  // Restarts, refits and pair moves, while any gains.
   while (search.result.best_start >= 0 && !search.result.out_of_evaluations) {
     const bool restarts_gained = search.restart_round();
-    if (!search.refit_round() && !restarts_gained) break;
+    const bool refits_gained = search.refit_round();
+    const bool pairs_gained = screen && !search.result.out_of_evaluations && search.pair_round(screen);
+    if (!restarts_gained && !refits_gained && !pairs_gained) break;
   }
   return std::move(search.result);
 }

@@ -12,11 +12,18 @@
 //     sets within the constraints (satisfies_all) are scored.
 //  2. Restarts from the best: each of its openings removed, or moved by two elements along either
 //     axis; each opening of the pool (every start's openings) added, or put in place of one on its
-//     panel, and fitted alone first (its own moves, while they improve). Then descent again.
+//     panel, and fitted alone first (its own moves, while they improve). Descent again from the
+//     four that then score best.
 //  3. Refits of the best: each opening with every side moved by at most one element at once (81
-//     rectangles, reaching what single moves cannot through worse sets), then descent. Restarts
-//     and refits repeat while either gains.
+//     rectangles, reaching what single moves cannot through worse sets), then descent.
+//  4. Pair moves of the best (with a screen): two openings moved at once, each by one of its moves
+//     above; the screen ranks every such pair from the two moves alone and the best few are
+//     scored, then descent. Two
+//     openings that light the same room can each compensate the other's error, so that neither
+//     alone can move.
+// Restarts, refits and pair moves repeat while any gains.
 // Every set is scored once (kept by its openings). The same starts and score give the same answer.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -31,6 +38,11 @@ class Progress;
 
 // Lower is better; the openings given satisfy_all().
 using OpeningScore = std::function<double(const std::vector<GridRectangle>&)>;
+// Optional: the scores of pair moves from `about` as predicted from each move alone (e.g. the
+// light each adds to `about`'s, summed): for each entry {A, B} of `singles`, the score of A's
+// change and B's at once. It only ranks them; the score decides.
+using OpeningScreen = std::function<std::vector<double>(
+    const std::vector<GridRectangle>& about, const std::vector<std::array<std::vector<GridRectangle>, 2>>& singles)>;
 
 struct OpeningSearchResult {
   std::vector<GridRectangle> rects;  // sorted
@@ -38,8 +50,10 @@ struct OpeningSearchResult {
   double start_score = std::numeric_limits<double>::infinity();  // the best start's, before any move
   int best_start = -1;   // which start the answer descends from
   int evaluations = 0;   // distinct sets scored
+  int best_found_after = 0;  // sets scored when the answer was found
   int moves = 0;         // moves taken, over every descent
   int restarts = 0;      // restarts run
+  int pair_moves = 0;    // pair moves taken
   bool out_of_evaluations = false;  // max_evaluations ended it
 };
 
@@ -48,6 +62,6 @@ struct OpeningSearchResult {
 OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const OpeningConstraints& constraints,
                                           const std::vector<std::vector<GridRectangle>>& starts,
                                           const OpeningScore& score, int max_evaluations,
-                                          const Progress* progress = nullptr);
+                                          const Progress* progress = nullptr, const OpeningScreen& screen = nullptr);
 
 }  // namespace fenestra

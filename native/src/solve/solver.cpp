@@ -274,14 +274,32 @@ class OpeningSolve {
       };
       std::vector<std::string> names;
       const std::vector<std::vector<GridRectangle>> starts = opening_search_starts(&names);
-      const OpeningSearchResult found =
-          search_whole_openings(scene_.domain, grid_constraints_, starts, score, settings_.search_evaluations, progress_);
+      // Pair moves are ranked by the light each move adds alone (exact, from the records), summed.
+      const OpeningScreen screen = [&](const std::vector<GridRectangle>& about,
+                                       const std::vector<std::array<std::vector<GridRectangle>, 2>>& singles) {
+        const std::vector<uint8_t> base_open = rectangles_mask(scene_.domain, about);
+        const Eigen::VectorXd base = records_.exact(base_open).value;
+        std::vector<double> predicted;
+        for (const auto& [a, b] : singles) {
+          const std::vector<uint8_t> open_a = rectangles_mask(scene_.domain, a), open_b = rectangles_mask(scene_.domain, b);
+          std::vector<uint8_t> both = open_b;  // b's change, and a's where a differs from `about`
+          for (size_t k = 0; k < both.size(); ++k)
+            if (open_a[k] != base_open[k]) both[k] = open_a[k];
+          const Eigen::VectorXd sum = records_.exact(open_a).value + records_.exact(open_b).value - base;
+          predicted.push_back(exact_fitness(objective_, grid_, ga_.shape, both, sum - c_.closed.value));
+        }
+        return predicted;
+      };
+      const OpeningSearchResult found = search_whole_openings(scene_.domain, grid_constraints_, starts, score,
+                                                              settings_.search_evaluations, progress_, screen);
       OpeningSearchSummary& summary = out_.opening_search;
       summary.ran = true;
       summary.starts = names;
       summary.evaluations = found.evaluations;
+      summary.best_found_after = found.best_found_after;
       summary.moves = found.moves;
       summary.restarts = found.restarts;
+      summary.pair_moves = found.pair_moves;
       if (found.best_start >= 0) summary.best_start = names[static_cast<size_t>(found.best_start)];
       summary.kept = found.score < kept_.fitness;
       if (found.score < kept_.fitness) {
