@@ -53,8 +53,7 @@ inline constexpr const char* kNoLeastGlazing = "skipped: goals.least_glazing is 
 inline constexpr const char* kNoVerify = "skipped: solver.verify is off";
 inline constexpr const char* kNoSearchEvaluations = "skipped: solver.search_evaluations is 0";
 inline constexpr const char* kEvaluationLimit = "evaluation limit";  // solver.search_evaluations ran out first
-inline constexpr const char* kClimateFollowsLight =
-    "skipped: on climate goals the openings follow the element answer's light";
+inline constexpr const char* kClimateFollowsLight = "skipped: climate goals choose openings by the year";
 }  // namespace stop_reason
 
 // Why a genetic run stopped.
