@@ -202,6 +202,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                           {"moves", r.opening_search.moves},
                           {"restarts", r.opening_search.restarts},
                           {"pair_moves", r.opening_search.pair_moves},
+                          {"alternatives_kept", r.opening_search.alternatives_kept},
                           {"kept", r.opening_search.kept}}},
       {"constraint_costs", [&] {
          json costs = json::array();

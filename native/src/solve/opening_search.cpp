@@ -158,6 +158,7 @@ class Search {
   }
 
   void take(const Openings& set, double s, int start) {
+    ends_.emplace(s, set);
     if (s < result.score) {
       result.rects = set, result.score = s, result.best_found_after = result.evaluations;
       if (start >= 0) result.best_start = start;
@@ -278,6 +279,9 @@ class Search {
   const int max_evaluations_;
   const Progress* progress_;
   std::map<Openings, std::optional<double>> known_;
+
+ public:
+  std::multimap<double, Openings> ends_;  // where each descent ended, by score
 };
 
 }  // namespace
@@ -312,6 +316,12 @@ OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const Ope
     const bool refits_gained = search.refit_round();
     const bool pairs_gained = screen && !search.result.out_of_evaluations && search.pair_round(screen);
     if (!restarts_gained && !refits_gained && !pairs_gained) break;
+  }
+  for (const auto& [s, set] : search.ends_) {
+    if (search.result.alternatives.size() >= kSearchAlternatives) break;
+    const auto& alt = search.result.alternatives;
+    if (set != search.result.rects && std::find(alt.begin(), alt.end(), set) == alt.end())
+      search.result.alternatives.push_back(set);
   }
   return std::move(search.result);
 }

@@ -36,6 +36,8 @@ namespace fenestra {
 
 class Progress;
 
+constexpr size_t kSearchAlternatives = 3;
+
 // Lower is better; the openings given satisfy_all().
 using OpeningScore = std::function<double(const std::vector<GridRectangle>&)>;
 // Optional: the scores of pair moves from `about` as predicted from each move alone (e.g. the
@@ -46,6 +48,9 @@ using OpeningScreen = std::function<std::vector<double>(
 
 struct OpeningSearchResult {
   std::vector<GridRectangle> rects;  // sorted
+  // Other sets where a descent ended (local optima), best first, at most kSearchAlternatives: the
+  // grid's best is not always the best once edges leave the grid.
+  std::vector<std::vector<GridRectangle>> alternatives;
   double score = std::numeric_limits<double>::infinity();
   double start_score = std::numeric_limits<double>::infinity();  // the best start's, before any move
   int best_start = -1;   // which start the answer descends from

@@ -301,6 +301,7 @@ class OpeningSolve {
       summary.restarts = found.restarts;
       summary.pair_moves = found.pair_moves;
       if (found.best_start >= 0) summary.best_start = names[static_cast<size_t>(found.best_start)];
+      search_alternatives_ = found.alternatives;
       summary.kept = found.score < kept_.fitness;
       if (found.score < kept_.fitness) {
         kept_.fitness = exact_of(found.rects, &kept_.values);
@@ -441,9 +442,39 @@ class OpeningSolve {
           final_rects_ = edges.openings;
         }
       }
+      edges_of_the_search_alternatives();
       return stop_reason::kDone;
     });
     thick_wall_edges();
+  }
+
+  // The grid's best is not always the best once edges leave the grid: on thin panels (where the
+  // records evaluate any rectangle exactly) the edges of the search's other local optima move too,
+  // and the best by the exact error is kept.
+  void edges_of_the_search_alternatives() {
+    if (!chosen_exact_ || uses_catalogue(scene_.domain, constraints_)) return;
+    for (const std::vector<GridRectangle>& alternative : search_alternatives_) {
+      const bool thin = std::all_of(alternative.begin(), alternative.end(), [&](const GridRectangle& r) {
+        return scene_.domain.panels()[static_cast<size_t>(r.panel)].thickness == 0.0f;
+      });
+      if (!thin || alternative.empty()) continue;
+      const std::vector<uint8_t> open = rectangles_mask(scene_.domain, alternative);
+      LinearObjective about = linearised_objective(objective_, records_, open, records_.exact(open).value);
+      std::vector<PanelRectangle> start;
+      for (const GridRectangle& r : alternative) start.push_back(panel_rectangle(r, scene_.domain.element_size()));
+      EdgeSearchScope scope;
+      scope.opening_light = &about.E;
+      const EdgeRefinement edges = refine_edges(scene_.domain, records_, objective_, constraints_, start, progress_, scope);
+      const SensorValues v = records_.evaluate(edges.openings);
+      const double current = chosen_error(), error = prediction_error(objective_, v.value - c_.closed.value);
+      if (!(error < current)) continue;
+      chosen_ = v;
+      out_.fitness += error - current;
+      out_.edge_moves = edges.moves;
+      final_rects_ = edges.openings;
+      about_ = std::move(about);
+      ++out_.opening_search.alternatives_kept;
+    }
   }
 
   // In thick walls, below the element size: the paths traced again on a grid refined about the
@@ -663,6 +694,7 @@ class OpeningSolve {
   SensorValues chosen_;         // the exact values of the answer so far
   SensorValues free_values_;    // of the element answer
   Constrained kept_;            // the openings within the constraints kept so far
+  std::vector<std::vector<GridRectangle>> search_alternatives_;  // the opening search's other local optima
   std::vector<GridRectangle> rects_;          // those openings, on the element grid
   std::vector<PanelRectangle> final_rects_;   // the answer's openings
   std::optional<LinearObjective> about_;      // the exact linear model about rects_
