@@ -40,6 +40,7 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "addon"))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))  # two_room_study, when this file is loaded by path
 import fenestra  # noqa: E402
 from two_room_study import write_two_room_study  # noqa: E402
 

@@ -98,6 +98,19 @@ struct GridRectangle {
   bool operator!=(const GridRectangle& o) const { return !(*this == o); }
   bool operator<(const GridRectangle& o) const;  // panel, then bottom-left corner, then size
   std::string to_string() const;
+  // Moved by whole elements along the rows and the columns.
+  GridRectangle moved(int rows, int cols) const { return {panel, row0 + rows, row1 + rows, col0 + cols, col1 + cols}; }
+  // Side 0..3 (left, right, bottom, top) moved out (step > 0) or in (step < 0) by `step` elements.
+  GridRectangle side_moved(int side, int step) const {
+    GridRectangle r = *this;
+    switch (side) {
+      case 0: r.col0 -= step; break;
+      case 1: r.col1 += step; break;
+      case 2: r.row0 -= step; break;
+      default: r.row1 += step; break;
+    }
+    return r;
+  }
 };
 
 // Throws std::invalid_argument naming the values when no grid-aligned opening (sides multiples

@@ -22,22 +22,6 @@ constexpr size_t kRestartDescents = 4;
 // Pair moves per round scored: those the screen ranks best.
 constexpr size_t kPairScores = 8;
 
-GridRectangle moved(GridRectangle r, int rows, int cols) {
-  r.row0 += rows, r.row1 += rows, r.col0 += cols, r.col1 += cols;
-  return r;
-}
-
-// Side 0..3 (left, right, bottom, top) moved out (step 1) or in (step -1) by an element.
-GridRectangle side_moved(GridRectangle r, int side, int step) {
-  switch (side) {
-    case 0: r.col0 -= step; break;
-    case 1: r.col1 += step; break;
-    case 2: r.row0 -= step; break;
-    default: r.row1 += step; break;
-  }
-  return r;
-}
-
 GridRectangle holding_both(const GridRectangle& a, const GridRectangle& b) {
   return {a.panel, std::min(a.row0, b.row0), std::max(a.row1, b.row1), std::min(a.col0, b.col0),
           std::max(a.col1, b.col1)};
@@ -61,14 +45,14 @@ Openings without(const Openings& set, size_t i) {
 // height (its place in the set kept).
 void moves_of_one_opening(const Openings& set, size_t i, std::vector<Openings>* out) {
   const GridRectangle& r = set[i];
-  for (auto [dr, dc] : {std::pair{0, -1}, {0, 1}, {-1, 0}, {1, 0}}) out->push_back(replaced(set, i, moved(r, dr, dc)));
+  for (auto [dr, dc] : {std::pair{0, -1}, {0, 1}, {-1, 0}, {1, 0}}) out->push_back(replaced(set, i, r.moved(dr, dc)));
   for (int side = 0; side < 4; ++side)
-    for (int step : {1, -1}) out->push_back(replaced(set, i, side_moved(r, side, step)));
+    for (int step : {1, -1}) out->push_back(replaced(set, i, r.side_moved(side, step)));
   for (int first_side : {0, 2})  // both sides of an axis out or in: wider or narrower about its centre
-    for (int step : {1, -1}) out->push_back(replaced(set, i, side_moved(side_moved(r, first_side, step), first_side + 1, step)));
+    for (int step : {1, -1}) out->push_back(replaced(set, i, r.side_moved(first_side, step).side_moved(first_side + 1, step)));
   for (int grow = 0; grow < 4; ++grow)
     for (int shrink = grow < 2 ? 2 : 0; shrink < (grow < 2 ? 4 : 2); ++shrink)
-      out->push_back(replaced(set, i, side_moved(side_moved(r, grow, 1), shrink, -1)));
+      out->push_back(replaced(set, i, r.side_moved(grow, 1).side_moved(shrink, -1)));
 }
 
 // Opening i with each of its sides moved by at most one element, all at once (81 rectangles).
@@ -238,7 +222,7 @@ class Search {
     for (size_t i = 0; i < best.size(); ++i) {
       kicks.push_back({without(best, i), -1});
       for (auto [dr, dc] : {std::pair{0, -2}, {0, 2}, {-2, 0}, {2, 0}})
-        kicks.push_back({replaced(best, i, moved(best[i], dr, dc)), -1});
+        kicks.push_back({replaced(best, i, best[i].moved(dr, dc)), -1});
     }
     for (const GridRectangle& p : pool) {
       if (std::find(best.begin(), best.end(), p) != best.end()) continue;

@@ -664,17 +664,10 @@ class Refiner {
   static GridRectangle changed(GridRectangle r, int change) {
     if (change < 4) {  // moves: left, right, down, up
       const int dc = change == 0 ? -1 : change == 1 ? 1 : 0, dr = change == 2 ? -1 : change == 3 ? 1 : 0;
-      r.col0 += dc, r.col1 += dc, r.row0 += dr, r.row1 += dr;
-      return r;
+      return r.moved(dr, dc);
     }
     const int side = (change - 4) / 2, step = (change - 4) % 2 == 0 ? 1 : -1;  // out, then in
-    switch (side) {
-      case 0: r.col0 -= step; break;
-      case 1: r.col1 += step; break;
-      case 2: r.row0 -= step; break;
-      default: r.row1 += step; break;
-    }
-    return r;
+    return r.side_moved(side, step);
   }
 
   const OpeningDomain& domain_;
