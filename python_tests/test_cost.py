@@ -284,6 +284,24 @@ def test_solve_estimate_counts_the_exact_values_index(tmp_path):
     assert "exact_values_index" not in fenestra.estimate_cost(scene, "contributions")["memory"]
 
 
+def test_solve_estimate_counts_the_search_over_whole_openings(tmp_path):
+    """Each set the search over whole openings scores keeps its exact values and open mask, and
+    re-evaluates the paths that met the elements it changes (docs/cost.md): both in proportion to
+    solver.search_evaluations, none without the search."""
+    path = write_room(tmp_path)
+    scene = fenestra.load_scene(str(path))
+    e = fenestra.estimate_cost(scene, "solve")
+    sensors, elements = scene.sensor_count, scene.element_count
+    assert e["memory"]["opening_search_values"] == pytest.approx(3000 * (16 * sensors + elements + 96))
+    paths = scene.render.paths_per_sensor
+    assert e["seconds"]["opening_search"] == pytest.approx(3000 * sensors * paths * 40e-9)
+    d = json.loads(path.read_text())
+    d["solver"] = {"search_evaluations": 0}
+    path.write_text(json.dumps(d))
+    e = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")
+    assert e["memory"]["opening_search_values"] == 0 and e["seconds"]["opening_search"] == 0
+
+
 def test_daylight_steps_cost_their_own_time(tmp_path):
     """Each step with the sun up creates its sky (about 2 ms, whatever the map's size): at 64 x 32 a
     year of 1-minute steps would take about 6 minutes and is refused; 5 years of 15-minute steps

@@ -260,6 +260,10 @@ void add_solver(const Scene& scene, CostEstimate* e) {
   const double path_records = S * static_cast<double>(e->paths_per_sensor) * e->bytes_per_path;
   e->memory.push_back({"exact_values_index", "the exact evaluation's index of the elements each path met",
                        kExactValuesIndexShare * path_records, "solving", "fewer solver paths"});
+  // Every set the search over whole openings scores keeps its exact values (a value and a standard
+  // error per sensor) and its open mask, with the map's nodes.
+  e->memory.push_back({"opening_search_values", "the exact values of the sets the search over whole openings scores",
+                       s.search_evaluations * (16.0 * S + N + 96.0), "solving", "fewer solver.search_evaluations"});
   if (s.refine_edges) {
     // One search at a time: on the element grid's records, then on a thick wall's refined ones.
     e->memory.push_back({"edge_search_index", "the edge search's index of where paths met the domain",
