@@ -165,6 +165,17 @@ def test_a_solve_lists_its_stages_in_order_with_their_seconds_and_why_each_stopp
     assert why["rectangles"] == why["exact evaluation"] == why["verification"] == "done"
     for stage in ("climate openings", "least glazing", "climate figures"):
         assert why[stage] == "skipped: no climate goals"
+    # The stages that change the openings say what they gained: errors before and after, and the
+    # search over whole openings never leaves the answer worse.
+    by_name = {s["name"]: s for s in result["stages"]}
+    assert why["opening search"] in ("no improvement", "evaluation limit")
+    for name in ("rectangles", "local search", "opening search"):
+        assert 0.0 <= by_name[name]["error_after"] and 0.0 <= by_name[name]["error_before"], by_name[name]
+    assert by_name["opening search"]["error_after"] <= by_name["opening search"]["error_before"] + 1e-12
+    if not result["second_start"]["kept"]:  # else the search starts from the second start's openings
+        assert by_name["opening search"]["error_before"] == pytest.approx(by_name["local search"]["error_after"])
+    assert result["opening_search"]["run"] and result["opening_search"]["evaluations"] > 0
+    assert "error_before" not in by_name["genetic"]
     # Given contributions, the solve lists the same stages but the tracing.
     again = fenestra.solve(scene, contributions=fenestra.contributions(scene))
     assert solve_stages.check(again["stages"], climate=False, traced=False) == {

@@ -179,6 +179,8 @@ class OpeningSolve {
       k.refined_error = goal_error(out_.goals, k.values.value);
       return stop_reason::kDone;
     });
+    stages->back().error_before = goal_error(out_.goals, open_values.value).relative_rms;
+    stages->back().error_after = k.refined_error.relative_rms;
     if (settings_.improve_iterations <= 0) {
       skip_stage(stages, "local search", stop_reason::kNoImproveIterations);
       return k;
@@ -186,6 +188,7 @@ class OpeningSolve {
     if (progress_) progress_->start("solving: local search over openings", 1);
     // Each round searches the exact linear model about the current openings, and is kept only if
     // the exact evaluation agrees; the next round linearises about its answer.
+    const double refined_rms = k.refined_error.relative_rms;
     run_stage(stages, "local search", [&] {
       auto linearise = [&] {
         k.about = linearised_objective(objective_, records_, rectangles_mask(scene_.domain, k.rects), k.values.value);
@@ -205,6 +208,8 @@ class OpeningSolve {
       }
       return stop_reason::kRoundLimit;
     });
+    stages->back().error_before = refined_rms;
+    stages->back().error_after = goal_error(out_.goals, k.values.value).relative_rms;
     return k;
   }
 
