@@ -142,7 +142,7 @@ class Search {
   }
 
   void take(const Openings& set, double s, int start) {
-    ends_.emplace(s, set);
+    ends.emplace(s, set);
     if (s < result.score) {
       result.rects = set, result.score = s, result.best_found_after = result.evaluations;
       if (start >= 0) result.best_start = start;
@@ -255,6 +255,7 @@ class Search {
 
   Openings pool;
   OpeningSearchResult result;
+  std::multimap<double, Openings> ends;  // where each descent ended, by score
 
  private:
   const OpeningDomain& domain_;
@@ -263,9 +264,6 @@ class Search {
   const int max_evaluations_;
   const Progress* progress_;
   std::map<Openings, std::optional<double>> known_;
-
- public:
-  std::multimap<double, Openings> ends_;  // where each descent ended, by score
 };
 
 }  // namespace
@@ -301,7 +299,7 @@ OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const Ope
     const bool pairs_gained = screen && !search.result.out_of_evaluations && search.pair_round(screen);
     if (!restarts_gained && !refits_gained && !pairs_gained) break;
   }
-  for (const auto& [s, set] : search.ends_) {
+  for (const auto& [s, set] : search.ends) {
     if (search.result.alternatives.size() >= kSearchAlternatives) break;
     const auto& alt = search.result.alternatives;
     if (set != search.result.rects && std::find(alt.begin(), alt.end(), set) == alt.end())
