@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <new>
 #include <optional>
@@ -193,10 +194,27 @@ py::dict annual_dict(const AnnualStudy& s) {
   return d;
 }
 
+// pybind11 before 2.12 reads NumPy arrays by NumPy 1's layout: under NumPy 2 every array crossing
+// the module is misread (values repeated, shapes wrong) without an error. Refused at import instead.
+void refuse_numpy_it_cannot_read() {
+#if PYBIND11_VERSION_MAJOR < 2 || (PYBIND11_VERSION_MAJOR == 2 && PYBIND11_VERSION_MINOR < 12)
+  const py::module_ numpy = py::module_::import("numpy");
+  const std::string version = py::str(numpy.attr("__version__"));
+  if (std::atoi(version.c_str()) < 2) return;
+  std::ostringstream m;
+  m << "Fenestra's native module reads NumPy 1.x arrays only (it was built with pybind11 " << PYBIND11_VERSION_MAJOR
+    << "." << PYBIND11_VERSION_MINOR << "), and this Python has NumPy " << version << " ("
+    << std::string(py::str(numpy.attr("__file__"))) << "): install NumPy 1.x in this environment "
+    << "(pip install \"numpy>=1.23,<2\"; the wheel's requirement), or use a Python that has it";
+  throw py::import_error(m.str());
+#endif
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Fenestra native core: opening-contribution path tracing on Embree.";
+  refuse_numpy_it_cannot_read();
   {
     const std::string name = py::str(m.attr("__name__"));  // "fenestra._core"
     api_module_name = name.substr(0, name.rfind('.') + 1) + "api";
