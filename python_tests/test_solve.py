@@ -176,6 +176,8 @@ def test_a_solve_lists_its_stages_in_order_with_their_seconds_and_why_each_stopp
         assert by_name["opening search"]["error_before"] == pytest.approx(by_name["local search"]["error_after"])
     assert result["opening_search"]["run"] and result["opening_search"]["evaluations"] > 0
     assert "error_before" not in by_name["genetic"]
+    assert why["thick-wall openings"] == "skipped: no edge in a thick wall can leave the grid"  # a thin wall
+    assert not result["thick_wall_openings"]["run"]
     # Given contributions, the solve lists the same stages but the tracing.
     again = fenestra.solve(scene, contributions=fenestra.contributions(scene))
     assert solve_stages.check(again["stages"], climate=False, traced=False) == {
@@ -195,6 +197,7 @@ LIMITED = [
       "local search": "skipped: solver.improve_iterations is 0", "verification": "skipped: solver.verify is off",
       "trade-offs": "skipped: solver.tradeoffs is off", "edges off the grid": "skipped: solver.refine_edges is off",
       "thick-wall edges": "skipped: solver.refine_edges is off", "catalogue sizes": "skipped: no catalogue",
+      "thick-wall openings": "skipped: solver.refine_edges is off",
       "composition": "skipped: no facade rules"}),
 ]
 

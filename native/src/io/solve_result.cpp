@@ -204,6 +204,13 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                           {"pair_moves", r.opening_search.pair_moves},
                           {"alternatives_kept", r.opening_search.alternatives_kept},
                           {"kept", r.opening_search.kept}}},
+      {"thick_wall_openings", {{"run", r.thick_wall_openings.ran},
+                               {"evaluations", r.thick_wall_openings.evaluations},
+                               {"moves", r.thick_wall_openings.moves},
+                               {"interpolated_before", r.thick_wall_openings.interpolated_before},
+                               {"interpolated_after", r.thick_wall_openings.interpolated_after},
+                               {"kept", r.thick_wall_openings.kept},
+                               {"reverted", r.thick_wall_openings.reverted}}},
       {"constraint_costs", [&] {
          json costs = json::array();
          for (const ConstraintCost& c : r.constraint_costs)

@@ -342,7 +342,7 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Eigen::VectorXd& 
     return try_move(opening_of(t), move_of(t), direction_of(t), step, whole_elements);
   };
   auto thick = [&](size_t i) { return domain.panels()[search.rectangles()[i].panel].thickness > 0.0f; };
-  auto searched = [&](size_t i) { return scope.zero_thickness_panels || thick(i); };
+  auto searched = [&](size_t i) { return thick(i) ? scope.thick_panels : scope.zero_thickness_panels; };
   // The screen is linear: in thick walls, where elements open together pass much more light than
   // apart (reveals, oblique paths), it misranks moves, so those openings are not screened.
   auto screened = [&](size_t i) { return scope.opening_light && !thick(i) && searched(i); };

@@ -67,6 +67,7 @@ struct EdgeRefinement {
 struct EdgeSearchScope {
   bool whole_elements = true;
   bool zero_thickness_panels = true;
+  bool thick_panels = true;  // false: openings in thick walls stay as they are
   // > 0: first, for each opening in a thick wall and each axis, every pair of grid lines within
   // this distance of its two edges is tried (its error along a sill or head can have narrow
   // valleys that single steps do not cross), and the best pair kept.

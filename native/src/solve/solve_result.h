@@ -43,6 +43,16 @@ struct OpeningSearchSummary {
   bool kept = false;  // its answer replaced the openings within the constraints
 };
 
+// The choice of openings in thick walls by the error they reach once their edges leave the grid
+// (solve/refinable_openings.h), relative RMS errors interpolated off the grid.
+struct ThickWallOpeningsSummary {
+  bool ran = false;
+  int evaluations = 0, moves = 0;
+  double interpolated_before = 0.0, interpolated_after = 0.0;
+  bool kept = false;      // its openings replaced the search's
+  bool reverted = false;  // and, refined in the thick walls, met the goals worse: the search's kept
+};
+
 struct SolveResult {
   std::vector<uint8_t> open;                 // per element: the final openings' elements
   std::vector<OpeningRectangle> openings;    // the final openings: admissible rectangles
@@ -70,6 +80,7 @@ struct SolveResult {
   // opening can cover (run when the free answer opened some), and whether that start was kept.
   bool second_start = false, second_start_kept = false;
   OpeningSearchSummary opening_search;
+  ThickWallOpeningsSummary thick_wall_openings;
   // When the constraints cost much light (constraints_cost_much), the error without each family
   // of limits, least first (solve/constraint_costs.h); else empty.
   std::vector<ConstraintCost> constraint_costs;

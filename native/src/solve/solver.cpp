@@ -20,6 +20,7 @@
 #include "solve/linear_stage.h"
 #include "solve/linear_start.h"
 #include "solve/opening_search.h"
+#include "solve/refinable_openings.h"
 #include "solve/prediction_check.h"
 #include "solve/refine_openings.h"
 #include "solve/thick_wall_edges.h"
@@ -95,6 +96,10 @@ struct Constrained {
 // the element search's best states up to this many in all.
 constexpr double kSearchRoundingLevels[] = {0.25, 0.5, 0.75};
 constexpr size_t kSearchElementStarts = 3;
+// Edges in thick walls leave the grid on records traced again, the longest stage of a solid-wall
+// solve: not traced when the openings on the grid miss the goals by at most this relative RMS
+// beyond the records' noise (nothing the refinement could gain would show).
+constexpr double kThickEdgesWorthTracing = 0.005;
 
 class OpeningSolve {
  public:
@@ -126,6 +131,7 @@ class OpeningSolve {
     openings_within_constraints();
     second_start();
     opening_search();
+    thick_wall_openings();
     climate_openings();
     constraint_costs_stage();
     take_kept_openings();
@@ -307,6 +313,7 @@ class OpeningSolve {
       summary.pair_moves = found.pair_moves;
       if (found.best_start >= 0) summary.best_start = names[static_cast<size_t>(found.best_start)];
       search_alternatives_ = found.alternatives;
+      search_starts_ = starts;
       summary.kept = found.score < kept_.fitness;
       if (found.score < kept_.fitness) {
         kept_.fitness = exact_of(found.rects, &kept_.values);
@@ -319,6 +326,64 @@ class OpeningSolve {
     });
     out_.stages.back().error_before = before;
     out_.stages.back().error_after = kept_.refined_error.relative_rms;
+  }
+
+  bool thick_panel(int panel) const { return scene_.domain.panels()[static_cast<size_t>(panel)].thickness > 0.0f; }
+
+  // In thick walls the grid's best is a poor guide once edges may leave the grid: the openings
+  // chosen again by the error they reach with their sides interpolated off it
+  // (solve/refinable_openings.h), when the thick-wall edges stage will trace them.
+  void thick_wall_openings() {
+    const bool thick = std::any_of(scene_.domain.panels().begin(), scene_.domain.panels().end(),
+                                   [](const Panel& p) { return p.thickness > 0.0f; });
+    const char* skipped = climate_                                     ? stop_reason::kClimateThickWalls
+                          : !settings_.refine_edges                    ? stop_reason::kNoRefineEdges
+                          : !thick                                     ? stop_reason::kNoThickWallEdge
+                          : uses_catalogue(scene_.domain, constraints_) ? stop_reason::kCatalogueSizes
+                          : settings_.search_evaluations <= 0          ? stop_reason::kNoSearchEvaluations
+                          : kept_.rects.empty()                        ? stop_reason::kNoOpenings
+                          : within_the_noise(kept_.values)             ? stop_reason::kWithinNoise
+                          : !thick_wall_edges_fit(records_)            ? stop_reason::kOutOfMemory
+                                                                       : nullptr;
+    if (skipped) return skip_stage(&out_.stages, "thick-wall openings", skipped);
+    ThickWallOpeningsSummary& summary = out_.thick_wall_openings;
+    run_stage(&out_.stages, "thick-wall openings", [&] {
+      if (progress_) progress_->start("solving: openings for edges off the grid in thick walls", 1);
+      const OpeningValues values_of = [&](const std::vector<GridRectangle>& rects) {
+        return Eigen::VectorXd(records_.exact(rectangles_mask(scene_.domain, rects)).value - c_.closed.value);
+      };
+      // From the search's answer, its other local optima and its starts: the two whose interpolated
+      // errors are lowest.
+      std::vector<std::vector<GridRectangle>> starts = {kept_.rects};
+      starts.insert(starts.end(), search_alternatives_.begin(), search_alternatives_.end());
+      starts.insert(starts.end(), search_starts_.begin(), search_starts_.end());
+      const RefinableOpenings found = search_refinable_openings(scene_.domain, grid_constraints_, starts, values_of,
+                                                                objective_, settings_.search_evaluations, progress_);
+      summary.ran = true;
+      summary.evaluations = found.evaluations;
+      summary.moves = found.moves;
+      summary.interpolated_before = std::sqrt(found.start_errors.at(0));
+      summary.interpolated_after = std::sqrt(found.error);
+      // Openings the thick-wall edge search reaches from the search's answer bring nothing: it
+      // searches them exactly, from the answer's own.
+      summary.kept = !found.rects.empty() && found.error < found.start_errors[0] &&
+                     !within_thick_wall_edge_reach(kept_.rects, found.rects, scene_.domain.element_size(),
+                                                   constraints_.module);
+      if (summary.kept) {
+        grid_best_ = kept_;
+        kept_.fitness = exact_of(found.rects, &kept_.values);
+        kept_.rects = found.rects;
+        kept_.refined_error = goal_error(out_.goals, kept_.values.value);
+        kept_.about = linearised_objective(objective_, records_, rectangles_mask(scene_.domain, kept_.rects),
+                                           kept_.values.value);
+      } else {
+        summary.interpolated_after = summary.interpolated_before;
+      }
+      return found.out_of_evaluations ? stop_reason::kEvaluationLimit : stop_reason::kNoImprovement;
+    });
+    // Its errors are those interpolated off the grid (on the grid they may rise).
+    out_.stages.back().error_before = summary.interpolated_before;
+    out_.stages.back().error_after = summary.interpolated_after;
   }
 
   // Climate goals: openings that follow the element answer's light can still fall short of a goal
@@ -432,6 +497,8 @@ class OpeningSolve {
       if (!about_) linearise_about_rects();
       EdgeSearchScope scope;
       scope.opening_light = &about_->E;
+      // Openings chosen for their edges off the grid in thick walls move there, not on the grid.
+      scope.thick_panels = !grid_best_;
       const EdgeRefinement edges =
           refine_edges(scene_.domain, records_, objective_, constraints_, final_rects_, progress_, scope);
       out_.edge_moves = edges.moves;
@@ -482,11 +549,27 @@ class OpeningSolve {
     }
   }
 
+  // The openings (exact values) miss the goals by at most kThickEdgesWorthTracing beyond the
+  // records' noise, with one of them in a thick wall.
+  bool grid_meets_the_goals_within_the_noise() const {
+    const bool thick = std::any_of(final_rects_.begin(), final_rects_.end(),
+                                   [&](const PanelRectangle& r) { return thick_panel(r.panel); });
+    return thick && chosen_exact_ && within_the_noise(chosen_);
+  }
+
+  bool within_the_noise(const SensorValues& values) const {
+    if (values.standard_error.size() != values.value.size()) return false;
+    const double error = goal_error(out_.goals, values.value).relative_rms;
+    const double noise = goal_noise(out_.goals, values.standard_error);
+    return error * error - noise * noise <= kThickEdgesWorthTracing * kThickEdgesWorthTracing;
+  }
+
   // In thick walls, below the element size: the paths traced again on a grid refined about the
   // openings' edges. Its records then give the prediction, unless its openings are refused.
   void thick_wall_edges() {
     bool traced = false;
     const double seconds = run_stage(&out_.stages, "thick-wall edges", [&] {
+      if (grid_meets_the_goals_within_the_noise()) return stop_reason::kWithinNoise;
       std::string skipped;
       std::optional<ThickWallEdges> thick =
           refine_thick_wall_edges(scene_, records_, objective_, constraints_, final_rects_, progress_, &skipped);
@@ -509,6 +592,27 @@ class OpeningSolve {
       return traced ? stop_reason::kDone : !skipped.empty() ? stop_reason::kOutOfMemory : stop_reason::kNoThickWallEdge;
     });
     if (traced) thick_seconds_ = seconds;
+    keep_the_search_if_better();
+  }
+
+  // When thick_wall_openings chose other openings than the search, and those, refined in the
+  // thick walls (or not: out of memory), meet the goals worse than the search's on the grid: the
+  // search's openings instead (each error from its own records, both unbiased).
+  void keep_the_search_if_better() {
+    if (!grid_best_) return;
+    SensorValues grid_values = grid_best_->values;
+    const double grid_error = prediction_error(objective_, grid_values.value - c_.closed.value);
+    if (chosen_exact_ && chosen_error() < grid_error) return;
+    out_.thick_wall_openings.reverted = true;
+    final_rects_.clear();
+    for (const GridRectangle& r : grid_best_->rects) final_rects_.push_back(panel_rectangle(r, scene_.domain.element_size()));
+    rects_ = grid_best_->rects;
+    chosen_ = std::move(grid_values);
+    chosen_exact_ = true;
+    out_.fitness = grid_best_->fitness;
+    out_.refined_error = grid_best_->refined_error;
+    out_.edge_moves = 0;
+    about_ = grid_best_->about;
   }
 
   void set_openings(const std::vector<PanelRectangle>& rects) {
@@ -699,7 +803,11 @@ class OpeningSolve {
   SensorValues chosen_;         // the exact values of the answer so far
   SensorValues free_values_;    // of the element answer
   Constrained kept_;            // the openings within the constraints kept so far
+  // The search's openings when thick_wall_openings replaced them (kept if, refined, those meet the
+  // goals worse).
+  std::optional<Constrained> grid_best_;
   std::vector<std::vector<GridRectangle>> search_alternatives_;  // the opening search's other local optima
+  std::vector<std::vector<GridRectangle>> search_starts_;        // and its starts
   std::vector<GridRectangle> rects_;          // those openings, on the element grid
   std::vector<PanelRectangle> final_rects_;   // the answer's openings
   std::optional<LinearObjective> about_;      // the exact linear model about rects_

@@ -1,6 +1,8 @@
 #include "solve/thick_wall_edges.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "util/memory_limit.h"
@@ -62,6 +64,24 @@ std::vector<RefinedRegion> thick_wall_edge_regions(const OpeningDomain& domain,
   return out;
 }
 
+bool within_thick_wall_edge_reach(const std::vector<GridRectangle>& from, const std::vector<GridRectangle>& to,
+                                  double element_size, double module) {
+  if (from.size() != to.size()) return false;
+  const int reach = static_cast<int>(std::floor(thick_wall_edge_span(element_size, module) / element_size + 1e-9));
+  std::vector<GridRectangle> a = from, b = to;
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i].panel != b[i].panel || std::abs(a[i].row0 - b[i].row0) > reach || std::abs(a[i].row1 - b[i].row1) > reach ||
+        std::abs(a[i].col0 - b[i].col0) > reach || std::abs(a[i].col1 - b[i].col1) > reach)
+      return false;
+  return true;
+}
+
+bool thick_wall_edges_fit(const RecordQueries& coarse_records) {
+  return kRefinedRecordShare * coarse_records.record_bytes() <= static_cast<double>(memory_limit().bytes);
+}
+
 std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, RecordQueries& coarse_records,
                                                       const LinearObjective& objective,
                                                       const OpeningConstraints& constraints,
@@ -74,7 +94,7 @@ std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, Record
   const Contributions& coarse = coarse_records.contributions();
   const double record_bytes = coarse_records.record_bytes();
   const MemoryLimit limit = memory_limit();
-  if (kRefinedRecordShare * record_bytes > static_cast<double>(limit.bytes)) {
+  if (!thick_wall_edges_fit(coarse_records)) {
     std::ostringstream m;
     m << "edges in thick walls stay on the element grid: refining them traces the paths again, which needs about "
       << static_cast<long long>(kRefinedRecordShare * record_bytes / (1 << 20)) << " MiB, more than the "

@@ -27,6 +27,15 @@ struct ThickWallEdges {
 std::vector<RefinedRegion> thick_wall_edge_regions(const OpeningDomain& domain,
                                                    const std::vector<PanelRectangle>& openings, double module);
 
+// Whether the edge search on the refined grid could reach `to` from `from` (openings on the element
+// grid): as many openings, each on the same panel with every side within the search's span of its
+// own (whole elements).
+bool within_thick_wall_edge_reach(const std::vector<GridRectangle>& from, const std::vector<GridRectangle>& to,
+                                  double element_size, double module);
+
+// Whether the refined records fit in memory beside `coarse_records` (an estimate from theirs).
+bool thick_wall_edges_fit(const RecordQueries& coarse_records);
+
 // Nothing when no opening lies on a thick panel or the steps stop at whole elements. Otherwise the
 // refined records and the edges searched on them, starting from `start`. When the refined records
 // would not fit in memory (estimated from `coarse`'s), nothing, and *skipped says why.

@@ -279,6 +279,15 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                        kThickWallEdgeRounds * S * static_cast<double>(e->paths_per_sensor) *
                            expected_vertices(scene) * kTraceSecondsPerVertex,
                        0.0, "fewer solver paths, or solver.refine_edges off"});
+    // The openings chosen again for their edges off the grid (solve/refinable_openings.h): at most
+    // search_evaluations sets more, each kept twice (the records' exact values, and the search's
+    // values) and evaluated as the search's are.
+    e->memory.push_back({"thick_wall_openings_values",
+                         "the values of the sets the choice of openings in thick walls evaluates",
+                         s.search_evaluations * (24.0 * S + N + 160.0), "solving", "fewer solver.search_evaluations"});
+    e->time.push_back({"thick_wall_openings", "the choice of openings in thick walls (at most)",
+                       s.search_evaluations * S * static_cast<double>(e->paths_per_sensor) * kSearchSecondsPerSensorPath,
+                       0.0, "fewer solver.search_evaluations (" + format_count(s.search_evaluations) + ")"});
   }
   // Children bred: the fine-grid run and its defect-corrected rerun (a quarter as long), and
   // with coarse_to_fine two coarse levels at half the generations each.

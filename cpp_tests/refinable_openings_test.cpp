@@ -1,0 +1,153 @@
+// Openings on the grid chosen by the error they reach once their edges leave it
+// (solve/refinable_openings.h), on light with known answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "solve/refinable_openings.h"
+#include "test_scenes.h"
+
+namespace fenestra {
+namespace {
+
+LinearObjective objective_for(const Eigen::VectorXd& target) {
+  LinearObjective o;
+  o.target = target;
+  o.weight = Eigen::VectorXd::Constant(target.size(), 1.0 / target.squaredNorm());
+  return o;
+}
+
+TEST(InterpolatedError, ReachesATargetWithinHalfAnElementAndNoFarther) {
+  const Eigen::Vector3d values(1.0, 2.0, 3.0);
+  Eigen::MatrixXd sides(3, 2);
+  sides << 1.0, 0.0, 1.0, 0.5, 1.0, 2.0;
+  // Within reach: the values plus 0.3 of the first side and 0.2 of the second.
+  const Eigen::Vector3d within = values + 0.3 * sides.col(0) + 0.2 * sides.col(1);
+  EXPECT_LT(interpolated_error(objective_for(within), values, sides), 1e-10);  // coordinate descent's tolerance
+  // Beyond it: 0.8 of the first side; the least squares stops at half an element.
+  const Eigen::Vector3d beyond = values + 0.8 * sides.col(0);
+  const LinearObjective o = objective_for(beyond);
+  const Eigen::Vector3d at_reach = values + 0.5 * sides.col(0);
+  EXPECT_NEAR(interpolated_error(o, values, sides.leftCols(1)), prediction_error(o, at_reach), 1e-15);
+  EXPECT_GT(interpolated_error(o, values, sides), 0.0);
+  // Sides only add or remove light as far as their column goes: none, the values' own error.
+  EXPECT_DOUBLE_EQ(interpolated_error(o, values, Eigen::MatrixXd(3, 0)), prediction_error(o, values));
+  // A lower bound counts as in prediction_error (its excess squared times bound_weight): with the
+  // target at t = 0 and the bound at t = 0.5, the least is at t = 0.5 b / (1 + b).
+  LinearObjective bounded = objective_for(values);
+  bounded.lower = values + 0.5 * sides.col(0);
+  bounded.upper = Eigen::Vector3d::Constant(INFINITY);
+  const double t = 0.5 * bounded.bound_weight / (1.0 + bounded.bound_weight);
+  const double e = interpolated_error(bounded, values, sides.leftCols(1));
+  EXPECT_LT(e, prediction_error(bounded, values));
+  EXPECT_NEAR(e, prediction_error(bounded, values + t * sides.col(0)), 1e-10 * e);
+}
+
+// A 6 x 2.5 m wall of 0.25 m elements (24 x 10).
+OpeningDomain wall() {
+  return test::domain_of_quads({{Vec3(0, 0, 0), Vec3(6, 0, 0), Vec3(6, 0, 2.5f), Vec3(0, 0, 2.5f)}}, 0.25f);
+}
+
+// Light through openings whose edges may lie anywhere (in elements): each element lights the
+// sensors by the share of it that is open, over their squared distance plus one, times the square
+// root of the opening's area when superlinear (light grows faster than area, as through a thick
+// wall).
+struct FractionalLight {
+  bool superlinear = true;
+  std::vector<std::array<double, 2>> sensors;  // row, column
+  FractionalLight() {
+    for (double r = 0.5; r < 10; r += 3) for (double c = 0.5; c < 24; c += 2.5) sensors.push_back({r, c});
+  }
+  struct Box { double row0, row1, col0, col1; };  // element units, [row0, row1) x [col0, col1)
+  Eigen::VectorXd light(const std::vector<Box>& boxes) const {
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sensors.size()));
+    for (const Box& b : boxes) {
+      const double gain = superlinear ? std::sqrt((b.row1 - b.row0) * (b.col1 - b.col0)) : 1.0;
+      for (int row = static_cast<int>(std::floor(b.row0)); row < b.row1; ++row)
+        for (int col = static_cast<int>(std::floor(b.col0)); col < b.col1; ++col) {
+          const double share = (std::min(b.row1, row + 1.0) - std::max(b.row0, double(row))) *
+                               (std::min(b.col1, col + 1.0) - std::max(b.col0, double(col)));
+          for (size_t i = 0; i < sensors.size(); ++i) {
+            const double dr = sensors[i][0] - (row + 0.5), dc = sensors[i][1] - (col + 0.5);
+            v[static_cast<Eigen::Index>(i)] += gain * share / (dr * dr + dc * dc + 1.0);
+          }
+        }
+    }
+    return v;
+  }
+  Eigen::VectorXd light(const std::vector<GridRectangle>& rects) const {
+    std::vector<Box> boxes;
+    for (const GridRectangle& r : rects) boxes.push_back({double(r.row0), r.row1 + 1.0, double(r.col0), r.col1 + 1.0});
+    return light(boxes);
+  }
+};
+
+// The truth: two openings with every edge between grid lines.
+struct TwoOpenings {
+  OpeningDomain d = wall();
+  OpeningConstraints c;
+  FractionalLight model;
+  std::vector<FractionalLight::Box> truth = {{2.4, 7.6, 3.3, 8.6}, {3.5, 8.5, 14.6, 19.4}};
+  // The truth's elements (those more than half open).
+  std::vector<GridRectangle> truth_cells = {{0, 2, 7, 3, 8}, {0, 4, 8, 15, 18}};
+  LinearObjective objective = objective_for(model.light(truth));
+  int calls = 0;
+  OpeningValues values_of = [this](const std::vector<GridRectangle>& rects) {
+    ++calls;
+    EXPECT_TRUE(std::is_sorted(rects.begin(), rects.end()));
+    return model.light(rects);
+  };
+  TwoOpenings() {
+    c.min_width = c.min_height = 0.5;
+    c.min_gap = 0.5;
+  }
+};
+
+// From openings misplaced by one or two elements, the descent brings every side within an element
+// of the truth's, where the interpolated error is far below the start's and below the grid error
+// of the truth's elements.
+TEST(RefinableOpenings, BringsMisplacedOpeningsWithinAnElementOfTheTruth) {
+  TwoOpenings t;
+  ASSERT_EQ(t.d.panels().size(), 1u);
+  const std::vector<GridRectangle> start = {{0, 1, 6, 4, 9}, {0, 3, 7, 12, 17}};
+  ASSERT_TRUE(satisfies_all(t.d, start, t.c));
+  const RefinableOpenings found = search_refinable_openings(t.d, t.c, {start}, t.values_of, t.objective, 0);
+  ASSERT_EQ(found.rects.size(), 2u);
+  EXPECT_GT(found.moves, 0);
+  EXPECT_EQ(found.evaluations, t.calls);  // each set once
+  EXPECT_LT(found.error, 0.05 * found.start_error);
+  EXPECT_LT(found.error, prediction_error(t.objective, t.model.light(t.truth_cells)));
+  for (size_t i = 0; i < 2; ++i) {
+    const GridRectangle& r = found.rects[i];
+    const FractionalLight::Box& b = t.truth[i];
+    EXPECT_LE(std::abs(r.row0 - b.row0), 1.0) << r.to_string();
+    EXPECT_LE(std::abs(r.row1 + 1 - b.row1), 1.0) << r.to_string();
+    EXPECT_LE(std::abs(r.col0 - b.col0), 1.0) << r.to_string();
+    EXPECT_LE(std::abs(r.col1 + 1 - b.col1), 1.0) << r.to_string();
+  }
+  // The same start and light give the same answer; an evaluation limit ends it early.
+  const RefinableOpenings again = search_refinable_openings(t.d, t.c, {start}, t.values_of, t.objective, 0);
+  EXPECT_EQ(again.rects, found.rects);
+  EXPECT_EQ(again.error, found.error);
+  const RefinableOpenings limited = search_refinable_openings(t.d, t.c, {start}, t.values_of, t.objective, 20);
+  EXPECT_TRUE(limited.out_of_evaluations);
+  EXPECT_EQ(limited.evaluations, 20);
+  EXPECT_GE(limited.error, found.error);
+}
+
+// An opening the truth does not have, far from its light, is removed. (Light in proportion to the
+// open area: the interpolation then holds but for the corners, and no other opening helps.)
+TEST(RefinableOpenings, RemovesAnOpeningTheTruthHasNot) {
+  TwoOpenings t;
+  t.model.superlinear = false;
+  t.objective = objective_for(t.model.light(t.truth));
+  std::vector<GridRectangle> start = t.truth_cells;
+  start.push_back({0, 7, 8, 22, 23});
+  ASSERT_TRUE(satisfies_all(t.d, start, t.c));
+  const RefinableOpenings found = search_refinable_openings(t.d, t.c, {start}, t.values_of, t.objective, 0);
+  EXPECT_EQ(found.rects.size(), 2u);
+  EXPECT_LT(found.error, found.start_error);
+}
+
+}  // namespace
+}  // namespace fenestra
