@@ -17,30 +17,63 @@ LinearObjective objective_for(const Eigen::VectorXd& target) {
   return o;
 }
 
+// Side light of straight sides: each side's values moved out are `columns`, moved in the negatives.
+SideLight straight(const Eigen::MatrixXd& columns) {
+  std::vector<Eigen::VectorXd> out, in;
+  for (Eigen::Index j = 0; j < columns.cols(); ++j) out.push_back(columns.col(j)), in.push_back(-columns.col(j));
+  return side_light(out, in, std::vector<size_t>(out.size(), 0), columns.rows());
+}
+
 TEST(InterpolatedError, ReachesATargetWithinHalfAnElementAndNoFarther) {
   const Eigen::Vector3d values(1.0, 2.0, 3.0);
-  Eigen::MatrixXd sides(3, 2);
-  sides << 1.0, 0.0, 1.0, 0.5, 1.0, 2.0;
-  // Within reach: the values plus 0.3 of the first side and 0.2 of the second.
-  const Eigen::Vector3d within = values + 0.3 * sides.col(0) + 0.2 * sides.col(1);
+  Eigen::MatrixXd columns(3, 2);
+  columns << 1.0, 0.0, 1.0, 0.5, 1.0, 2.0;
+  const SideLight sides = straight(columns);
+  // Within reach, out and in: the values plus 0.3 of the first side and less 0.2 of the second.
+  const Eigen::Vector3d within = values + 0.3 * columns.col(0) - 0.2 * columns.col(1);
   EXPECT_LT(interpolated_error(objective_for(within), values, sides), 1e-10);  // coordinate descent's tolerance
   // Beyond it: 0.8 of the first side; the least squares stops at half an element.
-  const Eigen::Vector3d beyond = values + 0.8 * sides.col(0);
+  const Eigen::Vector3d beyond = values + 0.8 * columns.col(0);
   const LinearObjective o = objective_for(beyond);
-  const Eigen::Vector3d at_reach = values + 0.5 * sides.col(0);
-  EXPECT_NEAR(interpolated_error(o, values, sides.leftCols(1)), prediction_error(o, at_reach), 1e-15);
+  EXPECT_NEAR(interpolated_error(o, values, straight(columns.leftCols(1))),
+              prediction_error(o, values + 0.5 * columns.col(0)), 1e-12);
   EXPECT_GT(interpolated_error(o, values, sides), 0.0);
-  // Sides only add or remove light as far as their column goes: none, the values' own error.
-  EXPECT_DOUBLE_EQ(interpolated_error(o, values, Eigen::MatrixXd(3, 0)), prediction_error(o, values));
+  // No side: the values' own error.
+  EXPECT_DOUBLE_EQ(interpolated_error(o, values, straight(Eigen::MatrixXd(3, 0))), prediction_error(o, values));
   // A lower bound counts as in prediction_error (its excess squared times bound_weight): with the
-  // target at t = 0 and the bound at t = 0.5, the least is at t = 0.5 b / (1 + b).
+  // target at s = 0 and the bound at s = 0.5, the least is at s = 0.5 b / (1 + b).
   LinearObjective bounded = objective_for(values);
-  bounded.lower = values + 0.5 * sides.col(0);
+  bounded.lower = values + 0.5 * columns.col(0);
   bounded.upper = Eigen::Vector3d::Constant(INFINITY);
-  const double t = 0.5 * bounded.bound_weight / (1.0 + bounded.bound_weight);
-  const double e = interpolated_error(bounded, values, sides.leftCols(1));
+  const double s = 0.5 * bounded.bound_weight / (1.0 + bounded.bound_weight);
+  const double e = interpolated_error(bounded, values, straight(columns.leftCols(1)));
   EXPECT_LT(e, prediction_error(bounded, values));
-  EXPECT_NEAR(e, prediction_error(bounded, values + t * sides.col(0)), 1e-10 * e);
+  EXPECT_NEAR(e, prediction_error(bounded, values + s * columns.col(0)), 1e-9 * e);
+}
+
+// Light that grows faster than linearly with a side's position follows the parabola through the
+// side moved in, kept and moved out; a side that cannot move in moves only out.
+TEST(InterpolatedError, FollowsEachSidesParabola) {
+  const Eigen::Vector3d values(1.0, 2.0, 3.0), a(1.0, 2.0, 0.5), c(0.5, 0.5, 1.0);
+  const SideLight curved = side_light({a + c}, {-a + c}, {0}, 3);
+  EXPECT_EQ(curved.slope.col(0), a);
+  EXPECT_EQ(curved.curve.col(0), c);
+  // Its values at s = 0.3 (between the grid lines): met exactly along the parabola, not along a
+  // straight line through the side moved out.
+  const LinearObjective o = objective_for(values + 0.3 * a + 0.09 * c);
+  EXPECT_LT(interpolated_error(o, values, curved), 1e-10);
+  EXPECT_GT(interpolated_error(o, values, straight(a + c)), 1e-5);
+  // Moving in is impossible: the target below the values is not reached (s stays at 0).
+  const SideLight out_only = side_light({a + c}, {Eigen::VectorXd()}, {0}, 3);
+  EXPECT_EQ(out_only.low[0], 0.0);
+  const LinearObjective below = objective_for(values - 0.2 * a);
+  EXPECT_DOUBLE_EQ(interpolated_error(below, values, out_only), prediction_error(below, values));
+  // Dropping an opening's sides.
+  const SideLight two = side_light({a, c}, {-a, -c}, {0, 1}, 3);
+  const SideLight one = two.without(0);
+  ASSERT_EQ(one.slope.cols(), 1);
+  EXPECT_EQ(one.slope.col(0), c);
+  EXPECT_EQ(one.opening, std::vector<size_t>{1});
 }
 
 // A 6 x 2.5 m wall of 0.25 m elements (24 x 10).
@@ -95,6 +128,10 @@ struct TwoOpenings {
   OpeningValues values_of = [this](const std::vector<GridRectangle>& rects) {
     ++calls;
     EXPECT_TRUE(std::is_sorted(rects.begin(), rects.end()));
+    for (const GridRectangle& r : rects) {  // the records evaluate nothing beyond the panel's grid
+      EXPECT_TRUE(r.row0 >= 0 && r.col0 >= 0 && r.row1 < d.panels()[0].rows && r.col1 < d.panels()[0].cols)
+          << r.to_string();
+    }
     return model.light(rects);
   };
   TwoOpenings() {
@@ -142,7 +179,7 @@ TEST(RefinableOpenings, RemovesAnOpeningTheTruthHasNot) {
   t.model.superlinear = false;
   t.objective = objective_for(t.model.light(t.truth));
   std::vector<GridRectangle> start = t.truth_cells;
-  start.push_back({0, 7, 8, 22, 23});
+  start.push_back({0, 8, 9, 22, 23});  // at the panel's corner: its sides cannot move out
   ASSERT_TRUE(satisfies_all(t.d, start, t.c));
   const RefinableOpenings found = search_refinable_openings(t.d, t.c, {start}, t.values_of, t.objective, 0);
   EXPECT_EQ(found.rects.size(), 2u);

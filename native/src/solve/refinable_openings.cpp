@@ -21,6 +21,13 @@ constexpr double kRelativeGain = 1e-9;
 
 bool well_formed(const GridRectangle& r) { return r.row0 <= r.row1 && r.col0 <= r.col1 && r.row0 >= 0 && r.col0 >= 0; }
 
+// Within its panel's grid (the records evaluate no other).
+bool on_its_panel(const OpeningDomain& domain, const GridRectangle& r) {
+  if (!well_formed(r) || r.panel < 0 || static_cast<size_t>(r.panel) >= domain.panels().size()) return false;
+  const Panel& p = domain.panels()[static_cast<size_t>(r.panel)];
+  return r.row1 < p.rows && r.col1 < p.cols;
+}
+
 Openings sorted(Openings set) {
   std::sort(set.begin(), set.end());
   return set;
@@ -77,50 +84,49 @@ class Descent {
     return &known_.emplace(key, values_of_(key)).first->second;
   }
 
-  // The side light of `set` (a column per side move, less the set's values) and each column's
-  // opening; false when the evaluations ran out.
-  bool side_light(const Openings& set, const Eigen::VectorXd& base, Eigen::MatrixXd* sides,
-                  std::vector<size_t>* owner) {
-    std::vector<Eigen::VectorXd> columns;
-    owner->clear();
+  // The side light of `set` about `base` (its values); false when the evaluations ran out.
+  bool side_light_of(const Openings& set, const Eigen::VectorXd& base, SideLight* sides) {
+    std::vector<Eigen::VectorXd> out, in;
+    std::vector<size_t> opening;
     for (size_t i = 0; i < set.size(); ++i)
-      for (int side = 0; side < 4; ++side)
-        for (int step : {1, -1}) {
-          Openings moved = set;
-          moved[i] = set[i].side_moved(side, step);
-          if (!well_formed(moved[i])) continue;
-          const Eigen::VectorXd* v = values(moved);
+      for (int side = 0; side < 4; ++side) {
+        Eigen::VectorXd moved[2];
+        for (int k = 0; k < 2; ++k) {
+          Openings changed = set;
+          changed[i] = set[i].side_moved(side, k == 0 ? 1 : -1);
+          if (!on_its_panel(domain_, changed[i])) continue;
+          const Eigen::VectorXd* v = values(changed);
           if (!v) return false;
-          columns.push_back(*v - base);
-          owner->push_back(i);
+          moved[k] = *v - base;
         }
-    sides->resize(base.size(), static_cast<Eigen::Index>(columns.size()));
-    for (size_t c = 0; c < columns.size(); ++c) sides->col(static_cast<Eigen::Index>(c)) = columns[c];
+        out.push_back(std::move(moved[0]));
+        in.push_back(std::move(moved[1]));
+        opening.push_back(i);
+      }
+    *sides = side_light(out, in, opening, base.size());
     return true;
   }
 
   // The interpolated error of `set`, from its own side light; nullopt when the evaluations ran out.
-  std::optional<double> scored(const Openings& set, Eigen::MatrixXd* sides, std::vector<size_t>* owner) {
+  std::optional<double> scored(const Openings& set, SideLight* sides) {
     const Eigen::VectorXd* base = values(set);
     if (!base) return std::nullopt;
-    const Eigen::VectorXd copy = *base;  // side_light may grow the map (references stay, but be plain)
-    if (!side_light(set, copy, sides, owner)) return std::nullopt;
+    const Eigen::VectorXd copy = *base;
+    if (!side_light_of(set, copy, sides)) return std::nullopt;
     return interpolated_error(objective_, copy, *sides);
   }
 
-  // Descent from the starts (within the constraints) whose interpolated errors are the
-  // `descents` lowest, the lowest first; the best answer.
   RefinableOpenings run(const std::vector<Openings>& starts, size_t descents) {
     std::vector<std::pair<double, Openings>> ranked;
     std::vector<double> start_errors(starts.size(), std::numeric_limits<double>::quiet_NaN());
     for (size_t i = 0; i < starts.size(); ++i) {
       const Openings& start = starts[i];
-      if (start.empty() || !std::all_of(start.begin(), start.end(), well_formed) ||
+      if (start.empty() ||
+          !std::all_of(start.begin(), start.end(), [&](const GridRectangle& r) { return on_its_panel(domain_, r); }) ||
           !satisfies_all(domain_, start, constraints_))
         continue;
-      Eigen::MatrixXd sides;
-      std::vector<size_t> owner;
-      const std::optional<double> e = scored(start, &sides, &owner);
+      SideLight sides;
+      const std::optional<double> e = scored(start, &sides);
       if (!e) break;
       start_errors[i] = *e;
       ranked.push_back({*e, sorted(start)});
@@ -141,9 +147,8 @@ class Descent {
   RefinableOpenings descend(const Openings& start) {
     RefinableOpenings out;
     Openings current = sorted(start);
-    Eigen::MatrixXd sides;
-    std::vector<size_t> owner;
-    const std::optional<double> first = scored(current, &sides, &owner);
+    SideLight sides;
+    const std::optional<double> first = scored(current, &sides);
     out.rects = current;
     out.error = std::numeric_limits<double>::infinity();
     if (!first) return out;
@@ -151,21 +156,21 @@ class Descent {
     for (bool improved = true; improved;) {
       improved = false;
       for (const Neighbour& n : neighbours(current)) {
-        if (!std::all_of(n.set.begin(), n.set.end(), well_formed) || !satisfies_all(domain_, n.set, constraints_))
+        if (!std::all_of(n.set.begin(), n.set.end(), [&](const GridRectangle& r) { return on_its_panel(domain_, r); }) ||
+            !satisfies_all(domain_, n.set, constraints_))
           continue;
         const Eigen::VectorXd* v = values(n.set);
         if (!v) return out;
         // The screen: the neighbour's values with the current set's side light (less the removed
         // opening's); only a neighbour it finds better is scored with its own.
-        if (!(screened(*v, sides, owner, n) < out.error * (1.0 - kRelativeGain))) continue;
-        Eigen::MatrixXd its_sides;
-        std::vector<size_t> its_owner;
-        const std::optional<double> e = scored(n.set, &its_sides, &its_owner);
+        const double screen = interpolated_error(objective_, *v, n.removed ? sides.without(n.opening) : sides);
+        if (!(screen < out.error * (1.0 - kRelativeGain))) continue;
+        SideLight its_sides;
+        const std::optional<double> e = scored(n.set, &its_sides);
         if (!e) return out;
         if (!(*e < out.error * (1.0 - kRelativeGain))) continue;
         current = n.set;
         sides = std::move(its_sides);
-        owner = std::move(its_owner);
         out.rects = sorted(current);
         out.error = *e;
         ++out.moves;
@@ -174,17 +179,6 @@ class Descent {
       }
     }
     return out;
-  }
-
-  double screened(const Eigen::VectorXd& values, const Eigen::MatrixXd& sides, const std::vector<size_t>& owner,
-                  const Neighbour& n) const {
-    if (!n.removed) return interpolated_error(objective_, values, sides);
-    std::vector<Eigen::Index> kept;
-    for (size_t c = 0; c < owner.size(); ++c)
-      if (owner[c] != n.opening) kept.push_back(static_cast<Eigen::Index>(c));
-    Eigen::MatrixXd fewer(sides.rows(), static_cast<Eigen::Index>(kept.size()));
-    for (size_t c = 0; c < kept.size(); ++c) fewer.col(static_cast<Eigen::Index>(c)) = sides.col(kept[c]);
-    return interpolated_error(objective_, values, fewer);
   }
 
   RefinableOpenings finish(RefinableOpenings out) const {
@@ -206,37 +200,113 @@ class Descent {
 
 }  // namespace
 
-// Coordinate descent on the objective, a convex piecewise quadratic in t: each coordinate takes the
-// Newton step of its own quadratic (the bounds' penalties where they are active), kept in the box.
-double interpolated_error(const LinearObjective& objective, const Eigen::VectorXd& values,
-                          const Eigen::MatrixXd& sides, double reach) {
-  Eigen::VectorXd p = values;
-  Eigen::VectorXd t = Eigen::VectorXd::Zero(sides.cols());
-  const bool lower = objective.lower.size() > 0, upper = objective.upper.size() > 0;
-  const double bw = objective.bound_weight;
+SideLight SideLight::without(size_t i) const {
+  std::vector<Eigen::Index> kept;
+  for (size_t j = 0; j < opening.size(); ++j)
+    if (opening[j] != i) kept.push_back(static_cast<Eigen::Index>(j));
+  SideLight out;
+  out.slope.resize(slope.rows(), static_cast<Eigen::Index>(kept.size()));
+  out.curve.resize(curve.rows(), static_cast<Eigen::Index>(kept.size()));
+  out.low.resize(static_cast<Eigen::Index>(kept.size()));
+  out.high.resize(static_cast<Eigen::Index>(kept.size()));
+  for (size_t k = 0; k < kept.size(); ++k) {
+    const auto c = static_cast<Eigen::Index>(k);
+    out.slope.col(c) = slope.col(kept[k]);
+    out.curve.col(c) = curve.col(kept[k]);
+    out.low[c] = low[kept[k]];
+    out.high[c] = high[kept[k]];
+    out.opening.push_back(opening[static_cast<size_t>(kept[k])]);
+  }
+  return out;
+}
+
+SideLight side_light(const std::vector<Eigen::VectorXd>& out, const std::vector<Eigen::VectorXd>& in,
+                     const std::vector<size_t>& opening, Eigen::Index sensors, double reach) {
+  const auto m = static_cast<Eigen::Index>(opening.size());
+  SideLight s;
+  s.slope.setZero(sensors, m);
+  s.curve.setZero(sensors, m);
+  s.low.setZero(m);
+  s.high.setZero(m);
+  s.opening = opening;
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const Eigen::VectorXd& o = out[static_cast<size_t>(j)];
+    const Eigen::VectorXd& i = in[static_cast<size_t>(j)];
+    if (o.size() && i.size()) {
+      s.slope.col(j) = 0.5 * (o - i);
+      s.curve.col(j) = 0.5 * (o + i);
+      s.low[j] = -reach, s.high[j] = reach;
+    } else if (o.size()) {
+      s.slope.col(j) = o, s.high[j] = reach;
+    } else if (i.size()) {
+      s.slope.col(j) = -i, s.low[j] = -reach;
+    }
+  }
+  return s;
+}
+
+namespace {
+
+// The objective's gradient and Gauss-Newton curvature along side j at p (values for s), and the
+// curvature the parabolas add.
+struct AlongSide {
+  double gradient = 0.0, gauss_newton = 0.0, from_curve = 0.0;
+};
+
+AlongSide along_side(const LinearObjective& o, const Eigen::VectorXd& p, const SideLight& sides, Eigen::Index j,
+                     double s) {
+  AlongSide a;
+  const bool lower = o.lower.size() > 0, upper = o.upper.size() > 0;
+  for (Eigen::Index i = 0; i < p.size(); ++i) {
+    const double w = o.weight[i];
+    if (!(w > 0.0)) continue;
+    const double g = sides.slope(i, j) + 2.0 * sides.curve(i, j) * s;  // dp_i / ds
+    const double below = lower ? std::max(0.0, o.lower[i] - p[i]) : 0.0;
+    const double above = upper ? std::max(0.0, p[i] - o.upper[i]) : 0.0;
+    const double residual = p[i] - o.target[i] - o.bound_weight * below + o.bound_weight * above;
+    const double weight = 1.0 + (below > 0.0 ? o.bound_weight : 0.0) + (above > 0.0 ? o.bound_weight : 0.0);
+    a.gradient += w * g * residual;
+    a.gauss_newton += w * g * g * weight;
+    a.from_curve += w * 2.0 * sides.curve(i, j) * residual;
+  }
+  return a;
+}
+
+}  // namespace
+
+// Coordinate descent: each side takes a Newton step of the objective along its parabola (a
+// Gauss-Newton one where that is not convex), kept within its range, halved while it does not
+// lower the error.
+double interpolated_error(const LinearObjective& objective, const Eigen::VectorXd& values, const SideLight& sides) {
+  const Eigen::Index m = sides.slope.cols();
+  Eigen::VectorXd p = values, s = Eigen::VectorXd::Zero(m);
+  double error = prediction_error(objective, p);
+  auto moved_p = [&](Eigen::Index j, double to) {
+    const double from = s[j];
+    return Eigen::VectorXd(p + sides.slope.col(j) * (to - from) + sides.curve.col(j) * (to * to - from * from));
+  };
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     double largest = 0.0;
-    for (Eigen::Index j = 0; j < sides.cols(); ++j) {
-      double gradient = 0.0, curvature = 0.0;
-      for (Eigen::Index i = 0; i < p.size(); ++i) {
-        const double w = objective.weight[i], a = sides(i, j);
-        if (!(w > 0.0) || a == 0.0) continue;
-        const double below = lower ? std::max(0.0, objective.lower[i] - p[i]) : 0.0;
-        const double above = upper ? std::max(0.0, p[i] - objective.upper[i]) : 0.0;
-        gradient += w * a * (p[i] - objective.target[i] - bw * below + bw * above);
-        curvature += w * a * a * (1.0 + (below > 0.0 ? bw : 0.0) + (above > 0.0 ? bw : 0.0));
-      }
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const AlongSide a = along_side(objective, p, sides, j, s[j]);
+      double curvature = a.gauss_newton + a.from_curve;
+      if (!(curvature > 0.0)) curvature = a.gauss_newton;
       if (!(curvature > 0.0)) continue;
-      const double next = std::clamp(t[j] - gradient / curvature, 0.0, reach);
-      const double step = next - t[j];
-      if (step == 0.0) continue;
-      p += step * sides.col(j);
-      t[j] = next;
-      largest = std::max(largest, std::abs(step));
+      double to = std::clamp(s[j] - a.gradient / curvature, sides.low[j], sides.high[j]);
+      for (int halving = 0; halving < 8 && to != s[j]; ++halving) {
+        const Eigen::VectorXd q = moved_p(j, to);
+        const double e = prediction_error(objective, q);
+        if (e < error) {
+          largest = std::max(largest, std::abs(to - s[j]));
+          p = q, s[j] = to, error = e;
+          break;
+        }
+        to = 0.5 * (to + s[j]);
+      }
     }
     if (largest < kConverged) break;
   }
-  return prediction_error(objective, p);
+  return error;
 }
 
 RefinableOpenings search_refinable_openings(const OpeningDomain& domain, const OpeningConstraints& constraints,
