@@ -98,6 +98,8 @@ struct GridRectangle {
   bool operator!=(const GridRectangle& o) const { return !(*this == o); }
   bool operator<(const GridRectangle& o) const;  // panel, then bottom-left corner, then size
   std::string to_string() const;
+  // Rows and columns in order and not below 0 (a move may leave a rectangle otherwise).
+  bool well_formed() const { return row0 <= row1 && col0 <= col1 && row0 >= 0 && col0 >= 0; }
   // Moved by whole elements along the rows and the columns.
   GridRectangle moved(int rows, int cols) const { return {panel, row0 + rows, row1 + rows, col0 + cols, col1 + cols}; }
   // Side 0..3 (left, right, bottom, top) moved out (step > 0) or in (step < 0) by `step` elements.

@@ -27,8 +27,6 @@ GridRectangle holding_both(const GridRectangle& a, const GridRectangle& b) {
           std::max(a.col1, b.col1)};
 }
 
-bool well_formed(const GridRectangle& r) { return r.row0 <= r.row1 && r.col0 <= r.col1 && r.row0 >= 0 && r.col0 >= 0; }
-
 Openings replaced(const Openings& set, size_t i, const GridRectangle& r) {
   Openings out = set;
   out[i] = r;
@@ -97,7 +95,7 @@ class Search {
     std::sort(set.begin(), set.end());
     const auto known = known_.find(set);
     if (known != known_.end()) return known->second;
-    if (!std::all_of(set.begin(), set.end(), well_formed) || !satisfies_all(domain_, set, constraints_)) {
+    if (!std::all_of(set.begin(), set.end(), [](const GridRectangle& r) { return r.well_formed(); }) || !satisfies_all(domain_, set, constraints_)) {
       known_.emplace(std::move(set), std::nullopt);
       return std::nullopt;
     }
@@ -189,7 +187,7 @@ class Search {
             Openings both = a;
             both[j] = b[j];
             std::sort(both.begin(), both.end());
-            if (known_.count(both) || !seen.insert(both).second || !std::all_of(both.begin(), both.end(), well_formed) ||
+            if (known_.count(both) || !seen.insert(both).second || !std::all_of(both.begin(), both.end(), [](const GridRectangle& r) { return r.well_formed(); }) ||
                 !satisfies_all(domain_, both, constraints_))
               continue;
             fresh.push_back(std::move(both));

@@ -19,11 +19,9 @@ constexpr double kConverged = 1e-5;
 // A move smaller than this share of the error is no gain (rounding, not light).
 constexpr double kRelativeGain = 1e-9;
 
-bool well_formed(const GridRectangle& r) { return r.row0 <= r.row1 && r.col0 <= r.col1 && r.row0 >= 0 && r.col0 >= 0; }
-
 // Within its panel's grid (the records evaluate no other).
 bool on_its_panel(const OpeningDomain& domain, const GridRectangle& r) {
-  if (!well_formed(r) || r.panel < 0 || static_cast<size_t>(r.panel) >= domain.panels().size()) return false;
+  if (!r.well_formed() || r.panel < 0 || static_cast<size_t>(r.panel) >= domain.panels().size()) return false;
   const Panel& p = domain.panels()[static_cast<size_t>(r.panel)];
   return r.row1 < p.rows && r.col1 < p.cols;
 }

@@ -334,11 +334,9 @@ class OpeningSolve {
   // chosen again by the error they reach with their sides interpolated off it
   // (solve/refinable_openings.h), when the thick-wall edges stage will trace them.
   void thick_wall_openings() {
-    const bool thick = std::any_of(scene_.domain.panels().begin(), scene_.domain.panels().end(),
-                                   [](const Panel& p) { return p.thickness > 0.0f; });
     const char* skipped = climate_                                     ? stop_reason::kClimateThickWalls
                           : !settings_.refine_edges                    ? stop_reason::kNoRefineEdges
-                          : !thick                                     ? stop_reason::kNoThickWallEdge
+                          : !scene_.domain.has_thick_walls()           ? stop_reason::kNoThickWallEdge
                           : uses_catalogue(scene_.domain, constraints_) ? stop_reason::kCatalogueSizes
                           : settings_.search_evaluations <= 0          ? stop_reason::kNoSearchEvaluations
                           : kept_.rects.empty()                        ? stop_reason::kNoOpenings
@@ -600,14 +598,13 @@ class OpeningSolve {
   // search's openings instead (each error from its own records, both unbiased).
   void keep_the_search_if_better() {
     if (!grid_best_) return;
-    SensorValues grid_values = grid_best_->values;
-    const double grid_error = prediction_error(objective_, grid_values.value - c_.closed.value);
+    const double grid_error = prediction_error(objective_, grid_best_->values.value - c_.closed.value);
     if (chosen_exact_ && chosen_error() < grid_error) return;
     out_.thick_wall_openings.reverted = true;
     final_rects_.clear();
     for (const GridRectangle& r : grid_best_->rects) final_rects_.push_back(panel_rectangle(r, scene_.domain.element_size()));
     rects_ = grid_best_->rects;
-    chosen_ = std::move(grid_values);
+    chosen_ = grid_best_->values;
     chosen_exact_ = true;
     out_.fitness = grid_best_->fitness;
     out_.refined_error = grid_best_->refined_error;
