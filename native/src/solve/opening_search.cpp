@@ -27,6 +27,10 @@ GridRectangle holding_both(const GridRectangle& a, const GridRectangle& b) {
           std::max(a.col1, b.col1)};
 }
 
+bool all_well_formed(const Openings& set) {
+  return std::all_of(set.begin(), set.end(), [](const GridRectangle& r) { return r.well_formed(); });
+}
+
 Openings replaced(const Openings& set, size_t i, const GridRectangle& r) {
   Openings out = set;
   out[i] = r;
@@ -95,7 +99,7 @@ class Search {
     std::sort(set.begin(), set.end());
     const auto known = known_.find(set);
     if (known != known_.end()) return known->second;
-    if (!std::all_of(set.begin(), set.end(), [](const GridRectangle& r) { return r.well_formed(); }) || !satisfies_all(domain_, set, constraints_)) {
+    if (!all_well_formed(set) || !satisfies_all(domain_, set, constraints_)) {
       known_.emplace(std::move(set), std::nullopt);
       return std::nullopt;
     }
@@ -187,7 +191,7 @@ class Search {
             Openings both = a;
             both[j] = b[j];
             std::sort(both.begin(), both.end());
-            if (known_.count(both) || !seen.insert(both).second || !std::all_of(both.begin(), both.end(), [](const GridRectangle& r) { return r.well_formed(); }) ||
+            if (known_.count(both) || !seen.insert(both).second || !all_well_formed(both) ||
                 !satisfies_all(domain_, both, constraints_))
               continue;
             fresh.push_back(std::move(both));

@@ -26,6 +26,10 @@ bool on_its_panel(const OpeningDomain& domain, const GridRectangle& r) {
   return r.row1 < p.rows && r.col1 < p.cols;
 }
 
+bool all_on_their_panels(const OpeningDomain& domain, const Openings& set) {
+  return std::all_of(set.begin(), set.end(), [&](const GridRectangle& r) { return on_its_panel(domain, r); });
+}
+
 Openings sorted(Openings set) {
   std::sort(set.begin(), set.end());
   return set;
@@ -109,19 +113,19 @@ class Descent {
   std::optional<double> scored(const Openings& set, SideLight* sides) {
     const Eigen::VectorXd* base = values(set);
     if (!base) return std::nullopt;
-    const Eigen::VectorXd copy = *base;
-    if (!side_light_of(set, copy, sides)) return std::nullopt;
-    return interpolated_error(objective_, copy, *sides);
+    // The map's nodes stay where they are as side_light_of adds sets: *base stays valid.
+    if (!side_light_of(set, *base, sides)) return std::nullopt;
+    return interpolated_error(objective_, *base, *sides);
   }
 
+  // Descents from the `descents` starts (within the constraints) whose interpolated errors are
+  // lowest, the lowest first; the best answer.
   RefinableOpenings run(const std::vector<Openings>& starts, size_t descents) {
     std::vector<std::pair<double, Openings>> ranked;
     std::vector<double> start_errors(starts.size(), std::numeric_limits<double>::quiet_NaN());
     for (size_t i = 0; i < starts.size(); ++i) {
       const Openings& start = starts[i];
-      if (start.empty() ||
-          !std::all_of(start.begin(), start.end(), [&](const GridRectangle& r) { return on_its_panel(domain_, r); }) ||
-          !satisfies_all(domain_, start, constraints_))
+      if (start.empty() || !all_on_their_panels(domain_, start) || !satisfies_all(domain_, start, constraints_))
         continue;
       SideLight sides;
       const std::optional<double> e = scored(start, &sides);
@@ -154,9 +158,7 @@ class Descent {
     for (bool improved = true; improved;) {
       improved = false;
       for (const Neighbour& n : neighbours(current)) {
-        if (!std::all_of(n.set.begin(), n.set.end(), [&](const GridRectangle& r) { return on_its_panel(domain_, r); }) ||
-            !satisfies_all(domain_, n.set, constraints_))
-          continue;
+        if (!all_on_their_panels(domain_, n.set) || !satisfies_all(domain_, n.set, constraints_)) continue;
         const Eigen::VectorXd* v = values(n.set);
         if (!v) return out;
         // The screen: the neighbour's values with the current set's side light (less the removed
