@@ -76,7 +76,7 @@ class ShardedRecords : public RecordQueries {
     summary_.annual = nullptr;  // the client holds no sensor's records
     for (const SensorRange& b : blocks) shards_.push_back(compute_contributions(scene, nullptr, false, b));
     for (const Contributions& c : shards_)
-      local_.push_back(std::make_unique<LocalRecordQueries>(scene, c, scene.domain, nullptr));
+      local_.push_back(std::make_unique<LocalRecordQueries>(scene, c, nullptr));
     if (scene.climate) annual_ = prepare_annual(scene);  // sources and hours: no sensor's records
   }
   const Contributions& contributions() const override { return summary_; }
@@ -103,10 +103,10 @@ class ShardedRecords : public RecordQueries {
     for (auto& q : local_) parts.push_back(q->region_search(start));
     return std::make_unique<ShardedRegions>(std::move(parts));
   }
-  SensorValues cut(const std::vector<OpeningInput>& openings, int paths) override {
+  SensorValues cut(const std::vector<OpeningInput>& openings, int paths, uint64_t stream) override {
     ++cuts;
     std::vector<SensorValues> parts;
-    for (const SensorRange& b : blocks_) parts.push_back(evaluate_openings(scene_, openings, nullptr, paths, b));
+    for (const SensorRange& b : blocks_) parts.push_back(evaluate_openings(scene_, openings, nullptr, paths, b, stream));
     return join(parts);
   }
   double record_bytes() const override {
@@ -154,21 +154,7 @@ class ShardedRecords : public RecordQueries {
     return annual_cut_study_of(scene_, whole);
   }
 
-  // The refined records as a cluster holds them: traced shard by shard, asked shard by shard.
-  std::unique_ptr<RecordQueries> refined(const std::vector<RefinedRegion>& regions) override {
-    ++refinements;
-    auto scene = std::make_unique<Scene>(scene_);
-    scene->render.paths_per_sensor = summary_.paths_per_sensor;
-    scene->domain = scene_.domain.refined(regions);
-    const Contributions whole = compute_contributions(*scene, nullptr, false);  // the rows the client gathers
-    auto out = std::make_unique<ShardedRecords>(*scene, whole, blocks_);
-    out->owned_scene_ = std::move(scene);
-    return out;
-  }
-  const Scene& scene() const override { return scene_; }
-
-  int exact_calls = 0, region_searches = 0, cuts = 0, hourly_models = 0, annual_studies = 0, annual_cuts = 0,
-      refinements = 0;
+  int exact_calls = 0, region_searches = 0, cuts = 0, hourly_models = 0, annual_studies = 0, annual_cuts = 0;
 
  private:
   template <typename F>
@@ -208,7 +194,6 @@ class ShardedRecords : public RecordQueries {
   std::vector<std::unique_ptr<LocalRecordQueries>> local_;
   std::deque<SensorValues> known_;  // references handed out stay valid
   std::shared_ptr<const AnnualRecords> annual_;
-  std::unique_ptr<Scene> owned_scene_;  // a refined study's scene (scene_ refers to it)
 };
 
 bool same(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
@@ -260,8 +245,8 @@ TEST(RecordQueries, ASolveOnShardedRecordsEqualsTheWholeStudysBitForBit) {
   EXPECT_EQ(one.warnings, many.warnings);
 }
 
-// In a 0.3 m wall the edges below the element size are searched on records traced again on a
-// refined grid: on a cluster those are traced and asked shard by shard too.
+// In a 0.3 m wall the edges below the element size are searched with real cutters: on a cluster
+// those are traced shard by shard too.
 TEST(RecordQueries, AThickWallSolveOnShardedRecordsEqualsTheWholeStudysBitForBit) {
   TempDir dir;
   const Scene scene = solve_room(dir, R"(, "thickness": 0.3)");
@@ -269,10 +254,11 @@ TEST(RecordQueries, AThickWallSolveOnShardedRecordsEqualsTheWholeStudysBitForBit
   const SolveResult one = solve_openings(scene, whole);
   ShardedRecords sharded(scene, whole, {{0, 2}, {2, 5}, {5, 6}});
   const SolveResult many = solve_openings(scene, sharded);
-  EXPECT_GT(sharded.refinements, 0);
-  bool refined_timing = false;
-  for (const auto& [name, seconds] : one.timings) refined_timing = refined_timing || name == "thick-wall edges";
-  EXPECT_TRUE(refined_timing);
+  bool searched = false;
+  for (const SolveStage& stage : one.stages)
+    searched = searched || (stage.name == "thick-wall edges" && stage.stopped_because == stop_reason::kDone);
+  EXPECT_TRUE(searched);
+  EXPECT_GT(sharded.cuts, 1);  // the search's and the check's
   ASSERT_FALSE(one.openings.empty());
   ASSERT_EQ(one.openings.size(), many.openings.size());
   for (size_t i = 0; i < one.openings.size(); ++i) EXPECT_TRUE(one.openings[i].parameter == many.openings[i].parameter);
@@ -318,7 +304,7 @@ TEST(RecordQueries, HourlyModelsStackedFromShardsEqualTheWholeStudysBitForBit) {
   const Scene scene = climate_room(dir);
   const Contributions whole = compute_contributions(scene, nullptr, false);
   ShardedRecords sharded(scene, whole, {{0, 2}, {2, 3}, {3, 6}});
-  LocalRecordQueries local(scene, whole, scene.domain, nullptr);
+  LocalRecordQueries local(scene, whole, nullptr);
   const HourlyColumns columns = hourly_columns(*whole.annual, true);
   std::vector<uint8_t> about(whole.element_count(), 0);
   for (size_t k = 0; k < about.size(); k += 3) about[k] = 1;

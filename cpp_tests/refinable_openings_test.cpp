@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "solve/edge_refinement.h"
 #include "solve/refinable_openings.h"
 #include "test_scenes.h"
 
@@ -139,6 +140,41 @@ struct TwoOpenings {
     c.min_gap = 0.5;
   }
 };
+
+// How far a side may be interpolated: the constraints hold whatever every side does within its
+// reach (half of a gap between two openings is each one's; the opposite side moves as far).
+TEST(SideReach, KeepsEverySideWithinTheConstraints) {
+  const OpeningDomain d = wall();  // 6 x 2.5 m, 0.25 m elements
+  OpeningConstraints c;
+  c.min_width = c.min_height = 0.5;
+  c.min_gap = 0.5;
+  c.margin = 0.2;
+  // a: 1.0 m wide, its left side 0.25 m from the wall's edge; b: 0.625 m to its right (0.125 m of
+  // slack over min_gap, 0.0625 m each).
+  const std::vector<PanelRectangle> openings = {{0, 0.25, 1.25, 0.75, 1.75}, {0, 1.875, 2.375, 0.75, 1.75}};
+  const double s = d.element_size();
+  // a's left side: 0.05 m to the margin, so a quarter of the half element (0.03125 m) out.
+  EXPECT_DOUBLE_EQ(side_reach(d, c, openings, 0, 0, true), 0.25 * kInterpolatedReach);
+  // a's right side: 0.0625 m of its gap to b, a half of the half element.
+  EXPECT_DOUBLE_EQ(side_reach(d, c, openings, 0, 1, true) * s, 0.0625);
+  // Moving in, a's sides go the whole reach (1.0 m wide, 0.75 m at least left with both moved).
+  EXPECT_DOUBLE_EQ(side_reach(d, c, openings, 0, 0, false), kInterpolatedReach);
+  // b is 0.5 m wide, at min_width: its sides cannot move in, nor (conservatively: the size check
+  // shrinks both axes) its bottom.
+  EXPECT_DOUBLE_EQ(side_reach(d, c, openings, 1, 1, false), 0.0);
+  EXPECT_DOUBLE_EQ(side_reach(d, c, openings, 1, 2, false), 0.0);
+  // Every bound together keeps the two openings within the constraints.
+  for (bool out : {true, false}) {
+    std::vector<PanelRectangle> moved = openings;
+    for (size_t i = 0; i < 2; ++i) {
+      const double by[4] = {side_reach(d, c, openings, i, 0, out), side_reach(d, c, openings, i, 1, out),
+                            side_reach(d, c, openings, i, 2, out), side_reach(d, c, openings, i, 3, out)};
+      const double sign = out ? s : -s;
+      moved[i].u0 -= sign * by[0], moved[i].u1 += sign * by[1], moved[i].v0 -= sign * by[2], moved[i].v1 += sign * by[3];
+    }
+    EXPECT_TRUE(constraint_violations(d, moved, c).empty()) << (out ? "out" : "in");
+  }
+}
 
 // From openings misplaced by one or two elements, the descent brings every side within an element
 // of the truth's, where the interpolated error is far below the start's and below the grid error

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "annual/annual_contributions.h"
+#include "solve/record_queries.h"
 #include "solve/thick_wall_edges.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
@@ -35,8 +36,11 @@ std::string describe(const Wall& w) {
   return s.str();
 }
 
+constexpr const char* kFourSensors = "[[1.5, 1, 0.8], [0.6, 2.4, 0.8], [2.4, 0.6, 0.8], [1.5, 2.5, 1.6]]";
+
 // A 3 m x 3 m x 2.5 m room; its south wall (y = 0) is the domain, the wall's body lies at y < 0.
-Scene room(const TempDir& dir, const Wall& w, int paths) {
+// `sensors`: their points (JSON), facing up.
+Scene room(const TempDir& dir, const Wall& w, int paths, const std::string& sensors = kFourSensors) {
   ObjBuilder obj;
   obj.box({0, 0, 0}, {3, 3, 2.5f}, [](const std::string& f) { return f == "south" ? "facade" : "plaster"; });
   obj.quad("ground", "ground", {-20, -20, -0.01f}, {20, -20, -0.01f}, {20, 20, -0.01f}, {-20, 20, -0.01f});
@@ -57,7 +61,8 @@ Scene room(const TempDir& dir, const Wall& w, int paths) {
     << w.element_size;
   if (!w.modelled) s << R"(, "thickness": )" << w.thickness;
   s << R"(},
-      "sensors": {"points": [[1.5, 1, 0.8], [0.6, 2.4, 0.8], [2.4, 0.6, 0.8], [1.5, 2.5, 1.6]], "normals": [0, 0, 1]},
+      "sensors": {"points": )"
+    << sensors << R"(, "normals": [0, 0, 1]},
       "sky": )"
     << (w.sun ? R"({"type": "preetham", "latitude": 48.85, "longitude": 2.35, "utc_offset": 1, "date": "2026-03-21",
                   "time": "10:00", "resolution": [128, 64]})"
@@ -134,119 +139,42 @@ INSTANTIATE_TEST_SUITE_P(Walls, ThickWall,
                                            Wall{0.5f, 0.2f, true, true}, Wall{0.1f, 0.5f, false, false},
                                            Wall{0.2f, 0.25f, true, true}));
 
-// Edges between the element grid's lines: the paths traced again on a grid refined about a window's
-// edges (as the solver does), and rectangles with edges on the added lines evaluated from those
-// records, against the same rectangles really cut through the wall.
-TEST_P(ThickWall, RefinedGridRecordsEqualRealCutsOffTheElementGrid) {
-  const Wall w = GetParam();
+// Edges between the element grid's lines are searched with real cutters. The goals are a truth's
+// own cut on the search's random numbers, so its error there is exactly 0: from the grid window
+// beside it (edges 1 to 3 of the finest steps away), the search ends on the truth's edges, and
+// its result's values are that cut's. Sensors over the whole work plane tell shapes of nearly the
+// same area apart.
+TEST(ThickWall, EdgeSearchWithRealCuttersEndsOnEdgesBetweenGridLines) {
   TempDir dir;
-  const Scene scene = room(dir, w, 1 << 13);
-  const double s = scene.domain.element_size();
-  const std::vector<int> window = elements_in(scene, 0.9f, 2.1f, 0.9f, 2.1f);
-  ASSERT_FALSE(window.empty());
-  PanelRectangle on_grid{0, 1e9, -1e9, 1e9, -1e9};
-  for (int k : window) {
-    const Element& e = scene.domain.elements()[k];
-    on_grid.u0 = std::min<double>(on_grid.u0, e.u0), on_grid.u1 = std::max<double>(on_grid.u1, e.u1);
-    on_grid.v0 = std::min<double>(on_grid.v0, e.v0), on_grid.v1 = std::max<double>(on_grid.v1, e.v1);
-  }
-  Scene refined = scene;
-  refined.domain = scene.domain.refined(thick_wall_edge_regions(scene.domain, {on_grid}, 0.0));
-  ASSERT_GT(refined.domain.element_count(), 0u) << describe(w);
-  const double step = edge_steps(s, 0.0, true).back();
-  ASSERT_LT(step, s) << describe(w);
-  // Edges moved by the finest step, and by a larger one, off the element grid (each way).
-  const PanelRectangle off_grid{0, on_grid.u0 + step, on_grid.u1 - 2 * step, on_grid.v0 - step, on_grid.v1 + 3 * step};
-  const PanelRectangle wide{0, on_grid.u0 - step, on_grid.u1 + step, on_grid.v0 + 2 * step, on_grid.v1 - step};
-  const Contributions c = compute_contributions(refined, nullptr, false);
-  double max_z = 0.0;
-  for (const PanelRectangle& r : {on_grid, off_grid, wide}) {
-    const Panel& panel = refined.domain.panels()[0];
-    for (double x : {r.u0, r.u1}) ASSERT_TRUE(refined.domain.on_line(panel.u_lines, x)) << x;
-    for (double x : {r.v0, r.v1}) ASSERT_TRUE(refined.domain.on_line(panel.v_lines, x)) << x;
-    const SensorValues exact = c.evaluate(OpenRegion(refined.domain, {r}));
-    const SensorValues truth = evaluate_openings(scene, {OpeningInput(r)});
-    for (size_t i = 0; i < scene.sensors.size(); ++i) {
-      max_z = std::max(max_z, std::abs(exact.value[i] - truth.value[i]) /
-                                  std::hypot(exact.standard_error[i], truth.standard_error[i]));
-      EXPECT_TRUE(within_sigma(exact.value[i], exact.standard_error[i], truth.value[i], truth.standard_error[i]))
-          << describe(w) << ", rectangle u " << r.u0 << ".." << r.u1 << ", v " << r.v0 << ".." << r.v1 << ", sensor " << i;
-    }
-  }
-  std::printf("[ thick    ] %s: refined grid (%zu elements) against real cuts off the grid, max |z| %.2f\n",
-              describe(w).c_str(), refined.domain.element_count(), max_z);
-}
-
-TEST(ThickWall, RefinedGridCutsItsRegionsAlongTheirLines) {
-  TempDir dir;
-  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 16);
-  const OpeningDomain& coarse = scene.domain;
-  // Lines inside a region cut it; lines outside it, on its border or not finite are ignored. Two
-  // regions on the panel: the cells between them are wall.
-  RefinedRegion a{0, 0.25, 1.25, 0.5, 1.0, {0.1f, 0.6f, 0.5f, 1.25f, NAN}, {0.75f, 0.75f}};
-  RefinedRegion b{0, 2.0, 2.5, 1.5, 2.0, {}, {}};
-  const OpeningDomain fine = coarse.refined({a, b});
-  EXPECT_TRUE(fine.is_refined());
-  EXPECT_EQ(&fine.unrefined().elements(), &fine.unrefined().elements());
-  EXPECT_EQ(fine.unrefined().element_count(), coarse.element_count());
-  const Panel& panel = fine.panels()[0];
-  EXPECT_EQ(panel.u_lines, (std::vector<float>{0.25f, 0.5f, 0.6f, 1.25f, 2.0f, 2.5f}));
-  EXPECT_EQ(panel.v_lines, (std::vector<float>{0.5f, 0.75f, 1.0f, 1.5f, 2.0f}));
-  // a: 3 x 2 cells; b: 1 x 1.
-  ASSERT_EQ(fine.element_count(), 7u);
-  double area = 0.0;
-  for (const Element& e : fine.elements()) {
-    area += e.width() * e.height();
-    const PanelPoint centre{0.5f * (e.u0 + e.u1), 0.5f * (e.v0 + e.v1)};
-    EXPECT_EQ(&fine.elements()[fine.element_at(0, centre)], &e);
-    // Its portal is the unrefined element under the point.
-    const int portal = fine.portal_at(0, centre);
-    ASSERT_GE(portal, 0);
-    const Element& p = fine.portals()[portal];
-    EXPECT_TRUE(centre.u >= p.u0 && centre.u <= p.u1 && centre.v >= p.v0 && centre.v <= p.v1);
-  }
-  EXPECT_NEAR(area, 0.5 + 0.25, 1e-5);
-  EXPECT_EQ(fine.portals().size(), 4u * 2u + 2u * 2u);  // the unrefined elements under a and b
-  EXPECT_LT(fine.element_at(0, {1.6f, 1.2f}), 0);        // between the regions: wall
-  EXPECT_LT(fine.portal_at(0, {1.6f, 1.2f}), 0);
-  const auto [c0, c1] = fine.columns_overlapping(0, 0.5, 1.25);
-  EXPECT_EQ(panel.u_lines[c0], 0.5f);
-  EXPECT_EQ(c1 - c0 + 1, 2);  // 0.5-0.6, 0.6-1.25
-  // A region beyond the panel's elements keeps only its cells on them: [0, 0.5] x [0, 0.25] and
-  // [0, 0.5] x [0.25, 0.5] (the grid starts at 0).
-  const OpeningDomain edge = coarse.refined({RefinedRegion{0, -1.0, 0.5, -1.0, 0.5, {0.0f}, {0.0f, 0.25f}}});
-  ASSERT_EQ(edge.element_count(), 2u);
-  for (const Element& e : edge.elements()) EXPECT_TRUE(e.u0 == 0.0f && e.v0 >= 0.0f);
-}
-
-// A window's edges refined: the paths cross many more tube sides, and at each one after their first
-// vertex beyond the element they choose one way at random. Weighting each choice by the sides left
-// on the line keeps the refined records about as precise as the element grid's.
-TEST(ThickWall, RefinedGridKeepsTheNoiseOfTheElementGrid) {
-  TempDir dir;
-  const Scene scene = room(dir, {0.3f, 0.25f, false, true}, 1 << 14);
-  const PanelRectangle window{0, 1.0, 2.0, 0.75, 1.75};
-  Scene refined = scene;
-  refined.domain = scene.domain.refined(thick_wall_edge_regions(scene.domain, {window}, 0.0));
-  const SensorValues coarse = compute_contributions(scene, nullptr, false).evaluate(OpenRegion(scene.domain, {window}));
-  const SensorValues fine =
-      compute_contributions(refined, nullptr, false).evaluate(OpenRegion(refined.domain, {window}));
-  // Sun through a thick wall makes both heavy-tailed (one sensor's figure varies by 2x between
-  // path counts): the mean relative standard error over the sensors is compared. The refined
-  // grid's paths choose one way at every tube side, also on the segment entering the wall (the
-  // element grid's follow both there), for about the element grid's time per path: measured 2.5x
-  // its standard error. Weights that doubled at each side crossed (an even choice) gave heavy
-  // tails far beyond that.
-  double coarse_mean = 0.0, fine_mean = 0.0;
-  const size_t n = scene.sensors.size();
-  for (size_t i = 0; i < n; ++i) {
-    coarse_mean += coarse.standard_error[i] / coarse.value[i] / n;
-    fine_mean += fine.standard_error[i] / fine.value[i] / n;
-    EXPECT_TRUE(within_sigma(fine.value[i], fine.standard_error[i], coarse.value[i], coarse.standard_error[i]));
-  }
-  std::printf("[ thick    ] mean relative standard error %.3g %% on the element grid, %.3g %% refined\n",
-              100 * coarse_mean, 100 * fine_mean);
-  EXPECT_LT(fine_mean, 3.0 * coarse_mean);
+  std::ostringstream grid_points;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      grid_points << (i + j ? ", " : "[") << "[" << 0.3 + 0.48 * i << ", " << 0.3 + 0.48 * j << ", 0.8]";
+  grid_points << "]";
+  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, grid_points.str());
+  const Contributions c = compute_contributions(scene);
+  LocalRecordQueries records(scene, c, nullptr);
+  const double step = edge_steps(scene.domain.element_size(), 0.0, true).back();
+  ASSERT_DOUBLE_EQ(step, 0.0625);
+  const PanelRectangle grid{0, 1.0, 2.0, 0.75, 1.75};
+  const PanelRectangle truth{0, 1.0 + 2 * step, 2.0 + step, 0.75 - step, 1.75 + 3 * step};
+  const int paths = 256;
+  const SensorValues goals = records.cut({OpeningInput(truth)}, paths, kThickWallEdgeCutStream);
+  LinearObjective objective;
+  objective.target = goals.value - c.closed.value;
+  objective.weight = Eigen::VectorXd::Constant(objective.target.size(), 1.0 / goals.value.squaredNorm());
+  const OpeningConstraints constraints;
+  const ThickWallEdges found =
+      search_thick_wall_edges(scene.domain, records, objective, constraints, {grid}, paths, nullptr);
+  ASSERT_EQ(found.edges.openings.size(), 1u);
+  const PanelRectangle& r = found.edges.openings[0];
+  EXPECT_NEAR(r.u0, truth.u0, 1e-6);
+  EXPECT_NEAR(r.u1, truth.u1, 1e-6);
+  EXPECT_NEAR(r.v0, truth.v0, 1e-6);
+  EXPECT_NEAR(r.v1, truth.v1, 1e-6);
+  EXPECT_GT(found.edges.moves, 0);
+  EXPECT_TRUE((found.values.value.array() == goals.value.array()).all());
+  EXPECT_GT(prediction_error(objective, found.start_values.value - c.closed.value), 0.0);
 }
 
 TEST(ThickWall, LinesAheadCountsTheTubeSidesLeftInTheWall) {
@@ -267,9 +195,6 @@ TEST(ThickWall, LinesAheadCountsTheTubeSidesLeftInTheWall) {
   EXPECT_EQ(domain.lines_ahead(0, p, (-panel.outward - 4.8f * panel.u_axis + 4.8f * panel.v_axis).normalized()), 3);
   // Parallel to the wall: to the grid's ends (u 1.0 -> 3.0: 1.25 ... 3.0, eight lines).
   EXPECT_EQ(domain.lines_ahead(0, p, panel.u_axis), 8);
-  // A refined grid counts its own lines.
-  const OpeningDomain fine = domain.refined({RefinedRegion{0, 0.5, 2.0, 0.5, 2.0, {1.0f, 1.0625f, 1.125f}, {}}});
-  EXPECT_EQ(fine.lines_ahead(0, p, diagonal), 2);
 }
 
 TEST(ThickWall, EdgeStepsStopAboveTheThickWallStep) {

@@ -242,23 +242,28 @@ def test_python_functions_refuse_before_any_work(tmp_path):
     assert fenestra.load_scene(REFERENCE).element_count == 192
 
 
-def test_solve_estimate_counts_the_thick_walls_refined_grids(tmp_path):
-    """A solve in a thick wall traces again about its openings' edges (docs/solver.md, step 7): its
-    records and time are in the estimate, and not without a thickness or with refine_edges off."""
+def test_solve_estimate_counts_the_thick_walls_edge_cuts(tmp_path):
+    """A solve in a thick wall searches its openings' edges with real cutters (docs/solver.md,
+    step 7): their time is in the estimate, for as many openings as the constraints allow, and not
+    without a thickness or with refine_edges off."""
     path = write_room(tmp_path)
     d = json.loads(path.read_text())
     d["opening_domain"]["thickness"] = 0.3
+    d["solver"] = {"constraints": {"max_openings": 1}}
     path.write_text(json.dumps(d))
-    scene = fenestra.load_scene(str(path))
-    e = fenestra.estimate_cost(scene, "solve")
-    assert e["memory"]["thick_wall_edge_records"] == e["memory"]["path_records"] > 0
-    assert e["seconds"]["thick_wall_edges"] > 0
+    one = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")
+    assert one["seconds"]["thick_wall_edges"] > 0
+    assert "verification_scene" in one["memory"]
+    d["solver"] = {"constraints": {"max_openings": 3}}
+    path.write_text(json.dumps(d))
+    three = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")
+    assert three["seconds"]["thick_wall_edges"] == pytest.approx(3 * one["seconds"]["thick_wall_edges"])
     d["solver"] = {"refine_edges": False}
     path.write_text(json.dumps(d))
-    off = fenestra.load_scene(str(path))
-    assert "thick_wall_edge_records" not in fenestra.estimate_cost(off, "solve")["memory"]
-    thin = fenestra.load_scene(str(write_room(tmp_path)))
-    assert "thick_wall_edge_records" not in fenestra.estimate_cost(thin, "solve")["memory"]
+    off = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")
+    assert "thick_wall_edges" not in off["seconds"]
+    thin = fenestra.estimate_cost(fenestra.load_scene(str(write_room(tmp_path))), "solve")
+    assert "thick_wall_edges" not in thin["seconds"]
 
 
 def test_solve_estimate_counts_the_edge_search_index(tmp_path):

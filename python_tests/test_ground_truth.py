@@ -116,8 +116,7 @@ def test_solver_recovers_a_window_between_grid_lines(tmp_path):
 
 def test_solver_recovers_a_window_between_grid_lines_in_a_thick_wall(tmp_path):
     """The shifted window in a 0.3 m wall. Its reveals are in the records only along the grid the
-    paths were traced on: the solver traces them again on a grid refined about the openings'
-    edges, and searches the edges there."""
+    paths were traced on: the solver searches the edges between its lines with real cutters."""
     d = small_scene(tmp_path)
     d["opening_domain"]["thickness"] = 0.3
     d["render"]["paths_per_sensor"] = PATHS // 4
@@ -130,6 +129,8 @@ def test_solver_recovers_a_window_between_grid_lines_in_a_thick_wall(tmp_path):
     result = fenestra.solve(scene)
     assert "thick-wall edges" in result["timings_s"], result["timings_s"]
     assert result["edge_moves"] > 0
+    edges = result["thick_wall_edges"]
+    assert edges["run"] and edges["cuts"] > 0 and edges["paths_per_cut"] == 4096, edges
     for o in result["openings"]:
         assert abs(o["depth"] - 0.3) < 1e-6
 
@@ -138,10 +139,10 @@ def test_solver_recovers_a_window_between_grid_lines_in_a_thick_wall(tmp_path):
     assert error - 3 * noise <= TARGET, (
         "relative RMS %.2f %% (noise %.2f %%), solver predicted %.2f %%" % (
             100 * error, 100 * noise, 100 * result["error"]["relative_rms"]))
-    # The prediction is the refined records' exact evaluation of these openings: it agrees with
-    # the real cut within the noise of both (the check's, with 2^18 paths, is ~0.1 %; the
-    # prediction's, from 8 192 paths through a thick wall, ~2 %): its relative RMS difference within
-    # twice their relative RMS standard error (a chi-square of 36 sensors beyond 4x its mean).
+    # The prediction is the edge search's own cut of these openings (4 096 paths, on random numbers
+    # of its own): it agrees with the check's cut within the noise of both (the check's, with 2^18
+    # paths, ~0.1 %; the prediction's ~2 %): their relative RMS difference within twice their
+    # relative RMS standard error (a chi-square of 36 sensors beyond 4x its mean).
     predicted = np.array([s["predicted"] for s in result["sensors"]])
     predicted_stderr = np.array([s["predicted_stderr"] for s in result["sensors"]])
     difference = np.sqrt(np.sum((predicted - values) ** 2) / np.sum(values ** 2))
@@ -257,7 +258,8 @@ def test_solver_recovers_three_openings_of_two_rooms_with_solid_walls(tmp_path):
     element grid. In solid walls each element's light depends on its neighbours, so the linear
     models misjudge whole openings; the exact search over whole openings (solver step 6) must find
     the truth: its light within three times the noise of the check. Its openings then meet the goals
-    within the records' noise, so the edges are not traced again in the thick walls (step 7)."""
+    within the records' noise, so the edges in the thick walls are not searched with real cutters
+    (step 7)."""
     scene, truth, goals, goals_stderr = two_room_goals(
         tmp_path, wall=0.3, on_grid=True, seed=5, widths=(3.5, 3.0), depth=3.5, paths=1 << 15)
     result = fenestra.solve(scene)

@@ -89,8 +89,8 @@ def compute_contributions(scene: Scene, progress: Optional[Progress] = None,
                           sensors: Optional[Tuple[int, int]] = None  # (begin, end): a shard, T left empty
                           ) -> Contributions: ...
 def evaluate(scene: Scene, openings: npt.ArrayLike, progress: Optional[Progress] = None,
-             sensors: Optional[Tuple[int, int]] = None,
-             paths_per_sensor: int = 0) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+             sensors: Optional[Tuple[int, int]] = None, paths_per_sensor: int = 0,
+             stream: int = 0) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...  # stream: random numbers of their own
 # Shards of a study (fenestra.distributed, docs/distributed.md).
 def transport_entries(contributions: Contributions) -> Tuple[npt.NDArray[np.int32], npt.NDArray[np.int32],
                                                              npt.NDArray[np.float32], int]: ...  # from, to, value, sensors
@@ -127,7 +127,6 @@ class RecordQueries:
     def hourly_model(self, about: npt.ArrayLike, rows: npt.ArrayLike, columns: tuple, flips: bool) -> tuple: ...
     # (sources (sensors, sources), direct (sensors, sun hours), mean, stderr): the region's year.
     def annual_parts(self, rectangles: npt.ArrayLike) -> tuple: ...
-def refined_scene(scene: Scene, regions: list) -> Scene: ...  # [panel, u0, u1, v0, v1, u_lines, v_lines], meters
 def solve_with_records(scene: Scene, contributions: Contributions, records: object,
                        progress: Optional[Progress] = None) -> str: ...  # JSON
 def write_evaluation(scene: Scene, value: npt.ArrayLike, stderr: npt.ArrayLike, openings: int, path: str) -> None: ...

@@ -243,43 +243,6 @@ AnnualRegionParts annual_parts_from(const py::handle& h, Eigen::Index sensors, c
   return parts;
 }
 
-// Refined regions (thick walls' edges) as plain lists [panel, u0, u1, v0, v1, u_lines, v_lines]
-// (meters; floats that round-trip exactly), and back, checked against the domain.
-py::list regions_list(const std::vector<RefinedRegion>& regions) {
-  py::list out;
-  for (const RefinedRegion& r : regions) {
-    py::list u, v;
-    for (float x : r.u_lines) u.append(static_cast<double>(x));
-    for (float x : r.v_lines) v.append(static_cast<double>(x));
-    out.append(py::make_tuple(r.panel, r.u0, r.u1, r.v0, r.v1, u, v));
-  }
-  return out;
-}
-
-std::vector<RefinedRegion> regions_from(const py::handle& h, const OpeningDomain& domain) {
-  std::vector<RefinedRegion> out;
-  size_t i = 0;
-  for (const py::handle item : py::cast<py::list>(h)) {
-    const py::sequence t = py::cast<py::sequence>(item);
-    const std::string name = "refined region " + std::to_string(i++);
-    if (t.size() != 7) throw std::invalid_argument(name + ": expected [panel, u0, u1, v0, v1, u_lines, v_lines]");
-    RefinedRegion r;
-    r.panel = py::cast<int>(t[0]);
-    if (r.panel < 0 || static_cast<size_t>(r.panel) >= domain.panels().size())
-      throw std::invalid_argument(name + ": panel " + std::to_string(r.panel) + " is not a panel of the opening domain");
-    r.u0 = py::cast<double>(t[1]), r.u1 = py::cast<double>(t[2]), r.v0 = py::cast<double>(t[3]), r.v1 = py::cast<double>(t[4]);
-    r.u_lines = py::cast<std::vector<float>>(t[5]);
-    r.v_lines = py::cast<std::vector<float>>(t[6]);
-    bool finite = std::isfinite(r.u0) && std::isfinite(r.u1) && std::isfinite(r.v0) && std::isfinite(r.v1);
-    for (float x : r.u_lines) finite = finite && std::isfinite(x);
-    for (float x : r.v_lines) finite = finite && std::isfinite(x);
-    if (!finite) throw std::invalid_argument(name + ": a coordinate is not a finite number of meters");
-    if (!(r.u0 < r.u1 && r.v0 < r.v1)) throw std::invalid_argument(name + ": its rectangle is empty (u0 < u1, v0 < v1)");
-    out.push_back(std::move(r));
-  }
-  return out;
-}
-
 // A Python ValueError (bad input, e.g. a region the records cannot give) as the solver expects it.
 template <typename F>
 auto value_errors_as_invalid_argument(F f) {
@@ -307,7 +270,7 @@ struct ShardQueries {
   LocalRecordQueries queries;
   ShardQueries(std::shared_ptr<const Scene> s, std::shared_ptr<const Contributions> c, SensorRange sensors)
       : scene(std::move(s)), contributions(std::move(c)),
-        queries(*scene, *contributions, scene->domain, nullptr, sensors) {}
+        queries(*scene, *contributions, nullptr, sensors) {}
 };
 
 struct ShardRegionSearch {
@@ -481,40 +444,12 @@ class PythonRegionQueries : public RegionQueries {
 
 class PythonRecordQueries : public RecordQueries {
  public:
-  // `closes`: the backend is this object's own (refined records): closed with it.
-  PythonRecordQueries(const Scene& scene, const Contributions& c, py::object backend, bool closes = false)
-      : scene_(scene), c_(c), backend_(std::move(backend)), annual_(scene.climate ? prepare_annual(scene) : nullptr),
-        closes_(closes) {}
+  PythonRecordQueries(const Scene& scene, const Contributions& c, py::object backend)
+      : scene_(scene), c_(c), backend_(std::move(backend)), annual_(scene.climate ? prepare_annual(scene) : nullptr) {}
   ~PythonRecordQueries() override {
     py::gil_scoped_acquire gil;
-    if (closes_) {
-      try {
-        backend_.attr("close")();
-      } catch (py::error_already_set& e) {
-        e.discard_as_unraisable("closing refined records");
-      }
-    }
     backend_ = py::object();
   }
-  const Scene& scene() const override { return scene_; }
-  // The backend's refined(regions, paths) answers with records whose `summary` is their
-  // contributions without records.
-  std::unique_ptr<RecordQueries> refined(const std::vector<RefinedRegion>& regions) override {
-    auto scene = std::make_shared<Scene>(scene_);
-    scene->render.paths_per_sensor = c_.paths_per_sensor;
-    scene->domain = scene_.domain.refined(regions);
-    py::gil_scoped_acquire gil;
-    py::object backend = backend_.attr("refined")(regions_list(regions), c_.paths_per_sensor);
-    auto c = py::cast<std::shared_ptr<const Contributions>>(backend.attr("summary"));
-    if (c->element_count() != scene->domain.element_count() || c->closed.value.size() != c_.closed.value.size())
-      throw std::runtime_error("refined records: expected " + std::to_string(c_.closed.value.size()) + " sensors x " +
-                               std::to_string(scene->domain.element_count()) + " elements");
-    auto out = std::make_unique<PythonRecordQueries>(*scene, *c, std::move(backend), true);
-    out->kept_scene_ = std::move(scene);
-    out->kept_contributions_ = std::move(c);
-    return out;
-  }
-
   const Contributions& contributions() const override { return c_; }
   const SensorValues& exact(const std::vector<uint8_t>& open) override {
     auto it = known_.find(open);  // as ExactValues keeps them: a known set is not asked again
@@ -541,10 +476,10 @@ class PythonRecordQueries : public RecordQueries {
     py::object search = backend_.attr("region_search")(rectangles_array(start));
     return std::make_unique<PythonRegionQueries>(std::move(search), start, sensors());
   }
-  SensorValues cut(const std::vector<OpeningInput>& openings, int paths) override {
+  SensorValues cut(const std::vector<OpeningInput>& openings, int paths, uint64_t stream) override {
     const std::string text = openings_text(openings, scene_.site);
     py::gil_scoped_acquire gil;
-    return values_from(backend_.attr("cut")(text, paths), sensors(), "values with real cutters");
+    return values_from(backend_.attr("cut")(text, paths, stream), sensors(), "values with real cutters");
   }
   double record_bytes() const override {
     py::gil_scoped_acquire gil;
@@ -614,27 +549,8 @@ class PythonRecordQueries : public RecordQueries {
   const Contributions& c_;
   py::object backend_;
   std::shared_ptr<const AnnualRecords> annual_;
-  bool closes_ = false;
-  std::shared_ptr<const Scene> kept_scene_;  // what scene_ and c_ refer to, when refined here
-  std::shared_ptr<const Contributions> kept_contributions_;
   std::map<std::vector<uint8_t>, SensorValues> known_;
 };
-
-void bind_refined_scene(py::module_& m) {
-  m.def(
-      "refined_scene",
-      [](const Scene& scene, const py::list& regions) {
-        auto out = std::make_shared<Scene>(scene);
-        out->domain = scene.domain.refined(regions_from(regions, scene.domain));
-        if (out->domain.element_count() == 0)
-          throw std::invalid_argument("the refined regions hold no element of scene '" + scene.source +
-                                      "''s opening domain");
-        return out;
-      },
-      py::arg("scene"), py::arg("regions"),
-      "The scene with its opening domain refined about these regions ([panel, u0, u1, v0, v1, u_lines, v_lines], "
-      "meters in the panel's parameter domain): the grid a solve traces again for edges in thick walls.");
-}
 
 void bind_solve_with_records(py::module_& m) {
   m.def(
@@ -660,6 +576,5 @@ void bind_solve_with_records(py::module_& m) {
 
 void bind_record_queries(py::module_& m) {
   bind_shard_queries(m);
-  bind_refined_scene(m);
   bind_solve_with_records(m);
 }

@@ -514,7 +514,7 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "evaluate",
       [](const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress, const py::object& sensors,
-         int paths_per_sensor) {
+         int paths_per_sensor, uint64_t stream) {
         const auto rects = openings_from(openings, scene.site);
         const SensorRange range = sensor_range_from(sensors, scene);
         if (paths_per_sensor < 0 || paths_per_sensor > limits::kPathsPerSensor.hi)
@@ -524,15 +524,16 @@ PYBIND11_MODULE(_core, m) {
         {
           py::gil_scoped_release release;
           v = while_doing("evaluating scene '" + scene.source + "'",
-                          [&] { return evaluate_openings(scene, rects, progress.get(), paths_per_sensor, range); });
+                          [&] { return evaluate_openings(scene, rects, progress.get(), paths_per_sensor, range, stream); });
         }
         return values_tuple(std::move(v));
       },
       py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr, py::arg("sensors") = py::none(),
-      py::arg("paths_per_sensor") = 0,
+      py::arg("paths_per_sensor") = 0, py::arg("stream") = 0,
       "Path-traces the scene with the openings cut (an (n, 4, 3) array of corners, or the JSON text of an "
       "openings file); returns (value, stderr) per sensor (with `sensors` = (begin, end), of those only; "
-      "paths_per_sensor 0: the scene's render.paths_per_sensor).");
+      "paths_per_sensor 0: the scene's render.paths_per_sensor; `stream`: random numbers of their own, 0 "
+      "for the scene's evaluation's).");
   m.def(
       "annual_with_cutters",
       [](const Scene& scene, const py::object& openings, int paths, std::shared_ptr<Progress> progress,

@@ -196,9 +196,8 @@ class DistributedContributions:
         self.closed, self.closed_stderr = stack("closed"), stack("closed_stderr")
         self.all_open, self.all_open_stderr = stack("all_open"), stack("all_open_stderr")
         self.paths_per_sensor = parts[0]["paths_per_sensor"]
-        self.T = (_core.transport_matrix_from_entries([p["transport"] for p in parts], scene.element_count,
-                                                      self.paths_per_sensor)
-                  if parts[0]["transport"] is not None else np.zeros((0, 0)))  # a solve's refined grid: no T
+        self.T = _core.transport_matrix_from_entries([p["transport"] for p in parts], scene.element_count,
+                                                     self.paths_per_sensor)
         self.seconds = max(p["seconds"] for p in parts)
         self.events = sum(p["events"] for p in parts)
         self.dropped = {key: sum(p["dropped"][key] for p in parts) for key in ("non_finite", "truncated_conditions")}
@@ -304,8 +303,8 @@ class DistributedContributions:
 
     def solve(self, progress=None, callback=None):
         """The opening solver on these contributions (fenestra.solve's result dict, the same bit for
-        bit as one process gives). Its exact evaluations, flip effects, edge searches (on thick
-        walls' refined grid too, traced there) and, with climate goals, the hourly models' rows and
+        bit as one process gives). Its exact evaluations, flip effects, edge searches, cuts
+        (thick walls' edges are searched with them) and, with climate goals, the hourly models' rows and
         the years of openings run on the shards; the linear and genetic stages in this process.
         callback(fraction, status) as for fenestra.solve; returning False cancels."""
         self._check_open()
@@ -378,8 +377,6 @@ class _ShardedRecords:
         self._pending = {}    # open search -> the rectangles of its last try
         self._searches = itertools.count()
         self._actors = {}     # worker -> (its actor's future, the actor)
-        self.summary = None   # refined records: their contributions without records (refined())
-        self._owns_study = False  # refined records free their study's shards when closed
         self.calls = 0
 
     def _ask(self, op, *args):
@@ -493,9 +490,9 @@ class _ShardedRecords:
         values = np.concatenate(self._ask("search", search, np.asarray(rectangles, dtype=np.float64)))
         return _ShardedSearch(self, search, values)
 
-    def cut(self, openings, paths):
+    def cut(self, openings, paths, stream=0):
         s = self._study
-        return self._pairs(s._map(_evaluate_cut_session, s._spec, openings, paths,
+        return self._pairs(s._map(_evaluate_cut_session, s._spec, openings, paths, stream,
                                   cancelled=lambda: self._progress.cancelled))
 
     def record_bytes(self):
@@ -516,36 +513,12 @@ class _ShardedRecords:
         parts = s._map(_annual_cut_session, s._spec, openings, paths, cancelled=lambda: self._progress.cancelled)
         return tuple(np.concatenate([p[j] for p in parts]) for j in range(4)) + (parts[0][4],)
 
-    def refined(self, regions, paths):
-        """The records traced again on the grid refined about `regions` (edges in thick walls), shard
-        by shard on the workers, as records of their own (`summary`: their contributions without
-        records); closing them frees the shards."""
-        s = self._study
-        spec = dict(s._spec, refined=[list(r[:5]) + [list(r[5]), list(r[6])] for r in regions], transport=False)
-        local = _core.refined_scene(s.scene, spec["refined"])  # with the study's render settings
-        _set_render(spec, local, paths_per_sensor=int(paths))
-        keys = _shard_keys("refined", spec, len(s._shards))
-        client = s._cluster.client
-        alive = set(s._cluster.workers())
-        futures = [client.submit(_compute_shard, spec, key, sh["begin"], sh["end"], pure=False, key=key,
-                                 workers=[sh["worker"]] if sh["worker"] in alive else None, allow_other_workers=True)
-                   for key, sh in zip(keys, s._shards)]
-        parts = _gather(s._cluster, futures, keys, lambda fraction, what: not self._progress.cancelled,
-                        "tracing a finer grid in thick walls")
-        del futures
-        study = DistributedContributions(s._cluster, spec, local, keys, parts)
-        records = _ShardedRecords(study, self._progress)
-        records.summary, records._owns_study = study.as_contributions(), True
-        return records
-
     def close(self):
         self._actors.clear()  # their futures released: the workers drop them
         try:
             self._study._cluster._run_on_heard(_end_session, self._session)
         except Exception:  # the cluster is gone: so is the state
             pass
-        if self._owns_study:
-            self._study.close()
 
 
 class _ShardedSearch:

@@ -29,8 +29,6 @@ def _scene_of(spec):
                 scene = api.load_scene(spec["path"])
             else:
                 scene = api.scene_from_dict(spec["dict"], spec["base_dir"])
-        if "refined" in spec:  # a solve's grid refined about its openings in thick walls
-            scene = _core.refined_scene(scene, spec["refined"])
         for name, value in spec["render"].items():
             setattr(scene.render, name, value)
         scene.render.threads = _worker_threads()  # the worker's share of its machine (results do not depend on it)
@@ -62,7 +60,7 @@ def _compute_shard(spec, key, begin, end):
         "E": np.array(c.E), "E_stderr": np.array(c.E_stderr), "A": np.array(c.A),
         "closed": np.array(c.closed), "closed_stderr": np.array(c.closed_stderr),
         "all_open": np.array(c.all_open), "all_open_stderr": np.array(c.all_open_stderr),
-        "transport": _core.transport_entries(c) if spec.get("transport", True) else None,
+        "transport": _core.transport_entries(c),
         "seconds": c.seconds, "events": c.events, "dropped": c.dropped,
         "paths_per_sensor": c.paths_per_sensor,
     }
@@ -242,9 +240,10 @@ def _evaluate_cut_shard(spec, key, openings, begin, end):
     return _tracked(key, lambda progress: _core.evaluate(scene, openings, progress, (begin, end)))
 
 
-def _evaluate_cut_session(key, sensors, spec, openings, paths):
-    """The shard's sensors path-traced with the openings cut (the solver's checks with real cutters)."""
-    return _core.evaluate(_scene_of(spec), openings, None, sensors, paths)
+def _evaluate_cut_session(key, sensors, spec, openings, paths, stream=0):
+    """The shard's sensors path-traced with the openings cut (the solver's checks with real cutters,
+    and its cut searches on their own `stream`)."""
+    return _core.evaluate(_scene_of(spec), openings, None, sensors, paths, stream)
 
 
 def _annual_cut_session(key, sensors, spec, openings, paths):

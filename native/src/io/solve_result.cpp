@@ -211,6 +211,11 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                                {"interpolated_after", r.thick_wall_openings.interpolated_after},
                                {"kept", r.thick_wall_openings.kept},
                                {"reverted", r.thick_wall_openings.reverted}}},
+      {"thick_wall_edges", {{"run", r.thick_wall_edges.ran},
+                            {"cuts", r.thick_wall_edges.cuts},
+                            {"paths_per_cut", r.thick_wall_edges.paths_per_cut},
+                            {"moves", r.thick_wall_edges.moves},
+                            {"from_placement", r.thick_wall_edges.from_placement}}},
       {"constraint_costs", [&] {
          json costs = json::array();
          for (const ConstraintCost& c : r.constraint_costs)

@@ -93,7 +93,7 @@ bool some_size_fits(const GridLimits& g) {
 }
 
 // Extents of a panel's grid along u and v (m): its last grid lines (multiples of the element
-// size, or a refined grid's).
+// size).
 double grid_extent(const std::vector<float>& lines, int cells, double a) {
   return lines.empty() ? cells * a : static_cast<double>(lines.back());
 }

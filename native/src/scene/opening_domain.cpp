@@ -316,23 +316,9 @@ bool OpeningDomain::has_thick_walls() const {
   return std::any_of(panels_.begin(), panels_.end(), [](const Panel& p) { return p.thickness > 0.0f; });
 }
 
-namespace {
-// Index of the cell of `lines` (sorted grid lines) containing x, or -1 / lines.size() - 1 beyond them.
-int cell_of(const std::vector<float>& lines, float x) {
-  return static_cast<int>(std::upper_bound(lines.begin(), lines.end(), x) - lines.begin()) - 1;
-}
-}  // namespace
-
 int OpeningDomain::element_at(int panel_index, const PanelPoint& q) const {
-  const Panel& panel = panels_[panel_index];
   if (!(q.u >= 0.0f && q.v >= 0.0f)) return -1;
-  int c, r;
-  if (!unrefined_) {  // lines every element_size_
-    c = static_cast<int>(q.u / element_size_), r = static_cast<int>(q.v / element_size_);
-  } else {
-    c = cell_of(panel.u_lines, q.u), r = cell_of(panel.v_lines, q.v);
-  }
-  return cell(panel_index, r, c);
+  return cell(panel_index, static_cast<int>(q.v / element_size_), static_cast<int>(q.u / element_size_));
 }
 
 int OpeningDomain::cell(int panel_index, int row, int col) const {
@@ -391,83 +377,6 @@ Cutter OpeningDomain::element_cutter(int element) const {
   if (panel.curved()) return panel_rectangle_cutter(e.panel, e.u0, e.u1, e.v0, e.v1);
   return through_wall(e.corners[0], panel.u_axis, panel.v_axis, e.width(), e.height(), panel.outward,
                       panel.thickness);
-}
-
-OpeningDomain OpeningDomain::refined(const std::vector<RefinedRegion>& regions) const {
-  OpeningDomain out = *this;
-  out.unrefined_ = unrefined_ ? unrefined_ : std::make_shared<const OpeningDomain>(*this);
-  const OpeningDomain& base = *out.unrefined_;
-  out.elements_.clear();
-  out.portals_.clear();
-  out.portal_of_unrefined_.assign(base.elements_.size(), -1);
-  const float tolerance = 1e-6f * element_size_;
-  for (size_t p = 0; p < out.panels_.size(); ++p) {
-    Panel& panel = out.panels_[p];
-    std::vector<const RefinedRegion*> own;
-    for (const RefinedRegion& r : regions)
-      if (r.panel == static_cast<int>(p)) own.push_back(&r);
-    if (!own.empty() && panel.curved())
-      throw std::invalid_argument("refined grids are for flat panels; the panel of " + panel.label + " is curved");
-    panel.u_lines.clear(), panel.v_lines.clear();
-    for (const RefinedRegion* r : own) {
-      panel.u_lines.insert(panel.u_lines.end(), {static_cast<float>(r->u0), static_cast<float>(r->u1)});
-      panel.v_lines.insert(panel.v_lines.end(), {static_cast<float>(r->v0), static_cast<float>(r->v1)});
-      for (float x : r->u_lines)
-        if (std::isfinite(x) && x > r->u0 && x < r->u1) panel.u_lines.push_back(x);
-      for (float x : r->v_lines)
-        if (std::isfinite(x) && x > r->v0 && x < r->v1) panel.v_lines.push_back(x);
-    }
-    for (auto* lines : {&panel.u_lines, &panel.v_lines}) {
-      std::sort(lines->begin(), lines->end());
-      lines->erase(std::unique(lines->begin(), lines->end(), [&](float a, float b) { return b - a <= tolerance; }),
-                   lines->end());
-      if (lines->empty()) lines->push_back(0.0f);  // no region: a grid of no cells
-    }
-    panel.cols = static_cast<int>(panel.u_lines.size()) - 1;
-    panel.rows = static_cast<int>(panel.v_lines.size()) - 1;
-    panel.grid.assign(static_cast<size_t>(panel.rows) * panel.cols, -1);
-    for (int r = 0; r < panel.rows; ++r)
-      for (int c = 0; c < panel.cols; ++c) {
-        const float u0 = panel.u_lines[c], u1 = panel.u_lines[c + 1];
-        const float v0 = panel.v_lines[r], v1 = panel.v_lines[r + 1];
-        const float um = 0.5f * (u0 + u1), vm = 0.5f * (v0 + v1);
-        const bool in_region = std::any_of(own.begin(), own.end(), [&](const RefinedRegion* g) {
-          return um > g->u0 && um < g->u1 && vm > g->v0 && vm < g->v1;
-        });
-        // The cell must lie on elements: its corners (a hair inside) and centre.
-        bool on_elements = in_region;
-        const float du = std::min(1e-4f, 0.25f * (u1 - u0)), dv = std::min(1e-4f, 0.25f * (v1 - v0));
-        for (const PanelPoint& q : {PanelPoint{u0 + du, v0 + dv}, PanelPoint{u1 - du, v0 + dv}, PanelPoint{u1 - du, v1 - dv},
-                                    PanelPoint{u0 + du, v1 - dv}, PanelPoint{um, vm}})
-          on_elements = on_elements && base.element_at(static_cast<int>(p), q) >= 0;
-        if (!on_elements) continue;
-        Element e;
-        e.panel = static_cast<int>(p), e.row = r, e.col = c;
-        e.u0 = u0, e.u1 = u1, e.v0 = v0, e.v1 = v1;
-        auto at = [&](float u, float v) { return out.surface_at(static_cast<int>(p), u, v).position; };
-        e.corners = {at(u0, v0), at(u1, v0), at(u1, v1), at(u0, v1)};
-        e.center = at(um, vm);
-        panel.grid[static_cast<size_t>(r) * panel.cols + c] = static_cast<int>(out.elements_.size());
-        out.elements_.push_back(e);
-        // Portals: the unrefined elements under the cell.
-        const auto [c0, c1] = base.columns_overlapping(static_cast<int>(p), u0, u1);
-        const auto [r0, r1] = base.rows_overlapping(static_cast<int>(p), v0, v1);
-        for (int rr = r0; rr <= r1; ++rr)
-          for (int cc = c0; cc <= c1; ++cc) {
-            const int k = base.cell(static_cast<int>(p), rr, cc);
-            if (k < 0 || out.portal_of_unrefined_[k] >= 0) continue;
-            out.portal_of_unrefined_[k] = static_cast<int>(out.portals_.size());
-            out.portals_.push_back(base.elements_[k]);
-          }
-      }
-  }
-  return out;
-}
-
-int OpeningDomain::portal_at(int panel, const PanelPoint& q) const {
-  if (!unrefined_) return element_at(panel, q);
-  const int k = unrefined_->element_at(panel, q);
-  return k < 0 ? -1 : portal_of_unrefined_[k];
 }
 
 Cutter OpeningDomain::panel_rectangle_cutter(int panel_index, double u0, double u1, double v0, double v1) const {

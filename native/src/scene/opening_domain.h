@@ -31,8 +31,8 @@ struct Panel {
   Vec2 parameter_lower = Vec2::Zero(), parameter_upper = Vec2::Zero();  // the faces' extent, grid coordinates
   int rows = 0, cols = 0;
   std::vector<int> grid;        // rows * cols: element index, or -1 where the cell leaves the panel
-  // Grid lines in grid coordinates: cols + 1 along u, rows + 1 along v. Multiples of the element
-  // size, except on a refined grid (OpeningDomain::refined), whose cells are parts of elements.
+  // Grid lines in grid coordinates: cols + 1 along u, rows + 1 along v (multiples of the element
+  // size).
   std::vector<float> u_lines, v_lines;
   std::vector<uint32_t> triangles;
   int material = -1;            // material of the panel's faces (reveals use it)
@@ -75,14 +75,6 @@ struct Element {
   float height() const { return v1 - v0; }
 };
 
-// Part of a panel to cut into elements for a local search (OpeningDomain::refined): the
-// rectangle [u0, u1] x [v0, v1] and grid lines within it (panel coordinates, meters).
-struct RefinedRegion {
-  int panel = 0;
-  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
-  std::vector<float> u_lines, v_lines;
-};
-
 struct OpeningDomainSelection {
   std::vector<std::string> materials, groups;
   float element_size = 0.25f;  // meters
@@ -110,23 +102,8 @@ class OpeningDomain {
   // Side faces of the elements' tubes through thick walls, as triangles (two per face, in order).
   Mesh reveal_grid(std::vector<RevealGridFace>* faces) const;
 
-  // A domain for a local search: elements only inside the given regions, cut along the regions'
-  // lines. Each panel's grid lines are its regions' edges and lines (nothing else), and a cell is
-  // an element when it lies in one of the panel's regions and on this domain's elements; the rest
-  // of the panel is wall. Rectangles with edges on the lines, within the regions, are unions of
-  // elements. Panels, walls and triangles are unchanged; flat panels only. Portal sampling keeps
-  // aiming at this domain's elements (those the regions overlap): portals(), portal_at().
-  OpeningDomain refined(const std::vector<RefinedRegion>& regions) const;
-
   const std::vector<Panel>& panels() const { return panels_; }
   const std::vector<Element>& elements() const { return elements_; }
-  // What portal sampling aims at: the elements, or on a refined domain the unrefined elements its
-  // regions overlap (squares, however the regions are cut); and the portal at a panel point, or -1.
-  const std::vector<Element>& portals() const { return unrefined_ ? portals_ : elements_; }
-  int portal_at(int panel, const PanelPoint& q) const;
-  bool is_refined() const { return unrefined_ != nullptr; }
-  // The domain a refined one refines (this one otherwise): where openings' limits are judged.
-  const OpeningDomain& unrefined() const { return unrefined_ ? *unrefined_ : *this; }
   size_t element_count() const { return elements_.size(); }
   float element_size() const { return element_size_; }
   bool has_thick_walls() const;
@@ -178,10 +155,6 @@ class OpeningDomain {
  private:
   std::vector<Panel> panels_;
   std::vector<Element> elements_;
-  // A refined domain's: the domain it refines, the portals, and each unrefined element's portal.
-  std::shared_ptr<const OpeningDomain> unrefined_;
-  std::vector<Element> portals_;
-  std::vector<int> portal_of_unrefined_;
   std::vector<int> triangle_panel_;
   std::vector<int> outer_panel_;
   float element_size_ = 0.25f;

@@ -32,7 +32,7 @@ struct SolverSettings {
   int improve_iterations = 20000;  // local search over whole openings after the refinement; 0: none
   // Sets of openings the exact search over whole openings may score (solve/opening_search.h); 0: none.
   int search_evaluations = 3000;
-  bool refine_edges = true;        // move openings' edges off the element grid (thick walls: on a refined grid)
+  bool refine_edges = true;        // move openings' edges off the element grid (thick walls: by real cuts)
   bool verify = true;              // path-trace the final openings with real cutters (evaluate)
   int verify_paths = 0;            // paths per sensor of that check; 0: as many as the contributions'
   bool tradeoffs = true;           // also the best answers with fewer openings (solve/tradeoffs.h)

@@ -8,8 +8,7 @@
 // dropped, and a note says why.
 //
 // In thick walls the records are exact only on the element grid's lines, so there a catalogue size
-// is scored by the linear model alone; the solver then traces the refined grid about the snapped
-// edges (thick_wall_edges.h), or cuts them for real, for the prediction.
+// is scored by the linear model alone; the solver then cuts them for real for the prediction.
 #include <Eigen/Core>
 #include <string>
 #include <vector>

@@ -70,48 +70,37 @@ const std::vector<EdgeMove>& edge_moves(bool diagonal) {
 // Whether opening i of `candidate` may be evaluated and kept: in a thick wall on the lines of the
 // grid the records were traced on, on the records' elements, admissible, apart from the others.
 bool fits(const OpeningDomain& domain, const OpeningConstraints& constraints,
-          const std::vector<PanelRectangle>& candidate, size_t i) {
+          const std::vector<PanelRectangle>& candidate, size_t i, bool real_cuts) {
   const PanelRectangle& r = candidate[i];
-  if (domain.panels()[r.panel].thickness > 0.0f && !edges_on_grid_lines(domain, r)) return false;
-  if (!covers_elements(domain, r.panel, r.u0, r.u1, r.v0, r.v1) || !admissible(r, domain.unrefined(), constraints))
+  if (!real_cuts && domain.panels()[r.panel].thickness > 0.0f && !edges_on_grid_lines(domain, r)) return false;
+  if (!covers_elements(domain, r.panel, r.u0, r.u1, r.v0, r.v1) || !admissible(r, domain, constraints))
     return false;
   for (size_t j = 0; j < candidate.size(); ++j)
     if (j != i && !apart(r, candidate[j], constraints)) return false;
   return true;
 }
 
-// The grid lines of `lines` within `span` of x.
-std::vector<float> lines_near(const std::vector<float>& lines, double x, double span) {
-  std::vector<float> out;
-  for (float l : lines)
-    if (std::abs(l - x) <= span + 1e-6) out.push_back(l);
-  return out;
-}
-
-// Index in `lines` of the line nearest x.
-size_t nearest(const std::vector<float>& lines, double x) {
-  size_t best = 0;
-  for (size_t k = 1; k < lines.size(); ++k)
-    if (std::abs(lines[k] - x) < std::abs(lines[best] - x)) best = k;
-  return best;
-}
-
-// EdgeSearchScope::scan_span: pairs of lines near an opening's two edges along one axis, every
-// other line first, then the lines beside the best pair. Returns whether a pair was kept.
+// EdgeSearchScope::scan_span: pairs of positions `step` apart within `span` of an opening's two
+// edges along one axis (real cuts: any position), every other pair first, then the pairs beside
+// the best. Returns whether a pair was kept.
 bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& constraints, const LinearObjective& objective,
-                     const Eigen::VectorXd& closed, double span, RegionQueries* search, double* error,
+                     const Eigen::VectorXd& closed, double span, double step, RegionQueries* search, double* error,
                      EdgeRefinement* out, Progress* progress) {
   bool kept = false;
+  const long k = static_cast<long>(std::floor(span / step + 1e-9));
+  auto positions_near = [&](double x) {
+    std::vector<float> near;
+    for (long j = -k; j <= k; ++j) near.push_back(static_cast<float>(x + j * step));
+    return near;
+  };
   for (size_t i = 0; i < search->rectangles().size(); ++i) {
     const Panel& panel = domain.panels()[search->rectangles()[i].panel];
     if (!(panel.thickness > 0.0f)) continue;
     for (int axis = 0; axis < 2; ++axis) {
       const PanelRectangle start = search->rectangles()[i];
-      const std::vector<float>& all = axis == 0 ? panel.u_lines : panel.v_lines;
       const double lo = axis == 0 ? start.u0 : start.v0, hi = axis == 0 ? start.u1 : start.v1;
-      const std::vector<float> low = lines_near(all, lo, span), high = lines_near(all, hi, span);
-      if (low.empty() || high.empty()) continue;
-      const long a0 = static_cast<long>(nearest(low, lo)), b0 = static_cast<long>(nearest(high, hi));
+      const std::vector<float> low = positions_near(lo), high = positions_near(hi);
+      const long a0 = k, b0 = k;
       std::set<std::pair<long, long>> tried = {{a0, b0}};
       std::vector<PanelRectangle> best;
       long best_a = a0, best_b = b0;
@@ -123,7 +112,7 @@ bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& cons
         PanelRectangle& r = candidate[i];
         (axis == 0 ? r.u0 : r.v0) = low[a];
         (axis == 0 ? r.u1 : r.v1) = high[b];
-        if (!fits(domain, constraints, candidate, i)) return;
+        if (!fits(domain, constraints, candidate, i, true)) return;
         const double e = prediction_error(objective, search->try_region(candidate) - closed);
         ++out->evaluations;
         if (e < *error * (1.0 - 1e-9)) *error = e, best = candidate, best_a = a, best_b = b;
@@ -299,10 +288,12 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Eigen::VectorXd& 
   double error = prediction_error(objective, search.values() - closed);
   const double module = constraints.module;
   // Width and height trade against each other (a valley of nearly equal light): the axes are
-  // scanned in turn while either improves.
-  for (int pass = 0; scope.scan_span > 0.0 && pass < kMaxScanPasses; ++pass)
-    if (!scan_edge_pairs(domain, constraints, objective, closed, scope.scan_span, &search, &error, &out, progress))
-      break;
+  // scanned in turn while either improves, over the whole span first, then within two steps.
+  const double finest = edge_steps(s, constraints.module, true).back();
+  for (int pass = 0; scope.scan_span > 0.0 && scope.real_cuts && pass < kMaxScanPasses; ++pass) {
+    const double span = pass == 0 ? scope.scan_span : std::min(scope.scan_span, 2.0 * finest);
+    if (!scan_edge_pairs(domain, constraints, objective, closed, span, finest, &search, &error, &out, progress)) break;
+  }
   const std::vector<EdgeMove>& moves = edge_moves(scope.scan_span > 0.0);
   // The openings with opening i's edges moved by `step` (move, direction), if that changes and fits.
   auto moved = [&](size_t i, const EdgeMove& move, double direction, double step, bool whole_elements,
@@ -318,7 +309,7 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Eigen::VectorXd& 
       edge_of(r, edge) = whole_elements ? from + by : snap(from + by, module);
       changed = changed && edge_of(r, edge) != from;
     }
-    return changed && fits(domain, constraints, *candidate, i);
+    return changed && fits(domain, constraints, *candidate, i, scope.real_cuts);
   };
   // Kept when the exact error falls.
   auto try_move = [&](size_t i, const EdgeMove& move, double direction, double step, bool whole_elements) {
@@ -369,10 +360,14 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Eigen::VectorXd& 
       if (!improved) return;
     }
   };
-  std::vector<double> steps = edge_steps(s, module, false);
+  std::vector<double> steps = edge_steps(s, module, !scope.zero_thickness_panels);
   while (scope.coarsest_finest_step > 0.0 && steps.size() > 1 &&
          steps[steps.size() - 2] >= scope.coarsest_finest_step * (1.0 - 1e-9))
     steps.pop_back();
+  // The pair scans' last pass tried every move of an edge, and every slide, by one or two of the
+  // finest steps about their result: only the finest step's moves follow (those that trade width
+  // for height are new).
+  if (scope.scan_span > 0.0 && scope.real_cuts) steps.erase(steps.begin(), steps.end() - 1);
   for (const double step : steps) {
     const bool whole_elements = step >= s * (1.0 - 1e-9);
     if (whole_elements && !scope.whole_elements) continue;

@@ -3,8 +3,8 @@
 // the exact error from the path records falls and the openings stay admissible: by whole elements
 // (an exact local search), then in halving steps from half an element down to the module (or 1 cm
 // when edges are continuous). In thick walls the records follow the tubes of the grid they were
-// traced on, so edges move only along its lines: whole elements on the element grid, finer steps
-// (down to kThickWallEdgeStep) on a grid refined about the openings (the solver traces it).
+// traced on, so edges move only along its lines: whole elements on the element grid; finer steps
+// (down to kThickWallEdgeStep) with real cutters (EdgeSearchScope::real_cuts, thick_wall_edges.h).
 #include <string>
 #include <vector>
 
@@ -20,8 +20,8 @@ class Progress;
 
 // Smallest step of continuous edges (solver.constraints.module 0), meters.
 constexpr double kContinuousEdgeStep = 0.01;
-// Smallest step of edges in thick walls, meters: each position is a grid line whose tube sides the
-// paths must be traced against (refined_for_edges), so their number is kept small.
+// Smallest step of edges in thick walls, meters: each position tried is a real cut (the scene
+// path-traced again), so their number is kept small.
 constexpr double kThickWallEdgeStep = 0.05;
 
 // Steps of the edge search, meters: a whole element, then halving steps down to the module
@@ -63,20 +63,23 @@ struct EdgeRefinement {
 };
 
 // Which moves the search makes: whole-element steps or only the finer ones; on every panel or only
-// in thick walls (the search on a grid refined about them).
+// in thick walls (the search with real cutters).
 struct EdgeSearchScope {
   bool whole_elements = true;
   bool zero_thickness_panels = true;
   bool thick_panels = true;  // false: openings in thick walls stay as they are
-  // > 0: first, for each opening in a thick wall and each axis, every pair of grid lines within
-  // this distance of its two edges is tried (its error along a sill or head can have narrow
-  // valleys that single steps do not cross), and the best pair kept.
+  // > 0 with real_cuts: first, for each opening in a thick wall and each axis, pairs of positions
+  // (the finest thick-wall step apart) within this distance of its two edges are tried (its error
+  // along a sill or head can have narrow valleys that single steps do not cross), and the best
+  // pair kept; again within two steps while a pass gains.
   double scan_span = 0.0;
   // Optional, sensors x elements: the light each element adds when opened (a linearisation about
   // the start). It ranks the moves of every step but the finest, so that few are evaluated.
   const Eigen::MatrixXd* opening_light = nullptr;
   // > 0: the steps stop at the first not below this (meters): a quicker, coarser search.
   double coarsest_finest_step = 0.0;
+  // The values are real cuts: edges in thick walls need not lie on grid lines.
+  bool real_cuts = false;
 };
 
 EdgeRefinement refine_edges(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,

@@ -9,39 +9,12 @@
 
 namespace fenestra {
 
-LocalRecordQueries::LocalRecordQueries(const Scene& scene, const Contributions& c, const OpeningDomain& domain,
-                                       Progress* progress, SensorRange sensors)
-    : scene_(scene), c_(c), domain_(domain), progress_(progress), sensors_(sensors), exact_(c, progress) {}
-
-namespace {
-
-// Refined records with the scene and contributions they read (held first, so they outlive the
-// queries that refer to them).
-struct RefinedStudy {
-  Scene scene;
-  Contributions contributions;
-};
-
-class OwningRecordQueries : private RefinedStudy, public LocalRecordQueries {
- public:
-  OwningRecordQueries(RefinedStudy study, Progress* progress, SensorRange sensors)
-      : RefinedStudy(std::move(study)),
-        LocalRecordQueries(RefinedStudy::scene, RefinedStudy::contributions, RefinedStudy::scene.domain, progress,
-                           sensors) {}
-};
-
-}  // namespace
-
-std::unique_ptr<RecordQueries> LocalRecordQueries::refined(const std::vector<RefinedRegion>& regions) {
-  RefinedStudy study{scene_, Contributions()};
-  study.scene.render.paths_per_sensor = c_.paths_per_sensor;  // as many as these records
-  study.scene.domain = scene_.domain.refined(regions);
-  study.contributions = compute_contributions(study.scene, progress_, false, sensors_);
-  return std::make_unique<OwningRecordQueries>(std::move(study), progress_, sensors_);
-}
+LocalRecordQueries::LocalRecordQueries(const Scene& scene, const Contributions& c, Progress* progress,
+                                       SensorRange sensors)
+    : scene_(scene), c_(c), progress_(progress), sensors_(sensors), exact_(c, progress) {}
 
 SensorValues LocalRecordQueries::evaluate(const std::vector<PanelRectangle>& region) {
-  return c_.evaluate(OpenRegion(domain_, region), progress_);
+  return c_.evaluate(OpenRegion(scene_.domain, region), progress_);
 }
 
 Eigen::MatrixXd LocalRecordQueries::flip_effects(const std::vector<uint8_t>& about) {
@@ -49,11 +22,11 @@ Eigen::MatrixXd LocalRecordQueries::flip_effects(const std::vector<uint8_t>& abo
 }
 
 std::unique_ptr<RegionQueries> LocalRecordQueries::region_search(const std::vector<PanelRectangle>& start) {
-  return std::make_unique<RegionSearch>(c_, domain_, start, progress_);
+  return std::make_unique<RegionSearch>(c_, scene_.domain, start, progress_);
 }
 
-SensorValues LocalRecordQueries::cut(const std::vector<OpeningInput>& openings, int paths) {
-  return evaluate_openings(scene_, openings, progress_, paths);
+SensorValues LocalRecordQueries::cut(const std::vector<OpeningInput>& openings, int paths, uint64_t stream) {
+  return evaluate_openings(scene_, openings, progress_, paths, {}, stream);
 }
 
 double LocalRecordQueries::record_bytes() const {
@@ -68,7 +41,7 @@ HourlyFlipModel LocalRecordQueries::hourly_model(const std::vector<uint8_t>& abo
 }
 
 AnnualStudy LocalRecordQueries::annual_study(const std::vector<PanelRectangle>& region) {
-  return fenestra::annual_study(scene_, c_, OpenRegion(domain_, region), progress_);
+  return fenestra::annual_study(scene_, c_, OpenRegion(scene_.domain, region), progress_);
 }
 
 AnnualStudy LocalRecordQueries::annual_cut(const std::vector<OpeningInput>& openings, int paths) {

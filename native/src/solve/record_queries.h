@@ -47,8 +47,8 @@ class RecordQueries {
   virtual Eigen::MatrixXd flip_effects(const std::vector<uint8_t>& about) = 0;
   virtual std::unique_ptr<RegionQueries> region_search(const std::vector<PanelRectangle>& start) = 0;
   // The scene path-traced with these openings really cut (evaluate_openings; `paths` per sensor,
-  // 0: the scene's).
-  virtual SensorValues cut(const std::vector<OpeningInput>& openings, int paths) = 0;
+  // 0: the scene's; `stream` of random numbers, 0: the scene's evaluation's).
+  virtual SensorValues cut(const std::vector<OpeningInput>& openings, int paths, uint64_t stream) = 0;
   // Bytes the path records take, over all sensors.
   virtual double record_bytes() const = 0;
 
@@ -63,19 +63,12 @@ class RecordQueries {
   virtual AnnualStudy annual_study(const std::vector<PanelRectangle>& region) = 0;
   // The annual study of openings really cut, from paths of their own (annual_study_with_cutters).
   virtual AnnualStudy annual_cut(const std::vector<OpeningInput>& openings, int paths) = 0;
-
-  // The records of the scene with its opening domain refined about `regions` (edges in thick walls,
-  // solve/thick_wall_edges.h), traced with these records' paths per sensor and seed, without T,
-  // and asked as these are (a cluster's refined records stay on its shards).
-  virtual std::unique_ptr<RecordQueries> refined(const std::vector<RefinedRegion>& regions) = 0;
-  // The scene these records answer for (the refined one for refined records).
-  virtual const Scene& scene() const = 0;
 };
 
 class LocalRecordQueries : public RecordQueries {
  public:
-  // `scene` is what cut() traces, `domain` what regions lie on (the scene's, or a refined one).
-  LocalRecordQueries(const Scene& scene, const Contributions& c, const OpeningDomain& domain, Progress* progress,
+  // `c`: the records of `scene`, which cut() traces.
+  LocalRecordQueries(const Scene& scene, const Contributions& c, Progress* progress,
                      SensorRange sensors = {});
 
   const Contributions& contributions() const override { return c_; }
@@ -83,20 +76,17 @@ class LocalRecordQueries : public RecordQueries {
   SensorValues evaluate(const std::vector<PanelRectangle>& region) override;
   Eigen::MatrixXd flip_effects(const std::vector<uint8_t>& about) override;
   std::unique_ptr<RegionQueries> region_search(const std::vector<PanelRectangle>& start) override;
-  SensorValues cut(const std::vector<OpeningInput>& openings, int paths) override;
+  SensorValues cut(const std::vector<OpeningInput>& openings, int paths, uint64_t stream) override;
   double record_bytes() const override;
   std::shared_ptr<const AnnualRecords> annual() const override { return c_.annual; }
   HourlyFlipModel hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
                                const HourlyColumns& columns, bool flips) override;
   AnnualStudy annual_study(const std::vector<PanelRectangle>& region) override;
   AnnualStudy annual_cut(const std::vector<OpeningInput>& openings, int paths) override;
-  std::unique_ptr<RecordQueries> refined(const std::vector<RefinedRegion>& regions) override;
-  const Scene& scene() const override { return scene_; }
 
  private:
   const Scene& scene_;
   const Contributions& c_;
-  const OpeningDomain& domain_;
   Progress* progress_;
   SensorRange sensors_;  // the scene's sensors the records hold (a shard's block)
   ExactValues exact_;

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 
+#include "solve/edge_refinement.h"
 #include "util/progress.h"
 
 namespace fenestra {
@@ -106,6 +107,15 @@ class Descent {
         opening.push_back(i);
       }
     *sides = side_light(out, in, opening, base.size());
+    // Only as far as the constraints let every side go at once (each opening's four in order).
+    std::vector<PanelRectangle> placed;
+    for (const GridRectangle& r : set) placed.push_back(panel_rectangle(r, domain_.element_size()));
+    for (size_t j = 0; j < opening.size(); ++j) {
+      const auto c = static_cast<Eigen::Index>(j);
+      const int side = static_cast<int>(j % 4);
+      sides->high[c] = std::min(sides->high[c], side_reach(domain_, constraints_, placed, opening[j], side, true));
+      sides->low[c] = std::max(sides->low[c], -side_reach(domain_, constraints_, placed, opening[j], side, false));
+    }
     return true;
   }
 
@@ -200,6 +210,44 @@ class Descent {
 
 }  // namespace
 
+namespace {
+
+// The size limits (width, height, area) of an opening grown (or shrunk) by `by` on every side.
+bool within_size_limits(const PanelRectangle& r, double by, const OpeningConstraints& c) {
+  const double w = r.width() + 2.0 * by, h = r.height() + 2.0 * by, tolerance = 1e-6;
+  return w >= c.min_width - tolerance && w <= c.max_width + tolerance && h >= c.min_height - tolerance &&
+         h <= c.max_height + tolerance && w * h >= c.min_area - tolerance && w * h <= c.max_area + tolerance;
+}
+
+}  // namespace
+
+double side_reach(const OpeningDomain& domain, const OpeningConstraints& constraints,
+                  const std::vector<PanelRectangle>& openings, size_t i, int side, bool out, double reach) {
+  const double s = domain.element_size();
+  const OpeningConstraints& c = constraints.for_panel(openings[i].panel);
+  for (double share : {1.0, 0.75, 0.5, 0.25}) {
+    const double by = share * reach * s * (out ? 1.0 : -1.0);  // outward, meters
+    PanelRectangle r = openings[i];
+    switch (side) {
+      case 0: r.u0 -= by; break;
+      case 1: r.u1 += by; break;
+      case 2: r.v0 -= by; break;
+      default: r.v1 += by; break;
+    }
+    if (!admissible(r, domain, constraints) || !within_size_limits(openings[i], by, c)) continue;
+    bool apart_from_all = true;
+    for (size_t j = 0; j < openings.size() && apart_from_all; ++j) {
+      if (j == i) continue;
+      PanelRectangle o = openings[j];
+      const double grown = std::max(0.0, by);
+      o.u0 -= grown, o.u1 += grown, o.v0 -= grown, o.v1 += grown;
+      apart_from_all = apart(r, o, constraints);
+    }
+    if (apart_from_all) return share * reach;
+  }
+  return 0.0;
+}
+
 SideLight SideLight::without(size_t i) const {
   std::vector<Eigen::Index> kept;
   for (size_t j = 0; j < opening.size(); ++j)
@@ -277,7 +325,8 @@ AlongSide along_side(const LinearObjective& o, const Eigen::VectorXd& p, const S
 // Coordinate descent: each side takes a Newton step of the objective along its parabola (a
 // Gauss-Newton one where that is not convex), kept within its range, halved while it does not
 // lower the error.
-double interpolated_error(const LinearObjective& objective, const Eigen::VectorXd& values, const SideLight& sides) {
+double interpolated_error(const LinearObjective& objective, const Eigen::VectorXd& values, const SideLight& sides,
+                          Eigen::VectorXd* offsets) {
   const Eigen::Index m = sides.slope.cols();
   Eigen::VectorXd p = values, s = Eigen::VectorXd::Zero(m);
   double error = prediction_error(objective, p);
@@ -306,7 +355,72 @@ double interpolated_error(const LinearObjective& objective, const Eigen::VectorX
     }
     if (largest < kConverged) break;
   }
+  if (offsets) *offsets = s;
   return error;
+}
+
+namespace {
+
+GridRectangle on_grid(const PanelRectangle& r, double s) {
+  return {r.panel, static_cast<int>(std::lround(r.v0 / s)), static_cast<int>(std::lround(r.v1 / s)) - 1,
+          static_cast<int>(std::lround(r.u0 / s)), static_cast<int>(std::lround(r.u1 / s)) - 1};
+}
+
+double& side_edge(PanelRectangle& r, int side) { return side == 0 ? r.u0 : side == 1 ? r.u1 : side == 2 ? r.v0 : r.v1; }
+
+}  // namespace
+
+std::vector<PanelRectangle> interpolated_placement(const OpeningDomain& domain, const OpeningConstraints& constraints,
+                                                   const std::vector<PanelRectangle>& openings,
+                                                   const PlacedValues& values_of, const LinearObjective& objective,
+                                                   double* interpolated) {
+  const double s = domain.element_size();
+  const Eigen::VectorXd base = values_of(openings);
+  std::vector<Eigen::VectorXd> out, in;
+  std::vector<size_t> opening;
+  std::vector<int> side_of;
+  for (size_t i = 0; i < openings.size(); ++i) {
+    if (!(domain.panels()[static_cast<size_t>(openings[i].panel)].thickness > 0.0f)) continue;
+    const GridRectangle g = on_grid(openings[i], s);
+    for (int side = 0; side < 4; ++side) {
+      Eigen::VectorXd moved[2];
+      for (int k = 0; k < 2; ++k) {
+        const GridRectangle m = g.side_moved(side, k == 0 ? 1 : -1);
+        if (!on_its_panel(domain, m)) continue;
+        std::vector<PanelRectangle> changed = openings;
+        changed[i] = panel_rectangle(m, s);
+        moved[k] = values_of(changed) - base;
+      }
+      out.push_back(std::move(moved[0]));
+      in.push_back(std::move(moved[1]));
+      opening.push_back(i);
+      side_of.push_back(side);
+    }
+  }
+  if (interpolated) *interpolated = prediction_error(objective, base);
+  if (opening.empty()) return openings;
+  SideLight sides = side_light(out, in, opening, base.size());
+  for (size_t j = 0; j < opening.size(); ++j) {
+    const auto c = static_cast<Eigen::Index>(j);
+    sides.high[c] = std::min(sides.high[c], side_reach(domain, constraints, openings, opening[j], side_of[j], true));
+    sides.low[c] = std::max(sides.low[c], -side_reach(domain, constraints, openings, opening[j], side_of[j], false));
+  }
+  Eigen::VectorXd offsets;
+  const double error = interpolated_error(objective, base, sides, &offsets);
+  if (interpolated) *interpolated = error;
+  std::vector<PanelRectangle> placed = openings;
+  for (size_t j = 0; j < opening.size(); ++j) {
+    double& edge = side_edge(placed[opening[j]], side_of[j]);
+    const double outward = side_of[j] % 2 == 0 ? -1.0 : 1.0;
+    const double to = edge + outward * offsets[static_cast<Eigen::Index>(j)] * s;
+    double best = edge;
+    for (float x : edge_positions(edge, s, constraints.module, true))
+      if ((x - edge) * (to - edge) >= 0.0 && std::abs(x - edge) <= std::abs(to - edge) + 1e-9 &&
+          std::abs(x - to) < std::abs(best - to))
+        best = x;
+    edge = best;
+  }
+  return constraint_violations(domain, placed, constraints).empty() ? placed : openings;
 }
 
 RefinableOpenings search_refinable_openings(const OpeningDomain& domain, const OpeningConstraints& constraints,

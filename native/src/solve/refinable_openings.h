@@ -23,6 +23,7 @@
 #include "scene/opening_constraints.h"
 #include "scene/opening_domain.h"
 #include "solve/genetic.h"
+#include "trace/open_region.h"
 
 namespace fenestra {
 
@@ -51,9 +52,32 @@ struct SideLight {
 SideLight side_light(const std::vector<Eigen::VectorXd>& out, const std::vector<Eigen::VectorXd>& in,
                      const std::vector<size_t>& opening, Eigen::Index sensors, double reach = kInterpolatedReach);
 
+// How far side `side` (0..3: left, right, bottom, top) of openings[i] may move out (`out`) or in,
+// in elements up to `reach`, so that the openings stay within the constraints (admissible, apart)
+// whatever the other sides do within theirs: the opposite side moved the same way as far, and the
+// other openings grown on every side as far (half of any gap is each one's). The largest of reach,
+// 3/4, 1/2 and 1/4 of it that does, else 0.
+double side_reach(const OpeningDomain& domain, const OpeningConstraints& constraints,
+                  const std::vector<PanelRectangle>& openings, size_t i, int side, bool out,
+                  double reach = kInterpolatedReach);
+
 // The objective's error (prediction_error) at values + slope s + curve s^2, least over s within
 // [low, high] (coordinate Newton steps, Gauss-Newton where the parabolas make it concave).
-double interpolated_error(const LinearObjective& objective, const Eigen::VectorXd& values, const SideLight& sides);
+double interpolated_error(const LinearObjective& objective, const Eigen::VectorXd& values, const SideLight& sides,
+                          Eigen::VectorXd* offsets = nullptr);
+
+// Exact sensor values (light added to the closed domain) of openings whose sides in thick walls
+// lie on the element grid (the others anywhere).
+using PlacedValues = std::function<Eigen::VectorXd(const std::vector<PanelRectangle>&)>;
+
+// The openings with each side of those in thick walls placed where the side light's parabolas
+// meet the objective best: within its reach (side_reach), then at the nearest thick-wall edge
+// position (edge_positions) no farther from its grid line. Openings elsewhere stay. When the
+// placement still breaks a constraint, the openings given. `interpolated`: its interpolated error.
+std::vector<PanelRectangle> interpolated_placement(const OpeningDomain& domain, const OpeningConstraints& constraints,
+                                                   const std::vector<PanelRectangle>& openings,
+                                                   const PlacedValues& values_of, const LinearObjective& objective,
+                                                   double* interpolated = nullptr);
 
 struct RefinableOpenings {
   std::vector<GridRectangle> rects;  // sorted; empty when no start was within the constraints

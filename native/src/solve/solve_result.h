@@ -50,7 +50,14 @@ struct ThickWallOpeningsSummary {
   int evaluations = 0, moves = 0;
   double interpolated_before = 0.0, interpolated_after = 0.0;
   bool kept = false;      // its openings replaced the search's
-  bool reverted = false;  // and, refined in the thick walls, met the goals worse: the search's kept
+  bool reverted = false;  // and, their thick-wall edges searched, met the goals worse: the search's kept
+};
+
+// Edges in thick walls searched with real cutters (solve/thick_wall_edges.h).
+struct ThickWallEdgesSummary {
+  bool ran = false;
+  int cuts = 0, paths_per_cut = 0, moves = 0;
+  bool from_placement = false;  // started where the records' interpolation placed the sides
 };
 
 struct SolveResult {
@@ -81,6 +88,7 @@ struct SolveResult {
   bool second_start = false, second_start_kept = false;
   OpeningSearchSummary opening_search;
   ThickWallOpeningsSummary thick_wall_openings;
+  ThickWallEdgesSummary thick_wall_edges;
   // When the constraints cost much light (constraints_cost_much), the error without each family
   // of limits, least first (solve/constraint_costs.h); else empty.
   std::vector<ConstraintCost> constraint_costs;

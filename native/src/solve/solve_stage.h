@@ -48,7 +48,6 @@ inline constexpr const char* kNoRefineEdges = "skipped: solver.refine_edges is o
 inline constexpr const char* kClimateThickWalls = "skipped: climate goals keep thick-wall edges on the grid";
 inline constexpr const char* kNoThickWallEdge = "skipped: no edge in a thick wall can leave the grid";
 inline constexpr const char* kWithinNoise = "skipped: the openings on the grid meet the goals within the records' noise";
-inline constexpr const char* kOutOfMemory = "skipped: the refined records would not fit in memory";
 inline constexpr const char* kNoFacadeRules = "skipped: no facade rules";
 inline constexpr const char* kNoTradeoffs = "skipped: solver.tradeoffs is off";
 inline constexpr const char* kNoLeastGlazing = "skipped: goals.least_glazing is off";

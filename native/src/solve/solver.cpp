@@ -42,16 +42,6 @@ void refuse_dark_sky(const Scene& scene) {
                                 "; the goals cannot be met: choose a date and time interval with daylight");
 }
 
-// Whether the openings `refined` meet the goals better than `start` when both are really cut.
-bool refined_edges_verified_better(RecordQueries& records, const std::vector<PanelRectangle>& start,
-                                   const std::vector<PanelRectangle>& refined, const SolverGoals& goals) {
-  auto verified_error = [&](const std::vector<PanelRectangle>& openings) {
-    std::vector<OpeningInput> cutters(openings.begin(), openings.end());
-    return goal_error(goals, records.cut(cutters, 0).value).relative_rms;
-  };
-  return verified_error(refined) < verified_error(start);
-}
-
 bool has_thick_panel(const OpeningDomain& domain) {
   for (const Panel& p : domain.panels())
     if (p.thickness > 0.0f) return true;
@@ -341,7 +331,6 @@ class OpeningSolve {
                           : settings_.search_evaluations <= 0          ? stop_reason::kNoSearchEvaluations
                           : kept_.rects.empty()                        ? stop_reason::kNoOpenings
                           : within_the_noise(kept_.values)             ? stop_reason::kWithinNoise
-                          : !thick_wall_edges_fit(records_)            ? stop_reason::kOutOfMemory
                                                                        : nullptr;
     if (skipped) return skip_stage(&out_.stages, "thick-wall openings", skipped);
     ThickWallOpeningsSummary& summary = out_.thick_wall_openings;
@@ -501,7 +490,7 @@ class OpeningSolve {
           refine_edges(scene_.domain, records_, objective_, constraints_, final_rects_, progress_, scope);
       out_.edge_moves = edges.moves;
       if (edges.moves > 0 && !chosen_exact_) {
-        final_rects_ = edges.openings;  // the prediction comes from the refined grid or real cutters below
+        final_rects_ = edges.openings;  // the prediction comes from real cutters below
       } else if (edges.moves > 0) {
         const SensorValues v = records_.evaluate(edges.openings);
         const double grid_error = chosen_error();
@@ -562,39 +551,42 @@ class OpeningSolve {
     return error * error - noise * noise <= kThickEdgesWorthTracing * kThickEdgesWorthTracing;
   }
 
-  // In thick walls, below the element size: the paths traced again on a grid refined about the
-  // openings' edges. Its records then give the prediction, unless its openings are refused.
+  // In thick walls, below the element size: the edges searched with real cutters, from where the
+  // element grid's records place them (solve/thick_wall_edges.h). The cuts give the prediction.
   void thick_wall_edges() {
-    bool traced = false;
+    bool searched = false;
     const double seconds = run_stage(&out_.stages, "thick-wall edges", [&] {
       if (grid_meets_the_goals_within_the_noise()) return stop_reason::kWithinNoise;
-      std::string skipped;
-      std::optional<ThickWallEdges> thick =
-          refine_thick_wall_edges(scene_, records_, objective_, constraints_, final_rects_, progress_, &skipped);
-      if (!skipped.empty()) out_.warnings.push_back(skipped);
-      traced = thick.has_value();
-      // The refined records are noisier than the element grid's (one way at each tube side), and a
-      // search over many candidates picks their noise too: with verification on, real cutters
-      // decide between the openings before and after (the same random numbers for both).
-      if (thick && thick->edges.moves > 0 && settings_.verify &&
-          !refined_edges_verified_better(records_, final_rects_, thick->edges.openings, out_.goals))
-        thick.reset();
-      if (thick) {
-        // Errors within one set of records: the first round's start is these openings.
-        out_.edge_moves += thick->edges.moves;
-        out_.fitness += thick->error - (chosen_exact_ ? thick->start_error : chosen_error());
-        chosen_ = thick->values;
-        chosen_exact_ = true;
-        final_rects_ = thick->edges.openings;
-      }
-      return traced ? stop_reason::kDone : !skipped.empty() ? stop_reason::kOutOfMemory : stop_reason::kNoThickWallEdge;
+      const bool thick = std::any_of(final_rects_.begin(), final_rects_.end(),
+                                     [&](const PanelRectangle& r) { return thick_panel(r.panel); });
+      if (!thick || edge_steps(scene_.domain.element_size(), constraints_.module, true).size() < 2)
+        return stop_reason::kNoThickWallEdge;
+      if (progress_) progress_->start("solving: edges in thick walls, with real cutters", 1);
+      const int paths = std::min(kThickWallEdgeCutPaths, c_.paths_per_sensor);
+      const ThickWallEdges cut =
+          search_thick_wall_edges(scene_.domain, records_, objective_, constraints_, final_rects_, paths, progress_);
+      searched = true;
+      out_.thick_wall_edges = {true, cut.cuts, paths, cut.edges.moves, cut.from_placement};
+      const double start_error = prediction_error(objective_, cut.start_values.value - c_.closed.value);
+      thick_start_error_ = goal_error(out_.goals, cut.start_values.value).relative_rms;
+      const double error = prediction_error(objective_, cut.values.value - c_.closed.value);
+      out_.edge_moves += cut.edges.moves;
+      out_.fitness += error - (chosen_exact_ ? start_error : chosen_error());
+      chosen_ = cut.values;
+      chosen_exact_ = true;
+      final_rects_ = cut.edges.openings;
+      return stop_reason::kDone;
     });
-    if (traced) thick_seconds_ = seconds;
+    if (searched) {
+      thick_seconds_ = seconds;
+      out_.stages.back().error_before = thick_start_error_;
+      out_.stages.back().error_after = goal_error(out_.goals, chosen_.value).relative_rms;
+    }
     keep_the_search_if_better();
   }
 
   // When thick_wall_openings chose other openings than the search, and those, refined in the
-  // thick walls (or not: out of memory), meet the goals worse than the search's on the grid: the
+  // thick walls, meet the goals worse than the search's on the grid: the
   // search's openings instead (each error from its own records, both unbiased).
   void keep_the_search_if_better() {
     if (!grid_best_) return;
@@ -626,15 +618,15 @@ class OpeningSolve {
     });
     if (!thick) return records_.evaluate(set);
     std::vector<OpeningInput> cutters(set.begin(), set.end());
-    return records_.cut(cutters, settings_.verify_paths);
+    return records_.cut(cutters, settings_.verify_paths, 0);
   }
 
   // Facade composition; `compose_` then serves the trade-offs too.
   void composition() {
     if (!chosen_exact_) {
-      // Catalogue sizes in thick walls without their refined records: cut for real.
+      // Catalogue sizes in thick walls, off the element grid: cut for real.
       std::vector<OpeningInput> cutters(final_rects_.begin(), final_rects_.end());
-      chosen_ = records_.cut(cutters, 0);
+      chosen_ = records_.cut(cutters, 0, 0);
     }
     set_openings(final_rects_);
     if (!composes(scene_.domain, constraints_))
@@ -761,7 +753,7 @@ class OpeningSolve {
     const double seconds = run_stage(&out_.stages, "verification", [&] {
       std::vector<OpeningInput> cutters;
       for (const OpeningRectangle& o : out_.openings) cutters.emplace_back(o.parameter);
-      const SensorValues v = records_.cut(cutters, settings_.verify_paths);
+      const SensorValues v = records_.cut(cutters, settings_.verify_paths, 0);
       out_.verified = true;
       out_.verified_value = v.value;
       out_.verified_stderr = v.standard_error;
@@ -808,11 +800,12 @@ class OpeningSolve {
   std::vector<GridRectangle> rects_;          // those openings, on the element grid
   std::vector<PanelRectangle> final_rects_;   // the answer's openings
   std::optional<LinearObjective> about_;      // the exact linear model about rects_
-  // Whether chosen_ holds the records' exact values of final_rects_ (not so for catalogue sizes in
-  // thick walls until their refined grid is traced).
+  // Whether chosen_ holds unbiased values of final_rects_ (the records' exact ones, or real cuts;
+  // not so for catalogue sizes in thick walls until they are cut).
   bool chosen_exact_ = true;
   std::function<std::vector<PanelRectangle>(const std::vector<PanelRectangle>&)> compose_;
   const char* tradeoffs_skipped_ = nullptr;
+  double thick_start_error_ = 0.0;  // relative RMS of the thick-wall edges' start, cut
   double thick_seconds_ = 0.0, compose_seconds_ = 0.0;
 };
 
@@ -823,7 +816,7 @@ std::vector<std::string> solved_constraint_violations(const Scene& scene, const 
 }
 
 SolveResult solve_openings(const Scene& scene, const Contributions& c, Progress* progress) {
-  LocalRecordQueries records(scene, c, scene.domain, progress);
+  LocalRecordQueries records(scene, c, progress);
   return solve_openings(scene, records, progress);
 }
 

@@ -1,12 +1,9 @@
 #pragma once
 // Edges of openings in thick walls below the element size. The path records of a thick wall follow
 // the tubes of the grid they were traced on, so an edge between grid lines cannot be evaluated from
-// them. The element grid is the coarse level: about each opening a region of the panel is cut
-// along the positions its edges may reach (edge_positions), the rest of the panel stays wall, the
-// paths are traced again on that grid (same seed and paths), and the edges are searched on its
-// lines, exactly. When an edge ends at its region's border, once more about the new openings.
-#include <optional>
-#include <string>
+// them: the sides are placed where the element grid's records interpolate them best, and searched
+// from there with real cutters (the scene path-traced with the openings cut, reveals and all).
+#include <cstdint>
 #include <vector>
 
 #include "solve/edge_refinement.h"
@@ -14,35 +11,36 @@
 
 namespace fenestra {
 
-struct ThickWallEdges {
-  EdgeRefinement edges;         // the search's result (moves and evaluations over all rounds)
-  // Exact values from the last round's records, and the objective's error, of its start and result.
-  SensorValues start_values, values;
-  double start_error = 0.0, error = 0.0;
-  int rounds = 0;
-};
-
-// The regions to refine: about each opening on a thick panel, the rectangle its edges may reach,
-// with a line at every position they may take; each opening elsewhere, itself (it stays open).
-std::vector<RefinedRegion> thick_wall_edge_regions(const OpeningDomain& domain,
-                                                   const std::vector<PanelRectangle>& openings, double module);
-
-// Whether the edge search on the refined grid could reach `to` from `from` (openings on the element
+// Whether the edge search with real cutters could reach `to` from `from` (openings on the element
 // grid): as many openings, each on the same panel with every side within the search's span of its
 // own (whole elements).
 bool within_thick_wall_edge_reach(const std::vector<GridRectangle>& from, const std::vector<GridRectangle>& to,
                                   double element_size, double module);
 
-// Whether the refined records fit in memory beside `coarse_records` (an estimate from theirs).
-bool thick_wall_edges_fit(const RecordQueries& coarse_records);
+// Paths per sensor of each cut of the edge search with real cutters (at most the solver's): the
+// candidates share their random numbers, so that they differ by the light their edges change.
+constexpr int kThickWallEdgeCutPaths = 4096;
+// Their random numbers are not the check's (RecordQueries::cut's stream 0): a check of the chosen
+// openings does not repeat the noise they were chosen by.
+constexpr uint64_t kThickWallEdgeCutStream = 1;
 
-// Nothing when no opening lies on a thick panel or the steps stop at whole elements. Otherwise the
-// refined records and the edges searched on them, starting from `start`. When the refined records
-// would not fit in memory (estimated from `coarse`'s), nothing, and *skipped says why.
-std::optional<ThickWallEdges> refine_thick_wall_edges(const Scene& scene, RecordQueries& coarse_records,
-                                                      const LinearObjective& objective,
-                                                      const OpeningConstraints& constraints,
-                                                      const std::vector<PanelRectangle>& start, Progress* progress,
-                                                      std::string* skipped);
+struct ThickWallEdges {
+  EdgeRefinement edges;                // the cut search's moves and cuts, and its openings
+  std::vector<PanelRectangle> placed;  // the openings placed by interpolation (its start if better)
+  double interpolated = 0.0;           // the placement's interpolated error
+  bool from_placement = false;         // the search started from `placed`
+  SensorValues start_values, values;   // cut: the openings given, and the result
+  int cuts = 0;                        // all the search's cuts
+};
+
+// Edges in thick walls searched with real cutters: the sides placed by the interpolation of the
+// element grid's records (interpolated_placement), then moved in steps below the element
+// (edge_steps in thick walls) while the error of the real cuts falls; from the start instead when
+// its cut meets the goals better than the placement's.
+ThickWallEdges search_thick_wall_edges(const OpeningDomain& domain, RecordQueries& records,
+                                                  const LinearObjective& objective,
+                                                  const OpeningConstraints& constraints,
+                                                  const std::vector<PanelRectangle>& start, int paths,
+                                                  Progress* progress);
 
 }  // namespace fenestra

@@ -36,7 +36,7 @@ std::vector<Tradeoff> fewer_openings(const Scene& scene, RecordQueries& records,
   const bool cut = any_thick(domain, openings);
   auto cut_values = [&](const std::vector<PanelRectangle>& set) {
     std::vector<OpeningInput> cutters(set.begin(), set.end());
-    return records.cut(cutters, check_paths);
+    return records.cut(cutters, check_paths, 0);
   };
   const Eigen::VectorXd& closed = records.contributions().closed.value;
   auto error_of = [&](const Eigen::VectorXd& values) { return prediction_error(objective, values - closed); };

@@ -17,6 +17,7 @@
 #include "scene/element_size_hint.h"
 #include "scene/scene.h"
 #include "solve/genetic.h"
+#include "solve/thick_wall_edges.h"
 #include "trace/parallel.h"
 #include "trace/replicates.h"
 #include "util/byte_size.h"
@@ -38,8 +39,12 @@ constexpr double kBytesPerEvent = 13.0, kBytesPerPath = 8.0;
 // several stored conditions, where the thin wall's light mostly names its one element) and
 // tracing 5.7x the zero-thickness wall's for the same paths.
 constexpr double kThickWallRecordFactor = 7.5, kThickWallTraceFactor = 6.0;
-// Passes over the refined grids of thick walls' openings in a solve (at most; usually one).
-constexpr double kThickWallEdgeRounds = 2.0;
+// Cuts the edge search in thick walls makes per opening (solve/thick_wall_edges.h): 221 for a
+// window in a 0.3 m wall with 0.35 m elements; the pair scans over both axes are most of them.
+constexpr double kThickWallEdgeCutsPerOpening = 250.0;
+// Openings in thick walls the estimate assumes per thick panel when the constraints set no
+// maximum.
+constexpr double kThickWallOpeningsPerPanel = 2.0;
 constexpr double kEventsAtSensor = 3.0, kEventsPerVertex = 1.75;
 // While the per-task records are merged into one per sensor, both exist; the tasks' vectors keep
 // up to as much spare room again as they hold.
@@ -251,8 +256,9 @@ void add_solver(const Scene& scene, CostEstimate* e) {
   const double pop = s.population, gens = s.generations;
   e->memory.push_back({"solver_copies", "the solver's copies of E", kSolverCopiesOfE * 8 * S * N, "solving",
                        "fewer sensors or " + std::string(kLargerElementSize)});
-  if (s.verify)
-    e->memory.push_back({"verification_scene", "the ray-tracing scene of the verification",
+  const bool thick_edges = s.refine_edges && scene.domain.has_thick_walls();
+  if (s.verify || thick_edges)
+    e->memory.push_back({"verification_scene", "the ray-tracing scene of a cut (the verification, thick walls' edges)",
                          ray_scene_bytes(static_cast<double>(e->triangles)), "solving", "fewer triangles"});
   e->memory.push_back({"population", "the genetic algorithm's populations", 3 * pop * (N + 8 * S + 64), "solving",
                        "a smaller solver.population"});
@@ -265,20 +271,23 @@ void add_solver(const Scene& scene, CostEstimate* e) {
   e->memory.push_back({"opening_search_values", "the exact values of the sets the search over whole openings scores",
                        s.search_evaluations * (16.0 * S + N + 96.0), "solving", "fewer solver.search_evaluations"});
   if (s.refine_edges) {
-    // One search at a time: on the element grid's records, then on a thick wall's refined ones.
     e->memory.push_back({"edge_search_index", "the edge search's index of where paths met the domain",
                          kEdgeSearchIndexShare * path_records, "solving", "fewer solver paths, or solver.refine_edges off"});
   }
-  if (s.refine_edges && scene.domain.has_thick_walls()) {
-    // Edges in thick walls: the paths traced again on a grid refined about the openings
-    // (solve/thick_wall_edges.h), choosing one way at each tube side (about the time of a
-    // zero-thickness wall's pass), up to twice; their records beside the first pass's.
-    e->memory.push_back({"thick_wall_edge_records", "the path records of the thick walls' refined grids", path_records,
-                         "solving", "fewer solver paths, or solver.refine_edges off"});
-    e->time.push_back({"thick_wall_edges", "tracing the thick walls' refined grids",
-                       kThickWallEdgeRounds * S * static_cast<double>(e->paths_per_sensor) *
-                           expected_vertices(scene) * kTraceSecondsPerVertex,
-                       0.0, "fewer solver paths, or solver.refine_edges off"});
+  if (thick_edges) {
+    // Edges in thick walls: openings really cut (solve/thick_wall_edges.h), each with at most
+    // kThickWallEdgeCutPaths paths per sensor through the wall.
+    int thick_panels = 0;
+    for (const Panel& p : scene.domain.panels()) thick_panels += p.thickness > 0.0f;
+    const double openings = s.constraints.max_openings > 0 ? s.constraints.max_openings
+                                                           : kThickWallOpeningsPerPanel * thick_panels;
+    const double cuts = kThickWallEdgeCutsPerOpening * openings;
+    const double paths = std::min<double>(kThickWallEdgeCutPaths, static_cast<double>(e->paths_per_sensor));
+    e->time.push_back({"thick_wall_edges",
+                       "cutting the openings the edge search in thick walls tries (about " + format_count(cuts) +
+                           " cuts of " + format_count(paths) + " paths per sensor)",
+                       cuts * S * paths * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
+                       0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
     // The openings chosen again for their edges off the grid (solve/refinable_openings.h): at most
     // search_evaluations sets more, each kept twice (the records' exact values, and the search's
     // values) and evaluated as the search's are.

@@ -104,7 +104,7 @@ OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInp
 }
 
 SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings, Progress* progress,
-                               int paths_per_sensor, SensorRange range) {
+                               int paths_per_sensor, SensorRange range, uint64_t stream) {
   range = range.within(scene.sensors.size());
   OpeningsGeometry g = build_openings(scene, openings);
   const PathTracer tracer(scene, std::move(g.cutters), std::move(g.reveals));
@@ -116,7 +116,8 @@ SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInpu
   // Per task, its paths' sums by replicate group: stratified paths are not independent, the
   // groups are (replicates.h).
   std::vector<ReplicateSums> sums(sensors * tasks_per_sensor);
-  const uint64_t seed = scene.render.seed ^ kEvaluateStream;
+  // Streams apart by an odd multiplier: their seeds differ in many bits.
+  const uint64_t seed = scene.render.seed ^ kEvaluateStream ^ (stream * 0x9e3779b97f4a7c15ULL);
   if (progress) progress->start("tracing the scene with its openings", sums.size());
   parallel_path_tasks(range, paths, scene.render.threads, progress, [&](const PathTask& task) {
     task.for_each_path(scene.render, seed, [&](size_t p, Rng& rng, const PathSamples* samples) {

@@ -40,8 +40,10 @@ OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInp
 
 // Paths per sensor: `paths_per_sensor`, or the scene's render.paths_per_sensor when 0.
 // `sensors`: only that block of the scene's sensors (a shard), equal bit for bit to their values
-// in the whole scene's run.
+// in the whole scene's run. `stream`: random numbers of their own (0: the scene's evaluation's), for
+// cuts that choose openings, so that the check of the chosen ones is independent of the choice.
 SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings,
-                               Progress* progress = nullptr, int paths_per_sensor = 0, SensorRange sensors = {});
+                               Progress* progress = nullptr, int paths_per_sensor = 0, SensorRange sensors = {},
+                               uint64_t stream = 0);
 
 }  // namespace fenestra

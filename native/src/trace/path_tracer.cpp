@@ -90,9 +90,7 @@ void PathTracer::sample_portal(const PortalSampler::Aim& aim, const Vec3& x, con
   through_state.portal_pdf = pdf;
   through_state.by_portal = true;
   through_state.must_reach = dist;  // portals only reach what lies beyond the element met first
-  // The element under the point (on a refined grid, one of the portal's cells).
-  const int element = aim.portal >= 0 && !scene_.domain.is_refined() ? aim.portal
-                                                                      : scene_.domain.element_at(aim.panel, portal.at);
+  const int element = aim.portal >= 0 ? aim.portal : scene_.domain.element_at(aim.panel, portal.at);
   if (element < 0) return;
   const CutterSet through{scene_.domain.element_cutter(element)};
   RecordSink outside = RecordSink::outside();
@@ -156,10 +154,8 @@ bool PathTracer::meet_element_outside(const Crossing& j, bool through_face, cons
   // sides met end where it reflects (a closed cell) or leaves the wall: with m sides left on it,
   // this one included, reflecting here has probability 1 / (m + 1), which makes each of the m + 1
   // ends equally likely and weighs every one m + 1 (an even choice at each side would weigh the
-  // last 2^m: heavy tails on fine grids). On a refined grid (a local search's, cut every few
-  // centimetres) the segment entering the wall crosses many sides too: following both ways at
-  // each would trace a reveal sub-path per side, so it chooses as well.
-  if (!through_face && (st.depth != st.branch_both_depth || scene_.domain.is_refined())) {
+  // last 2^m: heavy tails on fine grids).
+  if (!through_face && st.depth != st.branch_both_depth) {
     const int panel = scene_.domain.elements()[j.element].panel;
     const int m = 1 + scene_.domain.lines_ahead(panel, at, dir);
     const float reflect = 1.0f / static_cast<float>(m + 1);

@@ -32,7 +32,7 @@ float radical_inverse(uint32_t index, uint32_t base) {
 
 PortalSampler::PortalSampler(const OpeningDomain& domain, const RenderSettings& render)
     : domain_(domain), seed_(render.seed), paths_per_sensor_(static_cast<size_t>(render.paths_per_sensor)) {
-  for (const Element& e : domain_.portals()) {
+  for (const Element& e : domain_.elements()) {
     const Panel& panel = domain_.panels()[e.panel];
     portals_.push_back({e.corners[0], e.width() * panel.u_axis, e.height() * panel.v_axis, panel.normal, e.panel,
                         panel.curved(), {e.u0, e.v0}, {e.width(), e.height()}});
@@ -146,10 +146,7 @@ float PortalSampler::pdf(int k, const PanelPoint& at, const Vec3& from, float di
   }
   // An element chosen among all (or among its panel's), then a uniform point of its square in panel
   // coordinates, converted to solid angle (on a curved panel, through the surface's area there).
-  // On a refined domain, the portal is the unrefined element under the point.
-  const int portal_index = domain_.is_refined() ? domain_.portal_at(panel, at) : k;
-  if (portal_index < 0) return 0.0f;
-  const Portal& portal = portals_[portal_index];
+  const Portal& portal = portals_[k];
   Vec3 normal = portal.normal;
   float area_ratio = 1.0f;
   if (portal.curved) {

@@ -28,9 +28,8 @@ class PortalSampler {
   // keep four.
   static constexpr size_t kStratifiedSensorPortals = 2;
 
-  // The portals are the domain's unrefined elements (OpeningDomain::portals()). `render`: the
-  // sampler ("sobol" aims interior samples by panel, in solid angle), the seed and the paths per
-  // sensor the sensor's samples are spread over.
+  // The portals are the domain's elements. `render`: the sampler ("sobol" aims interior samples by
+  // panel, in solid angle), the seed and the paths per sensor the sensor's samples are spread over.
   PortalSampler(const OpeningDomain& domain, const RenderSettings& render);
 
   bool empty() const { return portals_.empty(); }
