@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <set>
 #include <sstream>
 
@@ -16,6 +17,7 @@ constexpr double kTolerance = 1e-6;  // meters (and relative, for ratios): limit
 constexpr double kMinClearance = 0.01;  // meters between two openings of a panel, whatever min_gap says
 constexpr int kMaxSweeps = 16;          // tries per step size, in cycles of all openings' moves
 constexpr int kMaxScanPasses = 3;       // of EdgeSearchScope::scan_span over both axes
+constexpr long kScanStride = 2;         // finest steps between the pairs a first pass tries every one of
 constexpr size_t kScreenedFailures = 4;  // exact tries of a screened step's best-ranked moves before it ends
 
 bool covers_elements(const OpeningDomain& domain, int panel, double u0, double u1, double v0, double v1) {
@@ -51,20 +53,33 @@ struct EdgeMove {
   std::array<int, 2> signs;
 };
 
-// One edge at a time, or two opposite edges together (the opening slides along u or v); with
-// `diagonal`, also an edge of each axis, either way each: width traded for height, along the
-// valley of nearly equal light that coordinate moves cannot follow.
-const std::vector<EdgeMove>& edge_moves(bool diagonal) {
-  static const std::vector<EdgeMove> straight = {{{0, -1}, {1, 1}}, {{1, -1}, {1, 1}}, {{2, -1}, {1, 1}},
-                                                 {{3, -1}, {1, 1}}, {{0, 1}, {1, 1}},  {{2, 3}, {1, 1}}};
-  static const std::vector<EdgeMove> all = [] {
-    std::vector<EdgeMove> m = straight;
+// One edge at a time, or two opposite edges together (the opening slides along u or v).
+const std::vector<EdgeMove>& straight_moves() {
+  static const std::vector<EdgeMove> moves = {{{0, -1}, {1, 1}}, {{1, -1}, {1, 1}}, {{2, -1}, {1, 1}},
+                                              {{3, -1}, {1, 1}}, {{0, 1}, {1, 1}},  {{2, 3}, {1, 1}}};
+  return moves;
+}
+
+// An edge of each axis, either way each: width traded for height, along the valley of nearly equal
+// light that coordinate moves cannot follow.
+const std::vector<EdgeMove>& trading_moves() {
+  static const std::vector<EdgeMove> moves = [] {
+    std::vector<EdgeMove> m;
     for (int eu : {0, 1})
       for (int ev : {2, 3})
         for (int sign : {1, -1}) m.push_back({{eu, ev}, {1, sign}});
     return m;
   }();
-  return diagonal ? all : straight;
+  return moves;
+}
+
+const std::vector<EdgeMove>& straight_and_trading_moves() {
+  static const std::vector<EdgeMove> moves = [] {
+    std::vector<EdgeMove> m = straight_moves();
+    m.insert(m.end(), trading_moves().begin(), trading_moves().end());
+    return m;
+  }();
+  return moves;
 }
 
 // Whether opening i of `candidate` may be evaluated and kept: in a thick wall on the lines of the
@@ -80,48 +95,51 @@ bool fits(const OpeningDomain& domain, const OpeningConstraints& constraints,
   return true;
 }
 
-// EdgeSearchScope::scan_span: pairs of positions `step` apart within `span` of an opening's two
-// edges along one axis (real cuts: any position), every other pair first, then the pairs beside
-// the best. Returns whether a pair was kept.
+// EdgeSearchScope::scan_span: pairs of positions of an opening's two edges along one axis (real
+// cuts: any position), within `span` of where they start, `step` apart. Every pair `stride` steps
+// apart first (a valley between coarser pairs is easily missed); then the 3 x 3 pairs about the
+// best at halving strides down to one step, moving with the best until it stays. Returns whether a
+// pair was kept.
 bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& constraints, const LinearObjective& objective,
-                     const Eigen::VectorXd& closed, double span, double step, RegionQueries* search, double* error,
-                     EdgeRefinement* out, Progress* progress) {
+                     const Eigen::VectorXd& closed, double span, double step, long stride,
+                     RegionQueries* search, double* error, EdgeRefinement* out, Progress* progress) {
   bool kept = false;
   const long k = static_cast<long>(std::floor(span / step + 1e-9));
-  auto positions_near = [&](double x) {
-    std::vector<float> near;
-    for (long j = -k; j <= k; ++j) near.push_back(static_cast<float>(x + j * step));
-    return near;
-  };
+  if (k < 1) return false;
   for (size_t i = 0; i < search->rectangles().size(); ++i) {
     const Panel& panel = domain.panels()[search->rectangles()[i].panel];
     if (!(panel.thickness > 0.0f)) continue;
     for (int axis = 0; axis < 2; ++axis) {
       const PanelRectangle start = search->rectangles()[i];
       const double lo = axis == 0 ? start.u0 : start.v0, hi = axis == 0 ? start.u1 : start.v1;
-      const std::vector<float> low = positions_near(lo), high = positions_near(hi);
-      const long a0 = k, b0 = k;
-      std::set<std::pair<long, long>> tried = {{a0, b0}};
+      std::set<std::pair<long, long>> tried = {{0, 0}};
       std::vector<PanelRectangle> best;
-      long best_a = a0, best_b = b0;
+      long best_a = 0, best_b = 0;  // offsets of the low and high edges, in steps
       auto try_pair = [&](long a, long b) {
-        if (a < 0 || b < 0 || a >= static_cast<long>(low.size()) || b >= static_cast<long>(high.size())) return;
-        if (!tried.insert({a, b}).second || !(high[b] > low[a])) return;
+        if (std::abs(a) > k || std::abs(b) > k || !tried.insert({a, b}).second) return;
+        const double low = lo + static_cast<double>(a) * step, high = hi + static_cast<double>(b) * step;
+        if (!(static_cast<float>(high) > static_cast<float>(low))) return;
         if (progress) progress->throw_if_cancelled();
         std::vector<PanelRectangle> candidate = search->rectangles();
         PanelRectangle& r = candidate[i];
-        (axis == 0 ? r.u0 : r.v0) = low[a];
-        (axis == 0 ? r.u1 : r.v1) = high[b];
+        (axis == 0 ? r.u0 : r.v0) = static_cast<float>(low);
+        (axis == 0 ? r.u1 : r.v1) = static_cast<float>(high);
         if (!fits(domain, constraints, candidate, i, true)) return;
         const double e = prediction_error(objective, search->try_region(candidate) - closed);
         ++out->evaluations;
         if (e < *error * (1.0 - 1e-9)) *error = e, best = candidate, best_a = a, best_b = b;
       };
-      for (long a = a0 % 2; a < static_cast<long>(low.size()); a += 2)
-        for (long b = b0 % 2; b < static_cast<long>(high.size()); b += 2) try_pair(a, b);
-      const long ca = best_a, cb = best_b;
-      for (long da = -1; da <= 1; ++da)
-        for (long db = -1; db <= 1; ++db) try_pair(ca + da, cb + db);
+      if (stride > 1)
+        for (long a = -(k / stride) * stride; a <= k; a += stride)
+          for (long b = -(k / stride) * stride; b <= k; b += stride) try_pair(a, b);
+      for (long about = stride > 1 ? stride / 2 : 1; about >= 1; about /= 2) {
+        long ca = 0, cb = 0;
+        do {
+          ca = best_a, cb = best_b;
+          for (long da = -1; da <= 1; ++da)
+            for (long db = -1; db <= 1; ++db) try_pair(ca + da * about, cb + db * about);
+        } while (best_a != ca || best_b != cb);
+      }
       if (best.empty()) continue;
       // Evaluated again (the search remembers its last try only), and kept.
       search->try_region(best);
@@ -288,13 +306,17 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Eigen::VectorXd& 
   double error = prediction_error(objective, search.values() - closed);
   const double module = constraints.module;
   // Width and height trade against each other (a valley of nearly equal light): the axes are
-  // scanned in turn while either improves, over the whole span first, then within two steps.
+  // scanned in turn while either improves, over the whole span first, then within two steps,
+  // following the best from one step about it.
   const double finest = edge_steps(s, constraints.module, true).back();
-  for (int pass = 0; scope.scan_span > 0.0 && scope.real_cuts && pass < kMaxScanPasses; ++pass) {
+  bool scans_settled = false;  // a whole pass kept nothing
+  for (int pass = 0; scope.scan_span > 0.0 && scope.real_cuts && pass < kMaxScanPasses && !scans_settled; ++pass) {
     const double span = pass == 0 ? scope.scan_span : std::min(scope.scan_span, 2.0 * finest);
-    if (!scan_edge_pairs(domain, constraints, objective, closed, span, finest, &search, &error, &out, progress)) break;
+    const long stride = pass == 0 ? kScanStride : 1;
+    scans_settled = !scan_edge_pairs(domain, constraints, objective, closed, span, finest, stride, &search, &error,
+                                     &out, progress);
   }
-  const std::vector<EdgeMove>& moves = edge_moves(scope.scan_span > 0.0);
+  const std::vector<EdgeMove>& moves = scope.scan_span > 0.0 ? straight_and_trading_moves() : straight_moves();
   // The openings with opening i's edges moved by `step` (move, direction), if that changes and fits.
   auto moved = [&](size_t i, const EdgeMove& move, double direction, double step, bool whole_elements,
                    std::vector<PanelRectangle>* candidate) {
@@ -364,10 +386,22 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Eigen::VectorXd& 
   while (scope.coarsest_finest_step > 0.0 && steps.size() > 1 &&
          steps[steps.size() - 2] >= scope.coarsest_finest_step * (1.0 - 1e-9))
     steps.pop_back();
-  // The pair scans' last pass tried every move of an edge, and every slide, by one or two of the
-  // finest steps about their result: only the finest step's moves follow (those that trade width
-  // for height are new).
+  // The pair scans tried every move of an edge, and every slide, by one of the finest steps about
+  // where each pass ended: only the finest step's moves follow (those that trade width for height
+  // are new).
   if (scope.scan_span > 0.0 && scope.real_cuts) steps.erase(steps.begin(), steps.end() - 1);
+  // A settled scan tried every straight move of one step about where each opening ended: unless a
+  // move that trades width for height gains there, the search has ended.
+  auto a_trade_gains = [&] {
+    for (size_t i = 0; i < search.rectangles().size(); ++i)
+      for (const EdgeMove& move : trading_moves())
+        for (const double direction : {-1.0, 1.0}) {
+          if (progress) progress->throw_if_cancelled();
+          if (searched(i) && try_move(i, move, direction, finest, false)) return true;
+        }
+    return false;
+  };
+  if (scans_settled && !a_trade_gains()) steps.clear();
   for (const double step : steps) {
     const bool whole_elements = step >= s * (1.0 - 1e-9);
     if (whole_elements && !scope.whole_elements) continue;

@@ -69,9 +69,9 @@ struct EdgeSearchScope {
   bool zero_thickness_panels = true;
   bool thick_panels = true;  // false: openings in thick walls stay as they are
   // > 0 with real_cuts: first, for each opening in a thick wall and each axis, pairs of positions
-  // (the finest thick-wall step apart) within this distance of its two edges are tried (its error
-  // along a sill or head can have narrow valleys that single steps do not cross), and the best
-  // pair kept; again within two steps while a pass gains.
+  // of its two edges within this distance are searched (its error along a sill or head can have
+  // narrow valleys that single steps do not cross), coarse to fine down to the finest thick-wall
+  // step, and the best pair kept; again one step about it while a pass gains.
   double scan_span = 0.0;
   // Optional, sensors x elements: the light each element adds when opened (a linearisation about
   // the start). It ranks the moves of every step but the finest, so that few are evaluated.

@@ -45,7 +45,7 @@ ThickWallEdges search_thick_wall_edges(const OpeningDomain& domain, RecordQuerie
   scope.zero_thickness_panels = false;
   scope.real_cuts = true;
   // Sill and head (or jambs) trade against each other in narrow valleys that single moves do not
-  // cross: pairs of positions two of the finest steps about each edge are tried first.
+  // cross: pairs of positions of the two edges are searched first, over the whole span.
   scope.scan_span = thick_wall_edge_span(domain.element_size(), constraints.module);
   out.edges = refine_edges(domain, closed, objective, constraints, &search, progress, scope);
   out.values = search.current();
