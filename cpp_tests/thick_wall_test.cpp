@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "annual/annual_contributions.h"
+#include "solve/catalogue_snap.h"
 #include "solve/record_queries.h"
 #include "solve/thick_wall_edges.h"
 #include "test_scenes.h"
@@ -175,6 +176,39 @@ TEST(ThickWall, EdgeSearchWithRealCuttersEndsOnEdgesBetweenGridLines) {
   EXPECT_GT(found.edges.moves, 0);
   EXPECT_TRUE((found.values.value.array() == goals.value.array()).all());
   EXPECT_GT(prediction_error(objective, found.start_values.value - c.closed.value), 0.0);
+}
+
+// In a thick wall the catalogue's sizes are scored by real cuts: with goals that are a catalogue
+// size's own cut, that size, at that place, is chosen and its values are that cut's.
+TEST(ThickWall, CatalogueSizesAreChosenByRealCuts) {
+  TempDir dir;
+  std::ostringstream grid_points;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      grid_points << (i + j ? ", " : "[") << "[" << 0.3 + 0.48 * i << ", " << 0.3 + 0.48 * j << ", 0.8]";
+  grid_points << "]";
+  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, grid_points.str());
+  const Contributions c = compute_contributions(scene);
+  LocalRecordQueries records(scene, c, nullptr);
+  OpeningConstraints constraints;
+  constraints.catalogue.walls = {{1.0, 1.0}, {1.5, 1.0}, {1.0, 0.5}};
+  const PanelRectangle start{0, 1.0, 2.0, 0.75, 1.75};  // a catalogue size, kept unless one does better
+  const PanelRectangle truth{0, 0.75, 2.25, 0.75, 1.75};  // 1.5 x 1.0, centred where the start is
+  const int paths = 256;
+  const SensorValues goals = records.cut({OpeningInput(truth)}, paths, kThickWallEdgeCutStream);
+  LinearObjective objective;
+  objective.target = goals.value - c.closed.value;
+  objective.weight = Eigen::VectorXd::Constant(objective.target.size(), 1.0 / goals.value.squaredNorm());
+  const CatalogueSnap snap = snap_to_catalogue(scene.domain, records, objective, constraints, c.E, {start}, nullptr, paths);
+  ASSERT_EQ(snap.openings.size(), 1u);
+  const PanelRectangle& r = snap.openings[0];
+  EXPECT_NEAR(r.u0, truth.u0, 1e-6);
+  EXPECT_NEAR(r.u1, truth.u1, 1e-6);
+  EXPECT_NEAR(r.v0, truth.v0, 1e-6);
+  EXPECT_NEAR(r.v1, truth.v1, 1e-6);
+  EXPECT_TRUE(snap.exact);
+  EXPECT_TRUE((snap.values.array() == goals.value.array()).all());
+  EXPECT_TRUE((snap.standard_error.array() == goals.standard_error.array()).all());
 }
 
 TEST(ThickWall, LinesAheadCountsTheTubeSidesLeftInTheWall) {

@@ -214,6 +214,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
       {"thick_wall_edges", {{"run", r.thick_wall_edges.ran},
                             {"cuts", r.thick_wall_edges.cuts},
                             {"paths_per_cut", r.thick_wall_edges.paths_per_cut},
+                            {"rough_cuts", r.thick_wall_edges.rough_cuts},
                             {"moves", r.thick_wall_edges.moves},
                             {"from_placement", r.thick_wall_edges.from_placement}}},
       {"constraint_costs", [&] {

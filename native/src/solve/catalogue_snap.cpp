@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "solve/edge_refinement.h"
+#include "solve/thick_wall_edges.h"
 #include "util/progress.h"
 
 namespace fenestra {
@@ -38,8 +39,10 @@ class Snapper {
  public:
   Snapper(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
           const OpeningConstraints& constraints, const Eigen::MatrixXd& opening_light,
-          const std::vector<PanelRectangle>& start, Progress* progress)
+          const std::vector<PanelRectangle>& start, Progress* progress, int cut_paths)
       : domain_(domain),
+        records_(records),
+        cut_paths_(cut_paths),
         objective_(objective),
         constraints_(constraints),
         light_(opening_light),
@@ -49,7 +52,12 @@ class Snapper {
         shifts_(shifts(domain.element_size())),
         search_(records.region_search(start)) {
     slots_.assign(start.begin(), start.end());
-    values_ = search_->values();
+    if (cut_paths_ > 0) {
+      const SensorValues start_cut = cut(slots_);
+      values_ = start_cut.value, errors_ = start_cut.standard_error;
+    } else {
+      values_ = search_->values();
+    }
   }
 
   CatalogueSnap run() {
@@ -61,7 +69,8 @@ class Snapper {
       if (s) out.openings.push_back(*s);
     out.values = values_;
     out.exact = true;
-    for (size_t i = 0; i < slots_.size(); ++i)
+    out.standard_error = errors_;
+    for (size_t i = 0; i < slots_.size() && cut_paths_ == 0; ++i)
       if (slots_[i] && thick(i) && !same(*slots_[i], start_[i])) out.exact = false;
     out.notes = notes_;
     return out;
@@ -89,6 +98,21 @@ class Snapper {
     return change;
   }
   double error_of(const Eigen::VectorXd& values) const { return prediction_error(objective_, values - closed_); }
+
+  SensorValues cut(const std::vector<Slot>& slots) {
+    std::vector<OpeningInput> openings;
+    for (const Slot& s : slots)
+      if (s) openings.emplace_back(*s);
+    return records_.cut(openings, cut_paths_, kThickWallEdgeCutStream);
+  }
+  // The trial's values: cut, or from the records (and the linear change of resized openings in
+  // thick walls), as the search's last try.
+  SensorValues values_of(const std::vector<Slot>& trial) {
+    if (cut_paths_ > 0) return cut(trial);
+    SensorValues v;
+    v.value = search_->try_region(evaluated(trial)) + thick_change(trial);
+    return v;
+  }
 
   // Catalogue sizes for opening i, each at its first admissible place near the anchors.
   std::vector<PanelRectangle> candidates(size_t i) const {
@@ -131,34 +155,35 @@ class Snapper {
     const WindowCatalogue& catalogue = constraints_.for_panel(at.panel).catalogue;
     if (catalogue.sizes_for(panel).empty()) return;  // sizes free on this kind of panel
     must_change = must_change && !catalogue.allows(panel, at.width(), at.height());
-    // Rank by the linear model, from the current values.
+    // Rank by the linear model, from the current values (with cuts, every size is cut).
     std::vector<std::pair<double, Slot>> ranked;
     for (const PanelRectangle& r : candidates(i)) {
       const Eigen::VectorXd v = screened_values(domain_, light_, values_, at, r);
       ranked.push_back({error_of(v), r});
     }
     std::sort(ranked.begin(), ranked.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    if (ranked.size() > kExactTries) ranked.resize(kExactTries);
+    if (cut_paths_ == 0 && ranked.size() > kExactTries) ranked.resize(kExactTries);
     ranked.push_back({0.0, std::nullopt});  // no opening
     double best = must_change ? std::numeric_limits<double>::infinity() : error_of(values_);
     std::optional<std::vector<Slot>> kept;
-    Eigen::VectorXd kept_values;
+    SensorValues kept_values;
     for (const auto& [screened, choice] : ranked) {
       std::vector<Slot> trial = slots_;
       trial[i] = choice;
-      const Eigen::VectorXd v = search_->try_region(evaluated(trial)) + thick_change(trial);
-      const double e = error_of(v);
+      const SensorValues v = values_of(trial);
+      const double e = error_of(v.value);
       if (e < best * (1.0 - 1e-9) || (must_change && !kept && std::isinf(best))) {
         best = e;
         kept = trial;
         kept_values = v;
-        search_->accept();
+        if (cut_paths_ == 0) search_->accept();
       }
     }
     if (!kept) return;
     // try_region / accept leave the search at the last accepted try, which is the kept one.
     slots_ = *kept;
-    values_ = kept_values;
+    values_ = kept_values.value;
+    errors_ = kept_values.standard_error;
     if (must_change && !slots_[i])
       notes_.push_back("catalogue: an opening of " + fmt(at.width()) + " x " + fmt(at.height()) + " m on panel " +
                        std::to_string(at.panel) + " was dropped: no catalogue size fits there, or none helps");
@@ -171,6 +196,8 @@ class Snapper {
   }
 
   const OpeningDomain& domain_;
+  RecordQueries& records_;
+  const int cut_paths_;
   const LinearObjective& objective_;
   const OpeningConstraints& constraints_;
   const Eigen::MatrixXd& light_;
@@ -181,6 +208,7 @@ class Snapper {
   std::unique_ptr<RegionQueries> search_;
   std::vector<Slot> slots_;
   Eigen::VectorXd values_;
+  Eigen::VectorXd errors_;  // with cuts: values_'s standard errors
   std::vector<std::string> notes_;
 };
 
@@ -224,8 +252,8 @@ bool uses_catalogue(const OpeningDomain& domain, const OpeningConstraints& const
 
 CatalogueSnap snap_to_catalogue(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
                                 const OpeningConstraints& constraints, const Eigen::MatrixXd& opening_light,
-                                const std::vector<PanelRectangle>& start, Progress* progress) {
-  return Snapper(domain, records, objective, constraints, opening_light, start, progress).run();
+                                const std::vector<PanelRectangle>& start, Progress* progress, int cut_paths) {
+  return Snapper(domain, records, objective, constraints, opening_light, start, progress, cut_paths).run();
 }
 
 }  // namespace fenestra

@@ -7,8 +7,11 @@
 // opening whose size is not in the catalogue is always replaced; one with no admissible size is
 // dropped, and a note says why.
 //
-// In thick walls the records are exact only on the element grid's lines, so there a catalogue size
-// is scored by the linear model alone; the solver then cuts them for real for the prediction.
+// In thick walls the records are exact only on the element grid's lines, and the linear model
+// misjudges whole openings there (elements open together pass much more light than apart): with
+// `cut_paths` > 0, every candidate is scored by a real cut (RecordQueries::cut, that many paths
+// per sensor, on the thick-wall edge search's stream). Without, resized openings in thick walls are
+// scored by the linear model alone, and the solver cuts them for the prediction.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -26,7 +29,8 @@ class Progress;
 struct CatalogueSnap {
   std::vector<PanelRectangle> openings;
   Eigen::VectorXd values;          // per sensor: exact, but linear for resized openings in thick walls
-  bool exact = true;               // false when an opening in a thick wall was resized
+  bool exact = true;               // false when an opening in a thick wall was resized without cuts
+  Eigen::VectorXd standard_error;  // with cuts: per sensor, the values' (else empty)
   std::vector<std::string> notes;  // openings dropped for want of an admissible size
 };
 
@@ -43,6 +47,6 @@ bool uses_catalogue(const OpeningDomain& domain, const OpeningConstraints& const
 // element adds when opened about `start` (the solver's linearisation).
 CatalogueSnap snap_to_catalogue(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
                                 const OpeningConstraints& constraints, const Eigen::MatrixXd& opening_light,
-                                const std::vector<PanelRectangle>& start, Progress* progress);
+                                const std::vector<PanelRectangle>& start, Progress* progress, int cut_paths = 0);
 
 }  // namespace fenestra

@@ -1,5 +1,6 @@
 #include "solve/cut_region_search.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace fenestra {
@@ -7,13 +8,19 @@ namespace fenestra {
 CutRegionSearch::CutRegionSearch(RecordQueries& records, std::vector<PanelRectangle> start, int paths,
                                  uint64_t stream)
     : records_(records), paths_(paths), stream_(stream), rects_(std::move(start)) {
-  current_ = cut(rects_);
+  current_ = cut(rects_, paths_);
 }
 
 const Eigen::VectorXd& CutRegionSearch::try_region(const std::vector<PanelRectangle>& candidate) {
   tried_ = candidate;
-  tried_values_ = cut(candidate);
+  tried_values_ = cut(candidate, paths_);
   return tried_values_.value;
+}
+
+Eigen::VectorXd CutRegionSearch::rough_values(const std::vector<PanelRectangle>& candidate) {
+  ++rough_cuts_;
+  const std::vector<OpeningInput> openings(candidate.begin(), candidate.end());
+  return records_.cut(openings, paths_ > 0 ? std::max(1, paths_ / 2) : 0, stream_).value;
 }
 
 void CutRegionSearch::accept() {
@@ -21,10 +28,10 @@ void CutRegionSearch::accept() {
   current_ = tried_values_;
 }
 
-SensorValues CutRegionSearch::cut(const std::vector<PanelRectangle>& rects) {
+SensorValues CutRegionSearch::cut(const std::vector<PanelRectangle>& rects, int paths) {
   ++cuts_;
   const std::vector<OpeningInput> openings(rects.begin(), rects.end());
-  return records_.cut(openings, paths_, stream_);
+  return records_.cut(openings, paths, stream_);
 }
 
 }  // namespace fenestra

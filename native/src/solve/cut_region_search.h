@@ -20,20 +20,23 @@ class CutRegionSearch : public RegionQueries {
   const std::vector<PanelRectangle>& rectangles() const override { return rects_; }
   const Eigen::VectorXd& try_region(const std::vector<PanelRectangle>& candidate) override;
   void accept() override;
+  // A cut of half the paths, on the same stream (all of the scene's when `paths` is 0).
+  Eigen::VectorXd rough_values(const std::vector<PanelRectangle>& candidate) override;
 
   // The current rectangles' values with their standard errors.
   const SensorValues& current() const { return current_; }
   int cuts() const { return cuts_; }
+  int rough_cuts() const { return rough_cuts_; }
 
  private:
-  SensorValues cut(const std::vector<PanelRectangle>& rects);
+  SensorValues cut(const std::vector<PanelRectangle>& rects, int paths);
 
   RecordQueries& records_;
   int paths_;
   uint64_t stream_;
   std::vector<PanelRectangle> rects_, tried_;
   SensorValues current_, tried_values_;
-  int cuts_ = 0;
+  int cuts_ = 0, rough_cuts_ = 0;
 };
 
 }  // namespace fenestra

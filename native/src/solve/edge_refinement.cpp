@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <set>
+#include <tuple>
 #include <sstream>
 
 #include "solve/region_search.h"
@@ -18,6 +19,7 @@ constexpr double kMinClearance = 0.01;  // meters between two openings of a pane
 constexpr int kMaxSweeps = 16;          // tries per step size, in cycles of all openings' moves
 constexpr int kMaxScanPasses = 3;       // of EdgeSearchScope::scan_span over both axes
 constexpr long kScanStride = 2;         // finest steps between the pairs a first pass tries every one of
+constexpr size_t kRoughlyRankedPairs = 4;  // of those, evaluated in full after a rough ranking
 constexpr size_t kScreenedFailures = 4;  // exact tries of a screened step's best-ranked moves before it ends
 
 bool covers_elements(const OpeningDomain& domain, int panel, double u0, double u1, double v0, double v1) {
@@ -97,9 +99,9 @@ bool fits(const OpeningDomain& domain, const OpeningConstraints& constraints,
 
 // EdgeSearchScope::scan_span: pairs of positions of an opening's two edges along one axis (real
 // cuts: any position), within `span` of where they start, `step` apart. Every pair `stride` steps
-// apart first (a valley between coarser pairs is easily missed); then the 3 x 3 pairs about the
-// best at halving strides down to one step, moving with the best until it stays. Returns whether a
-// pair was kept.
+// apart first (a valley between coarser pairs is easily missed), ranked by rough values and the
+// best few evaluated; then the 3 x 3 pairs about the best at halving strides down to one step,
+// moving with the best until it stays. Returns whether a pair was kept.
 bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& constraints, const LinearObjective& objective,
                      const Eigen::VectorXd& closed, double span, double step, long stride,
                      RegionQueries* search, double* error, EdgeRefinement* out, Progress* progress) {
@@ -115,23 +117,38 @@ bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& cons
       std::set<std::pair<long, long>> tried = {{0, 0}};
       std::vector<PanelRectangle> best;
       long best_a = 0, best_b = 0;  // offsets of the low and high edges, in steps
-      auto try_pair = [&](long a, long b) {
-        if (std::abs(a) > k || std::abs(b) > k || !tried.insert({a, b}).second) return;
+      // The openings with the pair (a, b), if it lies within the span and fits.
+      auto pair_fits = [&](long a, long b, std::vector<PanelRectangle>* candidate) {
+        if (std::abs(a) > k || std::abs(b) > k) return false;
         const double low = lo + static_cast<double>(a) * step, high = hi + static_cast<double>(b) * step;
-        if (!(static_cast<float>(high) > static_cast<float>(low))) return;
+        if (!(static_cast<float>(high) > static_cast<float>(low))) return false;
         if (progress) progress->throw_if_cancelled();
-        std::vector<PanelRectangle> candidate = search->rectangles();
-        PanelRectangle& r = candidate[i];
+        *candidate = search->rectangles();
+        PanelRectangle& r = (*candidate)[i];
         (axis == 0 ? r.u0 : r.v0) = static_cast<float>(low);
         (axis == 0 ? r.u1 : r.v1) = static_cast<float>(high);
-        if (!fits(domain, constraints, candidate, i, true)) return;
+        return fits(domain, constraints, *candidate, i, true);
+      };
+      auto try_pair = [&](long a, long b) {
+        std::vector<PanelRectangle> candidate;
+        if (!tried.insert({a, b}).second || !pair_fits(a, b, &candidate)) return;
         const double e = prediction_error(objective, search->try_region(candidate) - closed);
         ++out->evaluations;
         if (e < *error * (1.0 - 1e-9)) *error = e, best = candidate, best_a = a, best_b = b;
       };
-      if (stride > 1)
+      if (stride > 1) {
+        // Ranked by rough values, the best few evaluated.
+        std::vector<std::tuple<double, long, long>> ranked;
         for (long a = -(k / stride) * stride; a <= k; a += stride)
-          for (long b = -(k / stride) * stride; b <= k; b += stride) try_pair(a, b);
+          for (long b = -(k / stride) * stride; b <= k; b += stride) {
+            std::vector<PanelRectangle> candidate;
+            if (!(a == 0 && b == 0) && pair_fits(a, b, &candidate))
+              ranked.emplace_back(prediction_error(objective, search->rough_values(candidate) - closed), a, b);
+          }
+        std::sort(ranked.begin(), ranked.end());
+        for (size_t n = 0; n < ranked.size() && n < kRoughlyRankedPairs; ++n)
+          try_pair(std::get<1>(ranked[n]), std::get<2>(ranked[n]));
+      }
       for (long about = stride > 1 ? stride / 2 : 1; about >= 1; about /= 2) {
         long ca = 0, cb = 0;
         do {

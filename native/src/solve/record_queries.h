@@ -31,6 +31,10 @@ class RegionQueries {
   // Values with `candidate` instead; accept() makes the last try the current rectangles.
   virtual const Eigen::VectorXd& try_region(const std::vector<PanelRectangle>& candidate) = 0;
   virtual void accept() = 0;
+  // Values of `candidate` good enough to rank many candidates by, the best of which try_region
+  // then evaluates (by default try_region's own; CutRegionSearch: a cut of half the paths). Only a
+  // try_region since may be accepted.
+  virtual Eigen::VectorXd rough_values(const std::vector<PanelRectangle>& candidate) { return try_region(candidate); }
 };
 
 class RecordQueries {

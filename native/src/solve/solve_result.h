@@ -57,6 +57,7 @@ struct ThickWallOpeningsSummary {
 struct ThickWallEdgesSummary {
   bool ran = false;
   int cuts = 0, paths_per_cut = 0, moves = 0;
+  int rough_cuts = 0;  // of half paths_per_cut, that ranked the first scan's pairs
   bool from_placement = false;  // started where the records' interpolation placed the sides
 };
 

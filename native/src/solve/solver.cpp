@@ -455,12 +455,18 @@ class OpeningSolve {
     run_stage(&out_.stages, "catalogue sizes", [&] {
       if (progress_) progress_->start("solving: catalogue sizes", 1);
       if (!about_) linearise_about_rects();
-      const CatalogueSnap snap =
-          snap_to_catalogue(scene_.domain, records_, objective_, constraints_, about_->E, final_rects_, progress_);
+      // In thick walls the sizes are chosen by real cuts (the linear model misjudges whole
+      // openings there); climate goals are not the design sky's, so they keep the linear model.
+      const bool thick = std::any_of(final_rects_.begin(), final_rects_.end(),
+                                     [&](const PanelRectangle& r) { return thick_panel(r.panel); });
+      const int cut_paths = thick && !climate_ ? std::min(kThickWallEdgeCutPaths, c_.paths_per_sensor) : 0;
+      const CatalogueSnap snap = snap_to_catalogue(scene_.domain, records_, objective_, constraints_, about_->E,
+                                                   final_rects_, progress_, cut_paths);
       const double grid_error = chosen_error();
       final_rects_ = snap.openings;
       chosen_exact_ = snap.exact;
-      if (snap.exact) chosen_ = records_.evaluate(final_rects_);
+      if (cut_paths > 0) chosen_ = {snap.values, snap.standard_error};
+      else if (snap.exact) chosen_ = records_.evaluate(final_rects_);
       else chosen_.value = snap.values;
       out_.fitness += chosen_error() - grid_error;
       out_.warnings.insert(out_.warnings.end(), snap.notes.begin(), snap.notes.end());
@@ -566,7 +572,13 @@ class OpeningSolve {
       const ThickWallEdges cut =
           search_thick_wall_edges(scene_.domain, records_, objective_, constraints_, final_rects_, paths, progress_);
       searched = true;
-      out_.thick_wall_edges = {true, cut.cuts, paths, cut.edges.moves, cut.from_placement};
+      ThickWallEdgesSummary& summary = out_.thick_wall_edges;
+      summary.ran = true;
+      summary.cuts = cut.cuts;
+      summary.rough_cuts = cut.rough_cuts;
+      summary.paths_per_cut = paths;
+      summary.moves = cut.edges.moves;
+      summary.from_placement = cut.from_placement;
       const double start_error = prediction_error(objective_, cut.start_values.value - c_.closed.value);
       thick_start_error_ = goal_error(out_.goals, cut.start_values.value).relative_rms;
       const double error = prediction_error(objective_, cut.values.value - c_.closed.value);

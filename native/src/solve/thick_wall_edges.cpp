@@ -50,6 +50,7 @@ ThickWallEdges search_thick_wall_edges(const OpeningDomain& domain, RecordQuerie
   out.edges = refine_edges(domain, closed, objective, constraints, &search, progress, scope);
   out.values = search.current();
   out.cuts = given.cuts() + placed.cuts();
+  out.rough_cuts = given.rough_cuts() + placed.rough_cuts();
   return out;
 }
 

@@ -30,7 +30,8 @@ struct ThickWallEdges {
   double interpolated = 0.0;           // the placement's interpolated error
   bool from_placement = false;         // the search started from `placed`
   SensorValues start_values, values;   // cut: the openings given, and the result
-  int cuts = 0;                        // all the search's cuts
+  int cuts = 0;                        // all the search's cuts of `paths`
+  int rough_cuts = 0;                  // and of half as many (CutRegionSearch::rough_values)
 };
 
 // Edges in thick walls searched with real cutters: the sides placed by the interpolation of the
