@@ -131,6 +131,7 @@ def test_solver_recovers_a_window_between_grid_lines_in_a_thick_wall(tmp_path):
     assert result["edge_moves"] > 0
     edges = result["thick_wall_edges"]
     assert edges["run"] and edges["cuts"] > 0 and edges["paths_per_cut"] == 4096, edges
+    assert edges["rough_cuts"] > 0, edges  # the first pair scan, ranked by cuts of 2 048 paths
     for o in result["openings"]:
         assert abs(o["depth"] - 0.3) < 1e-6
 

@@ -39,9 +39,11 @@ constexpr double kBytesPerEvent = 13.0, kBytesPerPath = 8.0;
 // several stored conditions, where the thin wall's light mostly names its one element) and
 // tracing 5.7x the zero-thickness wall's for the same paths.
 constexpr double kThickWallRecordFactor = 7.5, kThickWallTraceFactor = 6.0;
-// Cuts the edge search in thick walls makes per opening (solve/thick_wall_edges.h): 221 for a
-// window in a 0.3 m wall with 0.35 m elements; the pair scans over both axes are most of them.
-constexpr double kThickWallEdgeCutsPerOpening = 250.0;
+// Cuts the edge search in thick walls makes per opening (solve/thick_wall_edges.h), counting one
+// of half the paths as half a cut: 125 for a window in a 0.3 m wall with 0.25 m elements (99 and
+// 53 of half the paths), 123 per opening for the four of the solid off-grid two-room study; the
+// pair scans over both axes are most of them.
+constexpr double kThickWallEdgeCutsPerOpening = 130.0;
 // Openings in thick walls the estimate assumes per thick panel when the constraints set no
 // maximum.
 constexpr double kThickWallOpeningsPerPanel = 2.0;
