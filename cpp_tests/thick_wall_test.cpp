@@ -140,6 +140,16 @@ INSTANTIATE_TEST_SUITE_P(Walls, ThickWall,
                                            Wall{0.5f, 0.2f, true, true}, Wall{0.1f, 0.5f, false, false},
                                            Wall{0.2f, 0.25f, true, true}));
 
+// A 6 x 6 grid of sensors over the room's work plane, 0.8 m up (JSON points).
+std::string work_plane_sensors() {
+  std::ostringstream points;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      points << (i + j ? ", " : "[") << "[" << 0.3 + 0.48 * i << ", " << 0.3 + 0.48 * j << ", 0.8]";
+  points << "]";
+  return points.str();
+}
+
 // Edges between the element grid's lines are searched with real cutters. The goals are a truth's
 // own cut on the search's random numbers, so its error there is exactly 0: from the grid window
 // beside it (edges 1 to 3 of the finest steps away), the search ends on the truth's edges, and
@@ -147,12 +157,7 @@ INSTANTIATE_TEST_SUITE_P(Walls, ThickWall,
 // same area apart.
 TEST(ThickWall, EdgeSearchWithRealCuttersEndsOnEdgesBetweenGridLines) {
   TempDir dir;
-  std::ostringstream grid_points;
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j)
-      grid_points << (i + j ? ", " : "[") << "[" << 0.3 + 0.48 * i << ", " << 0.3 + 0.48 * j << ", 0.8]";
-  grid_points << "]";
-  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, grid_points.str());
+  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, work_plane_sensors());
   const Contributions c = compute_contributions(scene);
   LocalRecordQueries records(scene, c, nullptr);
   const double step = edge_steps(scene.domain.element_size(), 0.0, true).back();
@@ -182,12 +187,7 @@ TEST(ThickWall, EdgeSearchWithRealCuttersEndsOnEdgesBetweenGridLines) {
 // size's own cut, that size, at that place, is chosen and its values are that cut's.
 TEST(ThickWall, CatalogueSizesAreChosenByRealCuts) {
   TempDir dir;
-  std::ostringstream grid_points;
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j)
-      grid_points << (i + j ? ", " : "[") << "[" << 0.3 + 0.48 * i << ", " << 0.3 + 0.48 * j << ", 0.8]";
-  grid_points << "]";
-  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, grid_points.str());
+  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, work_plane_sensors());
   const Contributions c = compute_contributions(scene);
   LocalRecordQueries records(scene, c, nullptr);
   OpeningConstraints constraints;
