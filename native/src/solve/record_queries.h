@@ -32,8 +32,8 @@ class RegionQueries {
   virtual const Eigen::VectorXd& try_region(const std::vector<PanelRectangle>& candidate) = 0;
   virtual void accept() = 0;
   // Values of `candidate` good enough to rank many candidates by, the best of which try_region
-  // then evaluates (by default try_region's own; CutRegionSearch: a cut of half the paths). Only a
-  // try_region since may be accepted.
+  // then evaluates (by default try_region's own; CutRegionSearch: a cut of half the paths). Call
+  // try_region again before accept(): only its values are kept.
   virtual Eigen::VectorXd rough_values(const std::vector<PanelRectangle>& candidate) { return try_region(candidate); }
 };
 
