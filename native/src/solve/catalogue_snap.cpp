@@ -50,7 +50,7 @@ class Snapper {
         closed_(records.contributions().closed.value),
         progress_(progress),
         shifts_(shifts(domain.element_size())),
-        search_(records.region_search(start)) {
+        search_(cut_paths > 0 ? nullptr : records.region_search(start)) {  // cuts need no records' index
     slots_.assign(start.begin(), start.end());
     if (cut_paths_ > 0) {
       const SensorValues start_cut = cut(slots_);

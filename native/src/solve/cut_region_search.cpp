@@ -19,8 +19,7 @@ const Eigen::VectorXd& CutRegionSearch::try_region(const std::vector<PanelRectan
 
 Eigen::VectorXd CutRegionSearch::rough_values(const std::vector<PanelRectangle>& candidate) {
   ++rough_cuts_;
-  const std::vector<OpeningInput> openings(candidate.begin(), candidate.end());
-  return records_.cut(openings, paths_ > 0 ? std::max(1, paths_ / 2) : 0, stream_).value;
+  return traced(candidate, paths_ > 0 ? std::max(1, paths_ / 2) : 0).value;
 }
 
 void CutRegionSearch::accept() {
@@ -30,6 +29,10 @@ void CutRegionSearch::accept() {
 
 SensorValues CutRegionSearch::cut(const std::vector<PanelRectangle>& rects, int paths) {
   ++cuts_;
+  return traced(rects, paths);
+}
+
+SensorValues CutRegionSearch::traced(const std::vector<PanelRectangle>& rects, int paths) {
   const std::vector<OpeningInput> openings(rects.begin(), rects.end());
   return records_.cut(openings, paths, stream_);
 }

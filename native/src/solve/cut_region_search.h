@@ -29,7 +29,8 @@ class CutRegionSearch : public RegionQueries {
   int rough_cuts() const { return rough_cuts_; }
 
  private:
-  SensorValues cut(const std::vector<PanelRectangle>& rects, int paths);
+  SensorValues cut(const std::vector<PanelRectangle>& rects, int paths);  // counted in cuts()
+  SensorValues traced(const std::vector<PanelRectangle>& rects, int paths);
 
   RecordQueries& records_;
   int paths_;
