@@ -12,6 +12,7 @@
 #include "solve/catalogue_snap.h"
 #include "solve/record_queries.h"
 #include "solve/thick_wall_edges.h"
+#include "solve/thick_wall_merges.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
@@ -209,6 +210,56 @@ TEST(ThickWall, CatalogueSizesAreChosenByRealCuts) {
   EXPECT_TRUE(snap.exact);
   EXPECT_TRUE((snap.values.array() == goals.value.array()).all());
   EXPECT_TRUE((snap.standard_error.array() == goals.standard_error.array()).all());
+}
+
+// An opening split in two, and one the goals do not need, as the records can leave them in a thick
+// wall: the goals are one window's own cut on the search's random numbers. The extra opening is
+// removed, and the two halves merged, the merged opening's edges then searched: the window's own
+// edges and its cut's values, exactly.
+TEST(ThickWall, SplitOpeningsAreMergedAndNeedlessOnesRemovedByRealCuts) {
+  TempDir dir;
+  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, work_plane_sensors());
+  const Contributions c = compute_contributions(scene);
+  LocalRecordQueries records(scene, c, nullptr);
+  const double step = edge_steps(scene.domain.element_size(), 0.0, true).back();
+  const PanelRectangle truth{0, 0.75 + step, 2.0 + step, 0.75, 1.75 + step};
+  const std::vector<PanelRectangle> start = {{0, 0.75, 1.375, 0.75, 1.75 + 2 * step},  // the left half, taller
+                                             {0, 1.5, 2.0, 1.0, 1.5},                   // the right, smaller
+                                             {0, 2.375, 2.75, 0.25, 0.625}};            // not needed
+  const int paths = 256;
+  const SensorValues goals = records.cut({OpeningInput(truth)}, paths, kThickWallEdgeCutStream);
+  LinearObjective objective;
+  objective.target = goals.value - c.closed.value;
+  objective.weight = Eigen::VectorXd::Constant(objective.target.size(), 1.0 / goals.value.squaredNorm());
+  const ThickWallMerges found = merge_thick_wall_openings(scene.domain, records, objective, OpeningConstraints(),
+                                                          start, paths, kThickWallEdgeCutStream, nullptr);
+  ASSERT_EQ(found.openings.size(), 1u);
+  EXPECT_EQ(found.removed, 1);
+  EXPECT_EQ(found.merged, 1);
+  EXPECT_GE(found.merges_searched, 1);
+  const PanelRectangle& r = found.openings[0];
+  EXPECT_NEAR(r.u0, truth.u0, 1e-6);
+  EXPECT_NEAR(r.u1, truth.u1, 1e-6);
+  EXPECT_NEAR(r.v0, truth.v0, 1e-6);
+  EXPECT_NEAR(r.v1, truth.v1, 1e-6);
+  EXPECT_TRUE((found.values.value.array() == goals.value.array()).all());
+}
+
+// Two openings' merged candidates: their bounding box, and their joint area about their joint
+// centroid with the box's aspect, on the step's positions.
+TEST(ThickWall, MergedOpeningsAreTheBoxAndTheJointAreaAboutTheCentroid) {
+  const PanelRectangle a{2, 0.0, 1.0, 0.0, 2.0}, b{2, 1.5, 2.0, 0.0, 0.5};  // 2 m^2 and 0.25 m^2
+  const std::vector<PanelRectangle> m = merged_openings(a, b, 0.0625);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0], (PanelRectangle{2, 0.0, 2.0, 0.0, 2.0}));
+  const PanelRectangle& joint = m[1];
+  EXPECT_EQ(joint.panel, 2);
+  EXPECT_NEAR(joint.width() * joint.height(), 2.25, 2 * 0.0625 * 1.5 + 0.0625 * 0.0625);
+  EXPECT_NEAR(0.5 * (joint.u0 + joint.u1), (2.0 * 0.5 + 0.25 * 1.75) / 2.25, 0.0625);
+  EXPECT_NEAR(0.5 * (joint.v0 + joint.v1), (2.0 * 1.0 + 0.25 * 0.25) / 2.25, 0.0625);
+  EXPECT_NEAR(joint.width() / joint.height(), 1.0, 0.1);
+  for (const double x : {joint.u0, joint.u1, joint.v0, joint.v1})
+    EXPECT_NEAR(x / 0.0625, std::round(x / 0.0625), 1e-9) << x;
 }
 
 TEST(ThickWall, LinesAheadCountsTheTubeSidesLeftInTheWall) {

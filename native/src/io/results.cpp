@@ -154,7 +154,8 @@ std::vector<OpeningInput> parse_openings(const json& j, const std::string& sourc
                                                "element_size", "sensors", "error", "fitness", "warnings", "dropped",
                                                "constraints_met", "tradeoffs", "composition",
                                                "constraint_violations", "unconstrained", "timings_s", "stages", "genetic",
-                                               "edge_moves", "second_start", "opening_search", "thick_wall_openings", "thick_wall_edges", "constraint_costs", "settings",
+                                               "edge_moves", "second_start", "opening_search", "thick_wall_openings", "thick_wall_edges", "thick_wall_merges",
+                                               "constraint_costs", "settings",
                                                "climate"}))
     fail(quoted_text(unknown->key) + ": " + unknown->message);
   if (!j.is_object() || !j.contains("openings") || !j.at("openings").is_array())

@@ -217,6 +217,12 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                             {"rough_cuts", r.thick_wall_edges.rough_cuts},
                             {"moves", r.thick_wall_edges.moves},
                             {"from_placement", r.thick_wall_edges.from_placement}}},
+      {"thick_wall_merges", {{"run", r.thick_wall_merges.ran},
+                             {"cuts", r.thick_wall_merges.cuts},
+                             {"rough_cuts", r.thick_wall_merges.rough_cuts},
+                             {"removed", r.thick_wall_merges.removed},
+                             {"merged", r.thick_wall_merges.merged},
+                             {"merges_searched", r.thick_wall_merges.merges_searched}}},
       {"constraint_costs", [&] {
          json costs = json::array();
          for (const ConstraintCost& c : r.constraint_costs)

@@ -103,14 +103,14 @@ bool fits(const OpeningDomain& domain, const OpeningConstraints& constraints,
 // best few evaluated; then the 3 x 3 pairs about the best at halving strides down to one step,
 // moving with the best until it stays. Returns whether a pair was kept.
 bool scan_edge_pairs(const OpeningDomain& domain, const OpeningConstraints& constraints, const LinearObjective& objective,
-                     const Eigen::VectorXd& closed, double span, double step, long stride,
+                     const Eigen::VectorXd& closed, double span, double step, long stride, int only_opening,
                      RegionQueries* search, double* error, EdgeRefinement* out, Progress* progress) {
   bool kept = false;
   const long k = static_cast<long>(std::floor(span / step + 1e-9));
   if (k < 1) return false;
   for (size_t i = 0; i < search->rectangles().size(); ++i) {
     const Panel& panel = domain.panels()[search->rectangles()[i].panel];
-    if (!(panel.thickness > 0.0f)) continue;
+    if (!(panel.thickness > 0.0f) || (only_opening >= 0 && i != static_cast<size_t>(only_opening))) continue;
     for (int axis = 0; axis < 2; ++axis) {
       const PanelRectangle start = search->rectangles()[i];
       const double lo = axis == 0 ? start.u0 : start.v0, hi = axis == 0 ? start.u1 : start.v1;
@@ -330,8 +330,8 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Eigen::VectorXd& 
   for (int pass = 0; scope.scan_span > 0.0 && scope.real_cuts && pass < kMaxScanPasses && !scans_settled; ++pass) {
     const double span = pass == 0 ? scope.scan_span : std::min(scope.scan_span, 2.0 * finest);
     const long stride = pass == 0 ? kScanStride : 1;
-    scans_settled = !scan_edge_pairs(domain, constraints, objective, closed, span, finest, stride, &search, &error,
-                                     &out, progress);
+    scans_settled = !scan_edge_pairs(domain, constraints, objective, closed, span, finest, stride, scope.only_opening,
+                                     &search, &error, &out, progress);
   }
   const std::vector<EdgeMove>& moves = scope.scan_span > 0.0 ? straight_and_trading_moves() : straight_moves();
   // The openings with opening i's edges moved by `step` (move, direction), if that changes and fits.
@@ -372,7 +372,10 @@ EdgeRefinement refine_edges(const OpeningDomain& domain, const Eigen::VectorXd& 
     return try_move(opening_of(t), move_of(t), direction_of(t), step, whole_elements);
   };
   auto thick = [&](size_t i) { return domain.panels()[search.rectangles()[i].panel].thickness > 0.0f; };
-  auto searched = [&](size_t i) { return thick(i) ? scope.thick_panels : scope.zero_thickness_panels; };
+  auto searched = [&](size_t i) {
+    if (scope.only_opening >= 0 && i != static_cast<size_t>(scope.only_opening)) return false;
+    return thick(i) ? scope.thick_panels : scope.zero_thickness_panels;
+  };
   // The screen is linear: in thick walls, where elements open together pass much more light than
   // apart (reveals, oblique paths), it misranks moves, so those openings are not screened.
   auto screened = [&](size_t i) { return scope.opening_light && !thick(i) && searched(i); };

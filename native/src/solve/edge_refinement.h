@@ -68,6 +68,7 @@ struct EdgeSearchScope {
   bool whole_elements = true;
   bool zero_thickness_panels = true;
   bool thick_panels = true;  // false: openings in thick walls stay as they are
+  int only_opening = -1;     // >= 0: only this opening (its index in the start) moves
   // > 0 with real_cuts: first, for each opening in a thick wall and each axis, pairs of positions
   // of its two edges within this distance are searched (its error along a sill or head can have
   // narrow valleys that single steps do not cross), coarse to fine down to the finest thick-wall

@@ -61,6 +61,14 @@ struct ThickWallEdgesSummary {
   bool from_placement = false;  // started where the records' interpolation placed the sides
 };
 
+// Openings in thick walls removed or merged by real cutters (solve/thick_wall_merges.h).
+struct ThickWallMergesSummary {
+  bool ran = false;
+  int cuts = 0, rough_cuts = 0;  // of ThickWallEdgesSummary::paths_per_cut paths, and of half as many
+  int removed = 0, merged = 0;   // openings removed, pairs merged into one
+  int merges_searched = 0;       // merged openings whose edges were searched again
+};
+
 struct SolveResult {
   std::vector<uint8_t> open;                 // per element: the final openings' elements
   std::vector<OpeningRectangle> openings;    // the final openings: admissible rectangles
@@ -90,6 +98,7 @@ struct SolveResult {
   OpeningSearchSummary opening_search;
   ThickWallOpeningsSummary thick_wall_openings;
   ThickWallEdgesSummary thick_wall_edges;
+  ThickWallMergesSummary thick_wall_merges;
   // When the constraints cost much light (constraints_cost_much), the error without each family
   // of limits, least first (solve/constraint_costs.h); else empty.
   std::vector<ConstraintCost> constraint_costs;

@@ -24,6 +24,7 @@
 #include "solve/prediction_check.h"
 #include "solve/refine_openings.h"
 #include "solve/thick_wall_edges.h"
+#include "solve/thick_wall_merges.h"
 #include "solve/tradeoffs.h"
 #include "trace/contributions_origin.h"
 #include "util/number_text.h"
@@ -483,7 +484,8 @@ class OpeningSolve {
                                                   : nullptr;
     if (skipped) {
       skip_stage(&out_.stages, "edges off the grid", skipped);
-      return skip_stage(&out_.stages, "thick-wall edges", skipped);
+      skip_stage(&out_.stages, "thick-wall edges", skipped);
+      return skip_stage(&out_.stages, "thick-wall merges", skipped);
     }
     run_stage(&out_.stages, "edges off the grid", [&] {
       if (progress_) progress_->start("solving: edges off the element grid", 1);
@@ -594,7 +596,39 @@ class OpeningSolve {
       out_.stages.back().error_before = thick_start_error_;
       out_.stages.back().error_after = goal_error(out_.goals, chosen_.value).relative_rms;
     }
+    thick_wall_merges(searched);
     keep_the_search_if_better();
+  }
+
+  // How many openings, judged by real cutters: each removed, and each pair on a thick panel merged
+  // (solve/thick_wall_merges.h), after the edge search (`searched`).
+  void thick_wall_merges(bool searched) {
+    const char* skipped = !searched                     ? stop_reason::kNoThickWallEdgeSearch
+                          : final_rects_.size() < 2     ? stop_reason::kOneOpening
+                          : within_the_noise(chosen_)   ? stop_reason::kCutsWithinNoise
+                                                        : nullptr;
+    if (skipped) return skip_stage(&out_.stages, "thick-wall merges", skipped);
+    const double before = goal_error(out_.goals, chosen_.value).relative_rms;
+    thick_seconds_ += run_stage(&out_.stages, "thick-wall merges", [&] {
+      if (progress_) progress_->start("solving: openings in thick walls merged or removed, with real cutters", 1);
+      const ThickWallMerges merges =
+          merge_thick_wall_openings(scene_.domain, records_, objective_, constraints_, final_rects_,
+                                    out_.thick_wall_edges.paths_per_cut, kThickWallEdgeCutStream, progress_);
+      ThickWallMergesSummary& summary = out_.thick_wall_merges;
+      summary.ran = true;
+      summary.cuts = merges.cuts;
+      summary.rough_cuts = merges.rough_cuts;
+      summary.removed = merges.removed;
+      summary.merged = merges.merged;
+      summary.merges_searched = merges.merges_searched;
+      if (merges.removed + merges.merged == 0) return stop_reason::kNoImprovement;
+      out_.fitness += prediction_error(objective_, merges.values.value - c_.closed.value) - chosen_error();
+      chosen_ = merges.values;
+      final_rects_ = merges.openings;
+      return stop_reason::kNoImprovement;
+    });
+    out_.stages.back().error_before = before;
+    out_.stages.back().error_after = goal_error(out_.goals, chosen_.value).relative_rms;
   }
 
   // When thick_wall_openings chose other openings than the search, and those, refined in the

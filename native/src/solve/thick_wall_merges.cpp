@@ -1,0 +1,164 @@
+#include "solve/thick_wall_merges.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "solve/cut_region_search.h"
+#include "util/progress.h"
+
+namespace fenestra {
+namespace {
+
+double snapped(double x, double unit) { return unit > 0.0 ? unit * std::round(x / unit) : x; }
+
+double area(const PanelRectangle& r) { return r.width() * r.height(); }
+
+bool thick(const OpeningDomain& domain, const PanelRectangle& r) {
+  return domain.panels()[static_cast<size_t>(r.panel)].thickness > 0.0f;
+}
+
+// The openings with i and j (i < j) replaced by `joint`, placed where i was.
+std::vector<PanelRectangle> with_merged(const std::vector<PanelRectangle>& openings, size_t i, size_t j,
+                                        const PanelRectangle& joint) {
+  std::vector<PanelRectangle> out = openings;
+  out[i] = joint;
+  out.erase(out.begin() + static_cast<std::ptrdiff_t>(j));
+  return out;
+}
+
+struct Candidate {
+  double error = 0.0;
+  std::vector<PanelRectangle> openings;
+  size_t merged_index = 0;  // the merged opening's index in `openings`
+};
+
+class MergeSearch {
+ public:
+  MergeSearch(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
+              const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start, int paths,
+              uint64_t stream, Progress* progress)
+      : domain_(domain), closed_(records.contributions().closed.value), objective_(objective),
+        constraints_(constraints), search_(records, start, paths, stream), progress_(progress) {
+    error_ = error_of(search_.values());
+  }
+
+  // The best of removing one opening (a cut each) and merging two (the best merge by its cut, its
+  // edges then searched), kept when it lowers the error. Returns whether one was kept.
+  bool improve(ThickWallMerges* out) {
+    const std::vector<PanelRectangle> now = search_.rectangles();
+    const double before = error_;
+    const Candidate removal = best_removal(now);
+    Candidate merge = best_merge(now);
+    if (!merge.openings.empty()) {
+      keep(merge.openings);
+      refine_edges(domain_, closed_, objective_, constraints_, &search_, progress_, merged_edges(merge.merged_index));
+      ++out->merges_searched;
+      merge = {error_of(search_.values()), search_.rectangles(), merge.merged_index};
+    }
+    const bool merged = !merge.openings.empty() && merge.error < std::min(before, removal.error) * (1.0 - 1e-9);
+    const bool removed = !merged && !removal.openings.empty() && removal.error < before * (1.0 - 1e-9);
+    if (merged) ++out->merged, error_ = merge.error;
+    if (removed) ++out->removed, keep(removal.openings);
+    if (!merged && !removed && search_.rectangles() != now) keep(now);  // back to the openings as they were
+    return merged || removed;
+  }
+
+  const CutRegionSearch& search() const { return search_; }
+
+ private:
+  double error_of(const Eigen::VectorXd& values) const { return prediction_error(objective_, values - closed_); }
+
+  // The openings without one of them whose cut meets the goals best (none with fewer than two).
+  Candidate best_removal(const std::vector<PanelRectangle>& now) {
+    Candidate best{std::numeric_limits<double>::infinity(), {}, 0};
+    for (size_t i = 0; now.size() >= 2 && i < now.size(); ++i) {
+      std::vector<PanelRectangle> fewer = now;
+      fewer.erase(fewer.begin() + static_cast<std::ptrdiff_t>(i));
+      consider(fewer, 0, &best);
+    }
+    return best;
+  }
+
+  // The openings with two of one thick panel merged (merged_openings) whose cut meets the goals
+  // best, before their edges are searched.
+  Candidate best_merge(const std::vector<PanelRectangle>& now) {
+    Candidate best{std::numeric_limits<double>::infinity(), {}, 0};
+    const double unit = edge_steps(domain_.element_size(), constraints_.module, true).back();
+    for (size_t i = 0; i < now.size(); ++i)
+      for (size_t j = i + 1; j < now.size(); ++j) {
+        if (now[i].panel != now[j].panel || !thick(domain_, now[i])) continue;
+        for (const PanelRectangle& joint : merged_openings(now[i], now[j], unit))
+          consider(with_merged(now, i, j, joint), i, &best);
+      }
+    return best;
+  }
+
+  // The edge search of the merged opening alone, as the thick-wall edge search's.
+  EdgeSearchScope merged_edges(size_t merged_index) const {
+    EdgeSearchScope scope;
+    scope.whole_elements = false;
+    scope.zero_thickness_panels = false;
+    scope.real_cuts = true;
+    scope.only_opening = static_cast<int>(merged_index);
+    scope.scan_span = thick_wall_edge_span(domain_.element_size(), constraints_.module);
+    return scope;
+  }
+
+  // Cut `openings` (when admissible); `best` becomes them when their error is lower.
+  void consider(const std::vector<PanelRectangle>& openings, size_t merged_index, Candidate* best) {
+    if (!constraint_violations(domain_, openings, constraints_).empty()) return;
+    if (progress_) progress_->throw_if_cancelled();
+    const double e = error_of(search_.try_region(openings));
+    if (e < best->error) *best = {e, openings, merged_index};
+  }
+
+  void keep(const std::vector<PanelRectangle>& openings) {
+    search_.try_region(openings);
+    search_.accept();
+    error_ = error_of(search_.values());
+  }
+
+  const OpeningDomain& domain_;
+  const Eigen::VectorXd& closed_;
+  const LinearObjective& objective_;
+  const OpeningConstraints& constraints_;
+  CutRegionSearch search_;
+  Progress* progress_;
+  double error_ = 0.0;
+};
+
+}  // namespace
+
+std::vector<PanelRectangle> merged_openings(const PanelRectangle& a, const PanelRectangle& b, double unit) {
+  const PanelRectangle box{a.panel, snapped(std::min(a.u0, b.u0), unit), snapped(std::max(a.u1, b.u1), unit),
+                           snapped(std::min(a.v0, b.v0), unit), snapped(std::max(a.v1, b.v1), unit)};
+  std::vector<PanelRectangle> out = {box};
+  const double joint_area = area(a) + area(b);
+  if (!(joint_area > 0.0) || !(box.width() > 0.0) || !(box.height() > 0.0)) return out;
+  const double cu = (area(a) * (a.u0 + a.u1) + area(b) * (b.u0 + b.u1)) / (2.0 * joint_area);
+  const double cv = (area(a) * (a.v0 + a.v1) + area(b) * (b.v0 + b.v1)) / (2.0 * joint_area);
+  const double w = std::sqrt(joint_area * box.width() / box.height()), h = joint_area / w;
+  const PanelRectangle joint{a.panel, snapped(cu - 0.5 * w, unit), snapped(cu + 0.5 * w, unit),
+                             snapped(cv - 0.5 * h, unit), snapped(cv + 0.5 * h, unit)};
+  if (joint != box && joint.width() > 0.0 && joint.height() > 0.0) out.push_back(joint);
+  return out;
+}
+
+ThickWallMerges merge_thick_wall_openings(const OpeningDomain& domain, RecordQueries& records,
+                                          const LinearObjective& objective, const OpeningConstraints& constraints,
+                                          const std::vector<PanelRectangle>& start, int paths, uint64_t stream,
+                                          Progress* progress) {
+  ThickWallMerges out;
+  MergeSearch search(domain, records, objective, constraints, start, paths, stream, progress);
+  while (search.improve(&out)) {
+  }
+  out.openings = search.search().rectangles();
+  out.values = search.search().current();
+  out.cuts = search.search().cuts();
+  out.rough_cuts = search.search().rough_cuts();
+  return out;
+}
+
+}  // namespace fenestra
