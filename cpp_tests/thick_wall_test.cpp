@@ -151,6 +151,14 @@ std::string work_plane_sensors() {
   return points.str();
 }
 
+// The objective of lux goals `goals`, relative RMS (net of the all-closed light, as the solver's).
+LinearObjective goals_objective(const SensorValues& goals, const Contributions& c) {
+  LinearObjective objective;
+  objective.target = goals.value - c.closed.value;
+  objective.weight = Eigen::VectorXd::Constant(objective.target.size(), 1.0 / goals.value.squaredNorm());
+  return objective;
+}
+
 // Edges between the element grid's lines are searched with real cutters. The goals are a truth's
 // own cut on the search's random numbers, so its error there is exactly 0: from the grid window
 // beside it (edges 1 to 3 of the finest steps away), the search ends on the truth's edges, and
@@ -167,9 +175,7 @@ TEST(ThickWall, EdgeSearchWithRealCuttersEndsOnEdgesBetweenGridLines) {
   const PanelRectangle truth{0, 1.0 + 2 * step, 2.0 + step, 0.75 - step, 1.75 + 3 * step};
   const int paths = 256;
   const SensorValues goals = records.cut({OpeningInput(truth)}, paths, kThickWallEdgeCutStream);
-  LinearObjective objective;
-  objective.target = goals.value - c.closed.value;
-  objective.weight = Eigen::VectorXd::Constant(objective.target.size(), 1.0 / goals.value.squaredNorm());
+  const LinearObjective objective = goals_objective(goals, c);
   const OpeningConstraints constraints;
   const ThickWallEdges found =
       search_thick_wall_edges(scene.domain, records, objective, constraints, {grid}, paths, nullptr);
@@ -197,9 +203,7 @@ TEST(ThickWall, CatalogueSizesAreChosenByRealCuts) {
   const PanelRectangle truth{0, 0.75, 2.25, 0.75, 1.75};  // 1.5 x 1.0, centred where the start is
   const int paths = 256;
   const SensorValues goals = records.cut({OpeningInput(truth)}, paths, kThickWallEdgeCutStream);
-  LinearObjective objective;
-  objective.target = goals.value - c.closed.value;
-  objective.weight = Eigen::VectorXd::Constant(objective.target.size(), 1.0 / goals.value.squaredNorm());
+  const LinearObjective objective = goals_objective(goals, c);
   const CatalogueSnap snap = snap_to_catalogue(scene.domain, records, objective, constraints, c.E, {start}, nullptr, paths);
   ASSERT_EQ(snap.openings.size(), 1u);
   const PanelRectangle& r = snap.openings[0];
@@ -228,9 +232,7 @@ TEST(ThickWall, SplitOpeningsAreMergedAndNeedlessOnesRemovedByRealCuts) {
                                              {0, 2.375, 2.75, 0.25, 0.625}};            // not needed
   const int paths = 256;
   const SensorValues goals = records.cut({OpeningInput(truth)}, paths, kThickWallEdgeCutStream);
-  LinearObjective objective;
-  objective.target = goals.value - c.closed.value;
-  objective.weight = Eigen::VectorXd::Constant(objective.target.size(), 1.0 / goals.value.squaredNorm());
+  const LinearObjective objective = goals_objective(goals, c);
   const ThickWallMerges found = merge_thick_wall_openings(scene.domain, records, objective, OpeningConstraints(),
                                                           start, paths, kThickWallEdgeCutStream, nullptr);
   ASSERT_EQ(found.openings.size(), 1u);
