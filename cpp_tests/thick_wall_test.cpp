@@ -247,6 +247,28 @@ TEST(ThickWall, SplitOpeningsAreMergedAndNeedlessOnesRemovedByRealCuts) {
   EXPECT_TRUE((found.values.value.array() == goals.value.array()).all());
 }
 
+// A window with a small opening below it on its panel, where the goals are the window's own cut
+// with other edges: the panel's one opening has its edges searched and ends on the goals' own.
+TEST(ThickWall, ANeedlessOpeningBelowAWindowIsTakenOutAndTheWindowsEdgesSearched) {
+  TempDir dir;
+  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, work_plane_sensors());
+  const Contributions c = compute_contributions(scene);
+  LocalRecordQueries records(scene, c, nullptr);
+  const double step = edge_steps(scene.domain.element_size(), 0.0, true).back();
+  const PanelRectangle truth{0, 1.0 - step, 2.0 - 2 * step, 1.0 - 2 * step, 2.0};
+  const std::vector<PanelRectangle> start = {{0, 1.0, 2.0, 1.25, 2.0}, {0, 1.25, 1.75, 0.25, 0.75}};
+  const int paths = 256;
+  const SensorValues goals = records.cut({OpeningInput(truth)}, paths, kThickWallEdgeCutStream);
+  const ThickWallMerges found = merge_thick_wall_openings(scene.domain, records, goals_objective(goals, c),
+                                                          OpeningConstraints(), start, paths, kThickWallEdgeCutStream,
+                                                          nullptr);
+  ASSERT_EQ(found.openings.size(), 1u);
+  EXPECT_EQ(found.removed + found.merged, 1);  // left alone, or merged into it: one opening fewer
+  EXPECT_EQ(found.merges_searched, 1);
+  EXPECT_EQ(found.openings[0], truth);
+  EXPECT_TRUE((found.values.value.array() == goals.value.array()).all());
+}
+
 // Two openings' merged candidates: their bounding box, and their joint area about their joint
 // centroid with the box's aspect, on the step's positions.
 TEST(ThickWall, MergedOpeningsAreTheBoxAndTheJointAreaAboutTheCentroid) {

@@ -28,10 +28,26 @@ std::vector<PanelRectangle> with_merged(const std::vector<PanelRectangle>& openi
   return out;
 }
 
+// The openings with only opening i left on its panel.
+std::vector<PanelRectangle> alone_on_its_panel(const std::vector<PanelRectangle>& openings, size_t i) {
+  std::vector<PanelRectangle> out;
+  for (size_t k = 0; k < openings.size(); ++k)
+    if (k == i || openings[k].panel != openings[i].panel) out.push_back(openings[k]);
+  return out;
+}
+
+// Opening i's index in alone_on_its_panel(openings, i).
+size_t index_alone(const std::vector<PanelRectangle>& openings, size_t i) {
+  size_t before = 0;
+  for (size_t k = 0; k < i; ++k) before += openings[k].panel != openings[i].panel;
+  return before;
+}
+
 struct Candidate {
   double error = 0.0;
   std::vector<PanelRectangle> openings;
-  size_t merged_index = 0;  // the merged opening's index in `openings`
+  size_t merged_index = 0;  // the merged (or kept) opening's index in `openings`
+  bool merge = false;       // two openings merged (else others removed)
 };
 
 class MergeSearch {
@@ -44,25 +60,50 @@ class MergeSearch {
     error_ = error_of(search_.values());
   }
 
-  // The best of removing one opening (a cut each) and merging two (the best merge by its cut, its
-  // edges then searched), kept when it lowers the error. Returns whether one was kept.
-  bool improve(ThickWallMerges* out) {
+  // One opening on thick panel `panel` instead of its several: each pair merged (merged_openings)
+  // and each opening kept alone, the best by its cut then with its edges searched; kept when that
+  // lowers the error. Returns whether it was kept.
+  bool one_opening_on(int panel, ThickWallMerges* out) {
     const std::vector<PanelRectangle> now = search_.rectangles();
     const double before = error_;
-    const Candidate removal = best_removal(now);
-    Candidate merge = best_merge(now);
-    if (!merge.openings.empty()) {
-      keep(merge.openings);
-      refine_edges(domain_, closed_, objective_, constraints_, &search_, progress_, merged_edges(merge.merged_index));
-      ++out->merges_searched;
-      merge = {error_of(search_.values()), search_.rectangles(), merge.merged_index};
+    Candidate best{std::numeric_limits<double>::infinity(), {}, 0};
+    const double unit = edge_steps(domain_.element_size(), constraints_.module, true).back();
+    for (size_t i = 0; i < now.size(); ++i) {
+      if (now[i].panel != panel) continue;
+      consider(alone_on_its_panel(now, i), index_alone(now, i), false, &best);
+      for (size_t j = i + 1; j < now.size(); ++j)
+        if (now[j].panel == panel)
+          for (const PanelRectangle& joint : merged_openings(now[i], now[j], unit))
+            consider(with_merged(now, i, j, joint), i, true, &best);
     }
-    const bool merged = !merge.openings.empty() && merge.error < std::min(before, removal.error) * (1.0 - 1e-9);
-    const bool removed = !merged && !removal.openings.empty() && removal.error < before * (1.0 - 1e-9);
-    if (merged) ++out->merged, error_ = merge.error;
-    if (removed) ++out->removed, keep(removal.openings);
-    if (!merged && !removed && search_.rectangles() != now) keep(now);  // back to the openings as they were
-    return merged || removed;
+    if (best.openings.empty()) return false;
+    keep(best.openings);
+    refine_edges(domain_, closed_, objective_, constraints_, &search_, progress_, edges_of(best.merged_index));
+    ++out->merges_searched;
+    error_ = error_of(search_.values());
+    if (error_ < before * (1.0 - 1e-9)) {
+      const int fewer = static_cast<int>(now.size() - best.openings.size());
+      out->merged += best.merge;
+      out->removed += fewer - best.merge;
+      return true;
+    }
+    keep(now);  // back to the openings as they were
+    return false;
+  }
+
+  // One opening removed, the best by its cut, when that lowers the error. Returns whether it was.
+  bool remove_one(ThickWallMerges* out) {
+    const std::vector<PanelRectangle> now = search_.rectangles();
+    Candidate best{error_ * (1.0 - 1e-9), {}, 0};
+    for (size_t i = 0; now.size() >= 2 && i < now.size(); ++i) {
+      std::vector<PanelRectangle> fewer = now;
+      fewer.erase(fewer.begin() + static_cast<std::ptrdiff_t>(i));
+      consider(fewer, 0, false, &best);
+    }
+    if (best.openings.empty()) return false;
+    keep(best.openings);
+    ++out->removed;
+    return true;
   }
 
   const CutRegionSearch& search() const { return search_; }
@@ -70,33 +111,8 @@ class MergeSearch {
  private:
   double error_of(const Eigen::VectorXd& values) const { return prediction_error(objective_, values - closed_); }
 
-  // The openings without one of them whose cut meets the goals best (none with fewer than two).
-  Candidate best_removal(const std::vector<PanelRectangle>& now) {
-    Candidate best{std::numeric_limits<double>::infinity(), {}, 0};
-    for (size_t i = 0; now.size() >= 2 && i < now.size(); ++i) {
-      std::vector<PanelRectangle> fewer = now;
-      fewer.erase(fewer.begin() + static_cast<std::ptrdiff_t>(i));
-      consider(fewer, 0, &best);
-    }
-    return best;
-  }
-
-  // The openings with two of one thick panel merged (merged_openings) whose cut meets the goals
-  // best, before their edges are searched.
-  Candidate best_merge(const std::vector<PanelRectangle>& now) {
-    Candidate best{std::numeric_limits<double>::infinity(), {}, 0};
-    const double unit = edge_steps(domain_.element_size(), constraints_.module, true).back();
-    for (size_t i = 0; i < now.size(); ++i)
-      for (size_t j = i + 1; j < now.size(); ++j) {
-        if (now[i].panel != now[j].panel || !thick(domain_, now[i])) continue;
-        for (const PanelRectangle& joint : merged_openings(now[i], now[j], unit))
-          consider(with_merged(now, i, j, joint), i, &best);
-      }
-    return best;
-  }
-
-  // The edge search of the merged opening alone, as the thick-wall edge search's.
-  EdgeSearchScope merged_edges(size_t merged_index) const {
+  // The edge search of opening `merged_index` alone, as the thick-wall edge search's.
+  EdgeSearchScope edges_of(size_t merged_index) const {
     EdgeSearchScope scope;
     scope.whole_elements = false;
     scope.zero_thickness_panels = false;
@@ -107,11 +123,11 @@ class MergeSearch {
   }
 
   // Cut `openings` (when admissible); `best` becomes them when their error is lower.
-  void consider(const std::vector<PanelRectangle>& openings, size_t merged_index, Candidate* best) {
+  void consider(const std::vector<PanelRectangle>& openings, size_t merged_index, bool merge, Candidate* best) {
     if (!constraint_violations(domain_, openings, constraints_).empty()) return;
     if (progress_) progress_->throw_if_cancelled();
     const double e = error_of(search_.try_region(openings));
-    if (e < best->error) *best = {e, openings, merged_index};
+    if (e < best->error) *best = {e, openings, merged_index, merge};
   }
 
   void keep(const std::vector<PanelRectangle>& openings) {
@@ -152,7 +168,16 @@ ThickWallMerges merge_thick_wall_openings(const OpeningDomain& domain, RecordQue
                                           Progress* progress) {
   ThickWallMerges out;
   MergeSearch search(domain, records, objective, constraints, start, paths, stream, progress);
-  while (search.improve(&out)) {
+  // Each thick panel with several openings once (a search of one opening's edges each), then
+  // removals while they gain (a cut each).
+  std::vector<int> panels;
+  for (const PanelRectangle& r : start)
+    if (thick(domain, r) && std::count_if(start.begin(), start.end(), [&](const PanelRectangle& o) {
+          return o.panel == r.panel;
+        }) > 1 && std::find(panels.begin(), panels.end(), r.panel) == panels.end())
+      panels.push_back(r.panel);
+  for (const int panel : panels) search.one_opening_on(panel, &out);
+  while (search.remove_one(&out)) {
   }
   out.openings = search.search().rectangles();
   out.values = search.search().current();

@@ -2,9 +2,10 @@
 // How many openings, judged by real cutters. The records that chose the openings misjudge whole
 // openings in thick walls (each element's light depends on its neighbours, and the reveals on both),
 // so the edge search there (thick_wall_edges.h) may start from one opening split in two, or from an
-// opening the goals do not need. After it, each opening is removed and each pair on one thick panel
-// merged into one, each candidate cut for real; a merged opening's edges are searched again before
-// it is compared, since a merge rarely lands where its edges belong.
+// opening the goals do not need. After it, a thick panel's several openings are tried as one (two
+// merged, or one left alone), and each opening removed, every candidate cut for real; the one
+// opening's edges are searched again before it is compared, since it rarely lands where its edges
+// belong.
 #include <cstdint>
 #include <vector>
 
@@ -18,13 +19,14 @@ struct ThickWallMerges {
   SensorValues values;                   // their cut
   int removed = 0, merged = 0;           // openings removed, pairs merged into one
   int cuts = 0, rough_cuts = 0;          // as ThickWallEdges' (the start's cut included)
-  int merges_searched = 0;               // merged openings whose edges were searched (one per round)
+  int merges_searched = 0;               // panels whose one opening's edges were searched
 };
 
-// Rounds of: the best removal of one opening (each cut), and the best merge of two on one thick
-// panel (each merged_openings cut, the best then with its edges searched alone); the better kept
-// while it lowers the error of the real cuts of `paths` per sensor on random numbers `stream`.
-// `start`: the edge search's openings.
+// On each thick panel with several openings, once: one opening instead, the best by its cut of
+// each pair merged (merged_openings) and each opening left alone on the panel, its edges then
+// searched alone (as the thick-wall edge search's), kept when the error of the real cuts (`paths`
+// per sensor on random numbers `stream`) falls. Then single openings removed while that lowers
+// the error. `start`: the edge search's openings.
 ThickWallMerges merge_thick_wall_openings(const OpeningDomain& domain, RecordQueries& records,
                                           const LinearObjective& objective, const OpeningConstraints& constraints,
                                           const std::vector<PanelRectangle>& start, int paths, uint64_t stream,
