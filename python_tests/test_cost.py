@@ -244,8 +244,8 @@ def test_python_functions_refuse_before_any_work(tmp_path):
 
 def test_solve_estimate_counts_the_thick_walls_edge_cuts(tmp_path):
     """A solve in a thick wall searches its openings' edges with real cutters (docs/solver.md,
-    step 7): their time is in the estimate, for as many openings as the constraints allow, and not
-    without a thickness or with refine_edges off."""
+    step 7), and tries a panel's several openings as one: their time is in the estimate, for as
+    many openings as the constraints allow, and not without a thickness or with refine_edges off."""
     path = write_room(tmp_path)
     d = json.loads(path.read_text())
     d["opening_domain"]["thickness"] = 0.3
@@ -258,6 +258,9 @@ def test_solve_estimate_counts_the_thick_walls_edge_cuts(tmp_path):
     path.write_text(json.dumps(d))
     three = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")
     assert three["seconds"]["thick_wall_edges"] == pytest.approx(3 * one["seconds"]["thick_wall_edges"])
+    # One panel can hold several of three openings: it is tried with one (the thick-wall merges).
+    assert "thick_wall_merges" not in one["seconds"]
+    assert 0 < three["seconds"]["thick_wall_merges"] < three["seconds"]["thick_wall_edges"]
     d["solver"] = {"refine_edges": False}
     path.write_text(json.dumps(d))
     off = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")

@@ -621,11 +621,12 @@ class OpeningSolve {
       summary.removed = merges.removed;
       summary.merged = merges.merged;
       summary.merges_searched = merges.merges_searched;
-      if (merges.removed + merges.merged == 0) return stop_reason::kNoImprovement;
-      out_.fitness += prediction_error(objective_, merges.values.value - c_.closed.value) - chosen_error();
-      chosen_ = merges.values;
-      final_rects_ = merges.openings;
-      return stop_reason::kNoImprovement;
+      if (merges.removed + merges.merged > 0) {
+        out_.fitness += prediction_error(objective_, merges.values.value - c_.closed.value) - chosen_error();
+        chosen_ = merges.values;
+        final_rects_ = merges.openings;
+      }
+      return stop_reason::kDone;
     });
     out_.stages.back().error_before = before;
     out_.stages.back().error_after = goal_error(out_.goals, chosen_.value).relative_rms;

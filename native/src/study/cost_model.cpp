@@ -44,6 +44,10 @@ constexpr double kThickWallRecordFactor = 7.5, kThickWallTraceFactor = 6.0;
 // 53 of half the paths), 123 per opening for the four of the solid off-grid two-room study; the
 // pair scans over both axes are most of them.
 constexpr double kThickWallEdgeCutsPerOpening = 130.0;
+// Cuts of the thick-wall merges (solve/thick_wall_merges.h) per thick panel with several openings,
+// a rough cut counted as half: one opening's edges searched, and the panel's candidates cut.
+// Measured: 115 on the solid off-grid two-room study.
+constexpr double kThickWallMergeCutsPerPanel = 120.0;
 // Openings in thick walls the estimate assumes per thick panel when the constraints set no
 // maximum.
 constexpr double kThickWallOpeningsPerPanel = 2.0;
@@ -290,6 +294,16 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                            " cuts of " + format_count(paths) + " paths per sensor)",
                        cuts * S * paths * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
                        0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
+    // Each thick panel that can hold several of those openings is tried with one.
+    const double merged_panels = std::min<double>(thick_panels, std::floor(openings / 2.0));
+    if (merged_panels > 0.0) {
+      const double merge_cuts = kThickWallMergeCutsPerPanel * merged_panels;
+      e->time.push_back({"thick_wall_merges",
+                         "cutting the openings the thick-wall merges try (about " + format_count(merge_cuts) +
+                             " cuts of " + format_count(paths) + " paths per sensor)",
+                         merge_cuts * S * paths * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
+                         0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
+    }
     // The openings chosen again for their edges off the grid (solve/refinable_openings.h): at most
     // search_evaluations sets more, each kept twice (the records' exact values, and the search's
     // values) and evaluated as the search's are.
