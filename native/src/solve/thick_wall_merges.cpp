@@ -61,8 +61,9 @@ class MergeSearch {
   }
 
   // One opening on thick panel `panel` instead of its several: each pair merged (merged_openings)
-  // and each opening kept alone, the best by its cut then with its edges searched; kept when that
-  // lowers the error. Returns whether it was kept.
+  // and each opening kept alone, the best by its cut then with its edges searched (when its cut
+  // is within kThickWallMergeWorthSearching of the error); kept when that lowers the error.
+  // Returns whether it was kept.
   bool one_opening_on(int panel, ThickWallMerges* out) {
     const std::vector<PanelRectangle> now = search_.rectangles();
     const double before = error_;
@@ -76,7 +77,7 @@ class MergeSearch {
           for (const PanelRectangle& joint : merged_openings(now[i], now[j], unit))
             consider(with_merged(now, i, j, joint), i, true, &best);
     }
-    if (best.openings.empty()) return false;
+    if (best.openings.empty() || !(best.error <= kThickWallMergeWorthSearching * before)) return false;
     keep(best.openings);
     refine_edges(domain_, closed_, objective_, constraints_, &search_, progress_, edges_of(best.merged_index));
     ++out->merges_searched;
