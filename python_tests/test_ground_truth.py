@@ -257,10 +257,11 @@ def test_solver_recovers_three_openings_of_two_rooms_with_solid_walls(tmp_path):
     """Two rooms joined by a door, 0.3 m solid slabs on every side, three opening panels (a south
     and a west wall of one room, the roof of the other) and a truth of three openings on the
     element grid. In solid walls each element's light depends on its neighbours, so the linear
-    models misjudge whole openings; the exact search over whole openings (solver step 6) must find
-    the truth: its light within three times the noise of the check. Its openings then meet the goals
-    within the records' noise, so the edges in the thick walls are not searched with real cutters
-    (step 7)."""
+    models misjudge whole openings; the exact search over whole openings (solver step 6), and where
+    its openings miss the goals beyond the records' noise the thick-wall stages of step 7 (edges
+    with real cutters, then merges), must find the truth: its light within three times the noise
+    of the check. Which of them ends it depends on the records' random numbers, which differ
+    slightly between machines; each stage that runs must not raise the error it reports."""
     scene, truth, goals, goals_stderr = two_room_goals(
         tmp_path, wall=0.3, on_grid=True, seed=5, widths=(3.5, 3.0), depth=3.5, paths=1 << 15)
     result = fenestra.solve(scene)
@@ -270,8 +271,15 @@ def test_solver_recovers_three_openings_of_two_rooms_with_solid_walls(tmp_path):
     assert result["opening_search"]["run"] and result["opening_search"]["evaluations"] > 0
     assert result["constraints_met"], result["constraint_violations"]
     thick = next(s for s in result["stages"] if s["name"] == "thick-wall edges")
-    assert thick["stopped_because"] == "skipped: the openings on the grid meet the goals within the records' noise"
-    assert "thick-wall edges" not in result["timings_s"] and result["edge_moves"] == 0
+    merges = next(s for s in result["stages"] if s["name"] == "thick-wall merges")
+    if thick["stopped_because"].startswith("skipped"):
+        assert thick["stopped_because"] == "skipped: the openings on the grid meet the goals within the records' noise"
+        assert "thick-wall edges" not in result["timings_s"] and result["edge_moves"] == 0
+        assert merges["stopped_because"] == "skipped: the thick-wall edges were not searched"
+    else:
+        assert thick["stopped_because"] == "done" and result["thick_wall_edges"]["run"], thick
+        assert thick["error_after"] <= thick["error_before"], thick
+        assert merges["error_after"] <= merges["error_before"] or merges["stopped_because"].startswith("skipped"), merges
 
     error, noise, _ = checked_error(scene, result["openings"], goals, goals_stderr)
     assert noise < 0.01, noise
