@@ -23,6 +23,17 @@ bool within_thick_wall_edge_reach(const std::vector<GridRectangle>& from, const 
   return true;
 }
 
+EdgeSearchScope thick_wall_edge_scope(const OpeningDomain& domain, const OpeningConstraints& constraints) {
+  EdgeSearchScope scope;
+  scope.whole_elements = false;
+  scope.zero_thickness_panels = false;
+  scope.real_cuts = true;
+  // Sill and head (or jambs) trade against each other in narrow valleys that single moves do not
+  // cross: pairs of positions of the two edges are searched first, over the whole span.
+  scope.scan_span = thick_wall_edge_span(domain.element_size(), constraints.module);
+  return scope;
+}
+
 ThickWallEdges search_thick_wall_edges(const OpeningDomain& domain, RecordQueries& records,
                                                   const LinearObjective& objective,
                                                   const OpeningConstraints& constraints,
@@ -40,14 +51,8 @@ ThickWallEdges search_thick_wall_edges(const OpeningDomain& domain, RecordQuerie
   out.from_placement = prediction_error(objective, placed.values() - closed) <=
                        prediction_error(objective, given.values() - closed);
   CutRegionSearch& search = out.from_placement ? placed : given;
-  EdgeSearchScope scope;
-  scope.whole_elements = false;
-  scope.zero_thickness_panels = false;
-  scope.real_cuts = true;
-  // Sill and head (or jambs) trade against each other in narrow valleys that single moves do not
-  // cross: pairs of positions of the two edges are searched first, over the whole span.
-  scope.scan_span = thick_wall_edge_span(domain.element_size(), constraints.module);
-  out.edges = refine_edges(domain, closed, objective, constraints, &search, progress, scope);
+  out.edges = refine_edges(domain, closed, objective, constraints, &search, progress,
+                           thick_wall_edge_scope(domain, constraints));
   out.values = search.current();
   out.cuts = given.cuts() + placed.cuts();
   out.rough_cuts = given.rough_cuts() + placed.rough_cuts();

@@ -34,6 +34,10 @@ struct ThickWallEdges {
   int rough_cuts = 0;                  // and of half as many (CutRegionSearch::rough_values)
 };
 
+// The edge search with real cutters in thick walls: finer steps only, on thick panels only, pairs
+// of edges scanned over thick_wall_edge_span first (refine_edges).
+EdgeSearchScope thick_wall_edge_scope(const OpeningDomain& domain, const OpeningConstraints& constraints);
+
 // Edges in thick walls searched with real cutters: the sides placed by the interpolation of the
 // element grid's records (interpolated_placement), then moved in steps below the element
 // (edge_steps in thick walls) while the error of the real cuts falls; from the start instead when

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "solve/cut_region_search.h"
+#include "solve/thick_wall_edges.h"
 #include "util/progress.h"
 
 namespace fenestra {
@@ -114,12 +115,8 @@ class MergeSearch {
 
   // The edge search of opening `merged_index` alone, as the thick-wall edge search's.
   EdgeSearchScope edges_of(size_t merged_index) const {
-    EdgeSearchScope scope;
-    scope.whole_elements = false;
-    scope.zero_thickness_panels = false;
-    scope.real_cuts = true;
+    EdgeSearchScope scope = thick_wall_edge_scope(domain_, constraints_);
     scope.only_opening = static_cast<int>(merged_index);
-    scope.scan_span = thick_wall_edge_span(domain_.element_size(), constraints_.module);
     return scope;
   }
 
