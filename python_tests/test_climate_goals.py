@@ -127,14 +127,12 @@ def test_least_glazing_in_a_thick_wall_answers_with_the_least_passing_glass_and_
     assert climate["space"] == (climate["verified_space"] if shown == "verified" else climate["records_space"])
 
 
-def test_least_glazing_lists_no_passing_design_with_less_glass_beside_the_answer(tmp_path):
+def least_glazing_study(folder, seed):
     """The reported study's shape: a 5 x 4 x 2.8 m room, a 0.3 m south wall, sDA >= 55 % and ASE <=
-    10 % with the least glazing. At this seed the records say a 1-opening trade-off of 1.0 m² meets
-    the goals beside a 2-opening answer of 1.25 m²; real cutters say it does not. The list shows it
-    with the cutters' figures, not as a design that meets the goals with less glass."""
-    (tmp_path / "room.obj").write_text(
+    10 % with the least glazing, trade-offs checked with real cutters."""
+    (folder / "room.obj").write_text(
         box_obj((0, 0, 0), (5, 4, 2.8), lambda f: "facade" if f == "south" else "floor" if f == "floor" else "grey"))
-    short_wea(tmp_path / "chicago.wea")
+    short_wea(folder / "chicago.wea")
     scene = {
         "fenestra": 1, "geometry": "room.obj",
         "materials": {"grey": {"reflectance": 0.6}, "floor": {"reflectance": 0.2}, "facade": {"reflectance": 0.5}},
@@ -143,25 +141,38 @@ def test_least_glazing_lists_no_passing_design_with_less_glass_beside_the_answer
         "sky": {"type": "climate", "weather": "chicago.wea", "resolution": [64, 32]},
         "goals": {"climate": [{"metric": "sda", "min_area_fraction": 0.55},
                               {"metric": "ase", "max_area_fraction": 0.10}], "least_glazing": True},
-        "render": {"paths_per_sensor": 512, "max_bounces": 6, "seed": 1},
+        "render": {"paths_per_sensor": 512, "max_bounces": 6, "seed": seed},
         "solver": {"tradeoffs": True, "verify": True},
     }
-    path = tmp_path / "scene.json"
+    path = folder / "scene.json"
     path.write_text(json.dumps(scene))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        result = fenestra.solve(fenestra.load_scene(str(path)))
-    climate = result["climate"]
-    answer = next(t for t in result["tradeoffs"] if t["answer"])
-    for entry in result["tradeoffs"]:
-        if entry["climate"] and entry["climate"]["all_met"] and not entry["answer"]:
-            assert entry["glazing_area_m2"] >= answer["glazing_area_m2"] - 1e-9, result["tradeoffs"]
-    # The case is exercised: a design with less glass was checked with real cutters, and is either
-    # the answer now or listed with the cutters' figures.
-    cheaper = [t for t in result["tradeoffs"] if t["glazing_area_m2"] < answer["glazing_area_m2"] - 1e-9]
-    assert climate["answer_from_tradeoffs"] or any(t["climate"]["figures_by"] == "cutters" for t in cheaper), \
-        result["tradeoffs"]
-    assert answer["climate"]["figures_by"] == "records"  # the answer's are its headline figures
+        return fenestra.solve(fenestra.load_scene(str(path)))
+
+
+def test_least_glazing_lists_no_passing_design_with_less_glass_beside_the_answer(tmp_path):
+    """Where the records say a trade-off with less glass meets the goals, real cutters decide: it is
+    either the answer or listed with the cutters' figures, never shown as a passing design with less
+    glass. Which seed's records make that case depends on the random numbers, so seeds are tried
+    until one does; the rules hold at every seed tried."""
+    exercised = False
+    for seed in range(1, 13):
+        result = least_glazing_study(tmp_path, seed)
+        climate = result["climate"]
+        answer = next(t for t in result["tradeoffs"] if t["answer"])
+        for entry in result["tradeoffs"]:
+            if entry["climate"] and entry["climate"]["all_met"] and not entry["answer"]:
+                assert entry["glazing_area_m2"] >= answer["glazing_area_m2"] - 1e-9, (seed, result["tradeoffs"])
+        # The answer's figures are the headline's, labelled as the headline is.
+        headline_by = {"path records": "records", "real cutters": "cutters"}[climate["headline"]]
+        assert answer["climate"]["figures_by"] == headline_by, (seed, climate["headline"], answer)
+        assert answer["climate"]["achieved"] == [g["achieved"] for g in climate["goals"]], (seed, answer)
+        cheaper = [t for t in result["tradeoffs"] if t["glazing_area_m2"] < answer["glazing_area_m2"] - 1e-9]
+        if climate["answer_from_tradeoffs"] or any(t["climate"]["figures_by"] == "cutters" for t in cheaper):
+            exercised = True
+            break
+    assert exercised, "no seed in 1..12 had a trade-off with less glass that the records say meets the goals"
 
 
 def test_python_solve_reports_a_goal_that_cannot_be_met(tmp_path):

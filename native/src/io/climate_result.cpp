@@ -82,7 +82,7 @@ json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
   return {{"goals", list},
           {"all_met", c.headline().empty() ? json(nullptr) : json(all_met(goals, c.headline()))},
           {"records_all_met", c.achieved.empty() ? json(nullptr) : json(all_met(goals, c.achieved))},
-          {"headline", c.headline_cutters || c.achieved.empty() ? "real cutters" : "path records"},
+          {"headline", c.headline_is_cut() ? "real cutters" : "path records"},
           {"answer_from_tradeoffs", c.answer_from_tradeoffs},
           {"verified_all_met", c.verified.empty() ? json(nullptr) : json(all_met(goals, c.verified))},
           {"unmet", c.unmet},

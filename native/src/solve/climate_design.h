@@ -85,9 +85,8 @@ struct ClimateOutcome {
   // The figures shown (CLI, result["climate"]["goals"][i]["achieved"], the add-on): the real
   // cutters' when they disagree with the records beyond the noise or the records cannot tell,
   // else the records'.
-  const std::vector<ClimateFigure>& headline() const {
-    return headline_cutters || achieved.empty() ? verified : achieved;
-  }
+  bool headline_is_cut() const { return headline_cutters || achieved.empty(); }
+  const std::vector<ClimateFigure>& headline() const { return headline_is_cut() ? verified : achieved; }
   const std::shared_ptr<const AnnualStudy>& headline_study() const {
     return headline_cutters || !study ? verified_study : study;
   }

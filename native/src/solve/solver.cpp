@@ -814,8 +814,12 @@ class OpeningSolve {
     if (!climate_) return skip_stage(&out_.stages, "climate figures", stop_reason::kNoClimateGoals);
     const double seconds = run_stage(&out_.stages, "climate figures", [&] {
       report_climate(scene_, records_, *climate_problem_, final_rects_, settings_.verify, settings_.verify_paths, &out_);
-      for (TradeoffResult& entry : out_.tradeoffs)
-        if (entry.answer || entry.climate.empty()) entry.climate = tradeoff_climate(records_, *climate_problem_, entry, out_);
+      for (TradeoffResult& entry : out_.tradeoffs) {
+        if (!entry.answer && !entry.climate.empty()) continue;
+        entry.climate = tradeoff_climate(records_, *climate_problem_, entry, out_);
+        // The answer's figures are the headline's; least glazing may have marked it cut before.
+        if (entry.answer) entry.climate_cut = out_.climate.headline_is_cut();
+      }
       return stop_reason::kDone;
     });
     out_.timings.push_back({"climate figures", seconds});
