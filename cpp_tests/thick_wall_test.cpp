@@ -12,6 +12,7 @@
 #include "solve/catalogue_snap.h"
 #include "solve/record_queries.h"
 #include "solve/thick_wall_edges.h"
+#include "solve/thick_wall_joint_edges.h"
 #include "solve/thick_wall_merges.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
@@ -284,6 +285,50 @@ TEST(ThickWall, MergedOpeningsAreTheBoxAndTheJointAreaAboutTheCentroid) {
   EXPECT_NEAR(joint.width() / joint.height(), 1.0, 0.1);
   for (const double x : {joint.u0, joint.u1, joint.v0, joint.v1})
     EXPECT_NEAR(x / 0.0625, std::round(x / 0.0625), 1e-9) << x;
+}
+
+// Two windows whose sides are all off: one too far left and short, the other too wide. The goals
+// are the truth's own cut on the judging random numbers, so the truth's judged error is exactly 0.
+// Moving every side at once by the differences of real cuts brings each side within half the
+// finest edge step of the truth's (nearer than the edge search's positions could), and the error
+// down twentyfold. The second window is at the smallest width the constraints allow, so
+// its jambs are measured one way only; no step breaks the constraints. The values are the judged
+// cut of the openings returned.
+TEST(ThickWall, JointEdgeStepsMoveEverySideTowardsATruthsCut) {
+  TempDir dir;
+  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, work_plane_sensors());
+  const Contributions c = compute_contributions(scene);
+  LocalRecordQueries records(scene, c, nullptr);
+  const std::vector<PanelRectangle> truth = {{0, 0.43, 1.37, 0.81, 1.93}, {0, 1.9, 2.5, 1.05, 1.71}};
+  const std::vector<PanelRectangle> start = {{0, 0.33, 1.29, 0.87, 1.79}, {0, 1.84, 2.58, 1.0, 1.78}};
+  OpeningConstraints constraints;
+  constraints.min_width = 0.6;
+  const int paths = 256, judge_paths = 1024;
+  const SensorValues goals = records.cut(std::vector<OpeningInput>(truth.begin(), truth.end()), judge_paths,
+                                         kThickWallJointEdgeStream);
+  const LinearObjective objective = goals_objective(goals, c);
+  const ThickWallJointEdges found = joint_thick_wall_edges(scene.domain, records, objective, constraints, start,
+                                                           paths, judge_paths, kThickWallJointEdgeStream, nullptr);
+  EXPECT_EQ(found.sides, 8);
+  EXPECT_GE(found.steps, 1);
+  EXPECT_GE(found.cuts, found.steps * found.sides);  // every side measured before each step
+  EXPECT_GT(found.judged_cuts, found.steps);
+  ASSERT_EQ(found.openings.size(), 2u);
+  const double half_step = 0.5 * edge_steps(scene.domain.element_size(), 0.0, true).back();
+  for (size_t i = 0; i < 2; ++i) {
+    const PanelRectangle& r = found.openings[i];
+    EXPECT_NEAR(r.u0, truth[i].u0, half_step) << i;
+    EXPECT_NEAR(r.u1, truth[i].u1, half_step) << i;
+    EXPECT_NEAR(r.v0, truth[i].v0, half_step) << i;
+    EXPECT_NEAR(r.v1, truth[i].v1, half_step) << i;
+  }
+  EXPECT_TRUE(constraint_violations(scene.domain, found.openings, constraints).empty());
+  const SensorValues again = records.cut(std::vector<OpeningInput>(found.openings.begin(), found.openings.end()),
+                                         judge_paths, kThickWallJointEdgeStream);
+  EXPECT_TRUE((found.values.value.array() == again.value.array()).all());
+  const double before = prediction_error(objective, found.start_values.value - c.closed.value);
+  const double after = prediction_error(objective, found.values.value - c.closed.value);
+  EXPECT_LT(after, 0.05 * before);
 }
 
 TEST(ThickWall, LinesAheadCountsTheTubeSidesLeftInTheWall) {

@@ -244,7 +244,7 @@ def test_python_functions_refuse_before_any_work(tmp_path):
 
 def test_solve_estimate_counts_the_thick_walls_edge_cuts(tmp_path):
     """A solve in a thick wall searches its openings' edges with real cutters (docs/solver.md,
-    step 7), and tries a panel's several openings as one: their time is in the estimate, for as
+    step 7), tries a panel's several openings as one and moves every side at once: their time is in the estimate, for as
     many openings as the constraints allow, and not without a thickness or with refine_edges off."""
     path = write_room(tmp_path)
     d = json.loads(path.read_text())
@@ -261,10 +261,13 @@ def test_solve_estimate_counts_the_thick_walls_edge_cuts(tmp_path):
     # One panel can hold several of three openings: it is tried with one (the thick-wall merges).
     assert "thick_wall_merges" not in one["seconds"]
     assert 0 < three["seconds"]["thick_wall_merges"] < three["seconds"]["thick_wall_edges"]
+    # Every side moved at once: two cuts per side per step, and the judged cuts of each step.
+    assert 0 < one["seconds"]["thick_wall_joint_edges"] < three["seconds"]["thick_wall_joint_edges"]
+    assert three["seconds"]["thick_wall_joint_edges"] < three["seconds"]["thick_wall_edges"]
     d["solver"] = {"refine_edges": False}
     path.write_text(json.dumps(d))
     off = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")
-    assert "thick_wall_edges" not in off["seconds"]
+    assert "thick_wall_edges" not in off["seconds"] and "thick_wall_joint_edges" not in off["seconds"]
     thin = fenestra.estimate_cost(fenestra.load_scene(str(write_room(tmp_path))), "solve")
     assert "thick_wall_edges" not in thin["seconds"]
 

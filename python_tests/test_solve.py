@@ -197,6 +197,7 @@ LIMITED = [
       "local search": "skipped: solver.improve_iterations is 0", "verification": "skipped: solver.verify is off",
       "trade-offs": "skipped: solver.tradeoffs is off", "edges off the grid": "skipped: solver.refine_edges is off",
       "thick-wall edges": "skipped: solver.refine_edges is off", "catalogue sizes": "skipped: no catalogue",
+      "thick-wall joint edges": "skipped: solver.refine_edges is off",
       "thick-wall openings": "skipped: solver.refine_edges is off",
       "composition": "skipped: no facade rules"}),
 ]

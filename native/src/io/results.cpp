@@ -154,7 +154,7 @@ std::vector<OpeningInput> parse_openings(const json& j, const std::string& sourc
                                                "element_size", "sensors", "error", "fitness", "warnings", "dropped",
                                                "constraints_met", "tradeoffs", "composition",
                                                "constraint_violations", "unconstrained", "timings_s", "stages", "genetic",
-                                               "edge_moves", "second_start", "opening_search", "thick_wall_openings", "thick_wall_edges", "thick_wall_merges",
+                                               "edge_moves", "second_start", "opening_search", "thick_wall_openings", "thick_wall_edges", "thick_wall_merges", "thick_wall_joint_edges",
                                                "constraint_costs", "settings",
                                                "climate"}))
     fail(quoted_text(unknown->key) + ": " + unknown->message);

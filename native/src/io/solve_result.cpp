@@ -223,6 +223,13 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                              {"removed", r.thick_wall_merges.removed},
                              {"merged", r.thick_wall_merges.merged},
                              {"merges_searched", r.thick_wall_merges.merges_searched}}},
+      {"thick_wall_joint_edges", {{"run", r.thick_wall_joint_edges.ran},
+                                  {"steps", r.thick_wall_joint_edges.steps},
+                                  {"sides", r.thick_wall_joint_edges.sides},
+                                  {"cuts", r.thick_wall_joint_edges.cuts},
+                                  {"judged_cuts", r.thick_wall_joint_edges.judged_cuts},
+                                  {"paths_per_cut", r.thick_wall_joint_edges.paths_per_cut},
+                                  {"judge_paths", r.thick_wall_joint_edges.judge_paths}}},
       {"constraint_costs", [&] {
          json costs = json::array();
          for (const ConstraintCost& c : r.constraint_costs)

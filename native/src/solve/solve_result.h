@@ -69,6 +69,14 @@ struct ThickWallMergesSummary {
   int merges_searched = 0;       // merged openings whose edges were searched again
 };
 
+// Every side of the openings in thick walls moved at once by real cuts (solve/thick_wall_joint_edges.h).
+struct ThickWallJointEdgesSummary {
+  bool ran = false;
+  int steps = 0, sides = 0;
+  int cuts = 0, judged_cuts = 0;     // of `paths_per_cut` and of `judge_paths` paths per sensor
+  int paths_per_cut = 0, judge_paths = 0;
+};
+
 struct SolveResult {
   std::vector<uint8_t> open;                 // per element: the final openings' elements
   std::vector<OpeningRectangle> openings;    // the final openings: admissible rectangles
@@ -99,6 +107,7 @@ struct SolveResult {
   ThickWallOpeningsSummary thick_wall_openings;
   ThickWallEdgesSummary thick_wall_edges;
   ThickWallMergesSummary thick_wall_merges;
+  ThickWallJointEdgesSummary thick_wall_joint_edges;
   // When the constraints cost much light (constraints_cost_much), the error without each family
   // of limits, least first (solve/constraint_costs.h); else empty.
   std::vector<ConstraintCost> constraint_costs;

@@ -24,6 +24,7 @@
 #include "solve/prediction_check.h"
 #include "solve/refine_openings.h"
 #include "solve/thick_wall_edges.h"
+#include "solve/thick_wall_joint_edges.h"
 #include "solve/thick_wall_merges.h"
 #include "solve/tradeoffs.h"
 #include "trace/contributions_origin.h"
@@ -485,7 +486,8 @@ class OpeningSolve {
     if (skipped) {
       skip_stage(&out_.stages, "edges off the grid", skipped);
       skip_stage(&out_.stages, "thick-wall edges", skipped);
-      return skip_stage(&out_.stages, "thick-wall merges", skipped);
+      skip_stage(&out_.stages, "thick-wall merges", skipped);
+      return skip_stage(&out_.stages, "thick-wall joint edges", skipped);
     }
     run_stage(&out_.stages, "edges off the grid", [&] {
       if (progress_) progress_->start("solving: edges off the element grid", 1);
@@ -597,7 +599,42 @@ class OpeningSolve {
       out_.stages.back().error_after = goal_error(out_.goals, chosen_.value).relative_rms;
     }
     thick_wall_merges(searched);
+    thick_wall_joint_edges(searched);
     keep_the_search_if_better();
+  }
+
+  // Every side of the openings in thick walls moved at once, judged by cuts of more paths
+  // (solve/thick_wall_joint_edges.h), after the edge search (`searched`) and the merges.
+  void thick_wall_joint_edges(bool searched) {
+    const char* skipped = !searched ? stop_reason::kNoThickWallEdgeSearch
+                          : within_the_noise(chosen_) ? stop_reason::kCutsWithinNoise
+                                                      : nullptr;
+    if (skipped) return skip_stage(&out_.stages, "thick-wall joint edges", skipped);
+    double before = 0.0;  // the start's judged cut
+    thick_seconds_ += run_stage(&out_.stages, "thick-wall joint edges", [&] {
+      if (progress_) progress_->start("solving: all edges in thick walls together, with real cutters", 1);
+      const int paths = out_.thick_wall_edges.paths_per_cut;
+      const int judge_paths = std::max(paths, std::min(kJointEdgeJudgeFactor * paths, c_.paths_per_sensor));
+      const ThickWallJointEdges joint =
+          joint_thick_wall_edges(scene_.domain, records_, objective_, constraints_, final_rects_, paths,
+                                 judge_paths, kThickWallJointEdgeStream, progress_);
+      ThickWallJointEdgesSummary& summary = out_.thick_wall_joint_edges;
+      summary.ran = true;
+      summary.steps = joint.steps;
+      summary.sides = joint.sides;
+      summary.cuts = joint.cuts;
+      summary.judged_cuts = joint.judged_cuts;
+      summary.paths_per_cut = paths;
+      summary.judge_paths = judge_paths;
+      before = goal_error(out_.goals, joint.start_values.value).relative_rms;
+      // The judged cut is kept either way: more paths than the edge search's, the same openings.
+      out_.fitness += prediction_error(objective_, joint.values.value - c_.closed.value) - chosen_error();
+      chosen_ = joint.values;
+      final_rects_ = joint.openings;
+      return joint.steps > 0 ? stop_reason::kDone : stop_reason::kNoImprovement;
+    });
+    out_.stages.back().error_before = before;
+    out_.stages.back().error_after = goal_error(out_.goals, chosen_.value).relative_rms;
   }
 
   // How many openings, judged by real cutters: each removed, and each pair on a thick panel merged

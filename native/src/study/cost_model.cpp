@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <thread>
@@ -18,6 +19,7 @@
 #include "scene/scene.h"
 #include "solve/genetic.h"
 #include "solve/thick_wall_edges.h"
+#include "solve/thick_wall_joint_edges.h"
 #include "trace/parallel.h"
 #include "trace/replicates.h"
 #include "util/byte_size.h"
@@ -48,6 +50,9 @@ constexpr double kThickWallEdgeCutsPerOpening = 130.0;
 // a rough cut counted as half: one opening's edges searched, and the panel's candidates cut.
 // Measured: 115 on the solid off-grid two-room study.
 constexpr double kThickWallMergeCutsPerPanel = 120.0;
+// Steps of the joint edge search in thick walls (solve/thick_wall_joint_edges.h) the estimate
+// assumes: it stops when a step gains under 1 %. Measured: 4 on the solid off-grid two-room study.
+constexpr double kJointEdgeStepsExpected = 4.0;
 // Openings in thick walls the estimate assumes per thick panel when the constraints set no
 // maximum.
 constexpr double kThickWallOpeningsPerPanel = 2.0;
@@ -304,6 +309,20 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                          merge_cuts * S * paths * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
                          0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
     }
+    // Every side moved at once: per step two cuts per side, and a judged cut of more paths per
+    // damping tried.
+    const double judge_paths =
+        std::max(paths, std::min<double>(kJointEdgeJudgeFactor * paths, static_cast<double>(e->paths_per_sensor)));
+    const double joint_cut_paths =
+        kJointEdgeStepsExpected * (8.0 * openings * paths + std::size(kJointEdgeDampings) * judge_paths);
+    e->time.push_back({"thick_wall_joint_edges",
+                       "cutting the openings the joint edge steps in thick walls try (about " +
+                           format_count(kJointEdgeStepsExpected * 8.0 * openings) + " cuts of " + format_count(paths) +
+                           " paths per sensor and " +
+                           format_count(kJointEdgeStepsExpected * std::size(kJointEdgeDampings)) + " of " +
+                           format_count(judge_paths) + ")",
+                       joint_cut_paths * S * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
+                       0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
     // The openings chosen again for their edges off the grid (solve/refinable_openings.h): at most
     // search_evaluations sets more, each kept twice (the records' exact values, and the search's
     // values) and evaluated as the search's are.

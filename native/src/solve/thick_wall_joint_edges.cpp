@@ -1,0 +1,191 @@
+#include "solve/thick_wall_joint_edges.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <Eigen/Dense>
+
+#include "solve/thick_wall_edges.h"
+#include "util/progress.h"
+
+namespace fenestra {
+namespace {
+
+struct Side {
+  size_t opening;
+  int which;  // 0: u0, 1: u1, 2: v0, 3: v1
+};
+
+double& side_of(PanelRectangle& r, int which) {
+  return which == 0 ? r.u0 : which == 1 ? r.u1 : which == 2 ? r.v0 : r.v1;
+}
+
+// The objective's error as a sum of squares (r'r == prediction_error(objective, net)): the
+// weighted misses of the targets, then of the lower and of the upper bounds.
+Eigen::VectorXd residuals(const LinearObjective& o, const Eigen::VectorXd& net) {
+  const Eigen::Index n = net.size();
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(3 * n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double w = std::sqrt(o.weight[i]), wb = w * std::sqrt(o.bound_weight);
+    r[i] = w * (net[i] - o.target[i]);
+    if (o.lower.size()) r[n + i] = wb * std::max(0.0, o.lower[i] - net[i]);
+    if (o.upper.size()) r[2 * n + i] = wb * std::max(0.0, net[i] - o.upper[i]);
+  }
+  return r;
+}
+
+// d residuals / d sides from d values / d sides (the bounds' rows where they are missed).
+Eigen::MatrixXd residual_jacobian(const LinearObjective& o, const Eigen::VectorXd& net, const Eigen::MatrixXd& dv) {
+  const Eigen::Index n = net.size();
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3 * n, dv.cols());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double w = std::sqrt(o.weight[i]), wb = w * std::sqrt(o.bound_weight);
+    J.row(i) = w * dv.row(i);
+    if (o.lower.size() && o.lower[i] > net[i]) J.row(n + i) = -wb * dv.row(i);
+    if (o.upper.size() && net[i] > o.upper[i]) J.row(2 * n + i) = wb * dv.row(i);
+  }
+  return J;
+}
+
+class JointEdgeSearch {
+ public:
+  JointEdgeSearch(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
+                  const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start, int paths,
+                  int judge_paths, uint64_t stream, Progress* progress)
+      : domain_(domain), records_(records), objective_(objective), constraints_(constraints), paths_(paths),
+        judge_paths_(judge_paths), stream_(stream), progress_(progress),
+        closed_(records.contributions().closed.value),
+        violations_(constraint_violations(domain, start, constraints).size()) {
+    for (size_t i = 0; i < start.size(); ++i)
+      if (domain.panels()[static_cast<size_t>(start[i].panel)].thickness > 0.0f)
+        for (int which = 0; which < 4; ++which) sides_.push_back({i, which});
+    const std::vector<double> steps = edge_steps(domain.element_size(), constraints.module, true);
+    h_ = steps.back();
+    unit_ = constraints.module > 0.0 ? constraints.module : kContinuousEdgeStep;
+    span_ = thick_wall_edge_span(domain.element_size(), constraints.module);
+  }
+
+  ThickWallJointEdges run(const std::vector<PanelRectangle>& start) {
+    ThickWallJointEdges out;
+    out.openings = start;
+    out.sides = static_cast<int>(sides_.size());
+    out.start_values = out.values = judged(start, &out);
+    double error = prediction_error(objective_, out.values.value - closed_);
+    while (!sides_.empty() && out.steps < kJointEdgeMaxSteps) {
+      const Eigen::MatrixXd dv = value_differences(out.openings, &out);
+      const Eigen::VectorXd net = out.values.value - closed_;
+      const Eigen::MatrixXd J = residual_jacobian(objective_, net, dv);
+      const Eigen::VectorXd r = residuals(objective_, net);
+      const Eigen::MatrixXd A = J.transpose() * J;
+      const double scale = A.diagonal().mean();
+      if (!(scale > 0.0)) break;
+      const Eigen::VectorXd g = J.transpose() * r;
+      std::optional<std::pair<std::vector<PanelRectangle>, SensorValues>> best;
+      double best_error = error;
+      for (double damping : kJointEdgeDampings) {
+        Eigen::MatrixXd damped = A;
+        damped.diagonal().array() += damping * scale;
+        const Eigen::VectorXd d = -damped.ldlt().solve(g);
+        const std::optional<std::vector<PanelRectangle>> moved = admissible_step(out.openings, d);
+        if (!moved) continue;
+        const SensorValues v = judged(*moved, &out);
+        const double e = prediction_error(objective_, v.value - closed_);
+        if (e < best_error) best_error = e, best = std::make_pair(*moved, v);
+      }
+      if (!best || !(std::sqrt(best_error) < (1.0 - kJointEdgeGain) * std::sqrt(error))) break;
+      out.openings = std::move(best->first);
+      out.values = std::move(best->second);
+      error = best_error;
+      ++out.steps;
+    }
+    return out;
+  }
+
+ private:
+  bool admissible(const std::vector<PanelRectangle>& openings) const {
+    return constraint_violations(domain_, openings, constraints_).size() <= violations_;
+  }
+
+  std::vector<PanelRectangle> moved(std::vector<PanelRectangle> openings, size_t k, double by) const {
+    side_of(openings[sides_[k].opening], sides_[k].which) += by;
+    return openings;
+  }
+
+  SensorValues cut(const std::vector<PanelRectangle>& openings, int paths) {
+    if (progress_) progress_->throw_if_cancelled();
+    return records_.cut(std::vector<OpeningInput>(openings.begin(), openings.end()), paths, stream_);
+  }
+
+  SensorValues judged(const std::vector<PanelRectangle>& openings, ThickWallJointEdges* out) {
+    ++out->judged_cuts;
+    return cut(openings, judge_paths_);
+  }
+
+  // Sensors x sides: each side's effect per meter, by central differences of +-h (one-sided where
+  // the side cannot move one way; zero where it can move neither).
+  Eigen::MatrixXd value_differences(const std::vector<PanelRectangle>& openings, ThickWallJointEdges* out) {
+    Eigen::MatrixXd dv = Eigen::MatrixXd::Zero(closed_.size(), static_cast<Eigen::Index>(sides_.size()));
+    std::optional<Eigen::VectorXd> here;  // the openings' own cut at `paths_`, for one-sided ones
+    for (size_t k = 0; k < sides_.size(); ++k) {
+      const std::vector<PanelRectangle> up = moved(openings, k, h_), down = moved(openings, k, -h_);
+      const bool can_up = admissible(up), can_down = admissible(down);
+      if (!can_up && !can_down) continue;
+      if (!(can_up && can_down) && !here) here = counted_cut(openings, out);
+      const Eigen::VectorXd high = can_up ? counted_cut(up, out) : *here;
+      const Eigen::VectorXd low = can_down ? counted_cut(down, out) : *here;
+      dv.col(static_cast<Eigen::Index>(k)) = (high - low) / ((can_up && can_down ? 2.0 : 1.0) * h_);
+    }
+    return dv;
+  }
+
+  Eigen::VectorXd counted_cut(const std::vector<PanelRectangle>& openings, ThickWallJointEdges* out) {
+    ++out->cuts;
+    return cut(openings, paths_).value;
+  }
+
+  // The openings moved by `d` (clipped to the span, snapped to the unit), halved up to three times
+  // until admissible; nullopt when nothing moves or none is.
+  std::optional<std::vector<PanelRectangle>> admissible_step(const std::vector<PanelRectangle>& openings,
+                                                             const Eigen::VectorXd& d) const {
+    for (double share = 1.0; share >= 0.125; share *= 0.5) {
+      std::vector<PanelRectangle> out = openings;
+      bool any = false;
+      for (size_t k = 0; k < sides_.size(); ++k) {
+        const double by = share * std::clamp(d[static_cast<Eigen::Index>(k)], -span_, span_);
+        double& side = side_of(out[sides_[k].opening], sides_[k].which);
+        const double to = unit_ * std::round((side + by) / unit_);
+        if (std::abs(to - side) < 0.5 * unit_) continue;
+        side = to;
+        any = true;
+      }
+      if (!any) return std::nullopt;
+      if (admissible(out)) return out;
+    }
+    return std::nullopt;
+  }
+
+  const OpeningDomain& domain_;
+  RecordQueries& records_;
+  const LinearObjective& objective_;
+  const OpeningConstraints& constraints_;
+  const int paths_, judge_paths_;
+  const uint64_t stream_;
+  Progress* progress_;
+  const Eigen::VectorXd closed_;
+  const size_t violations_;  // the start's: a step may not add any
+  std::vector<Side> sides_;
+  double h_ = 0.0, unit_ = 0.0, span_ = 0.0;
+};
+
+}  // namespace
+
+ThickWallJointEdges joint_thick_wall_edges(const OpeningDomain& domain, RecordQueries& records,
+                                           const LinearObjective& objective, const OpeningConstraints& constraints,
+                                           const std::vector<PanelRectangle>& start, int paths, int judge_paths,
+                                           uint64_t stream, Progress* progress) {
+  return JointEdgeSearch(domain, records, objective, constraints, start, paths, judge_paths, stream, progress)
+      .run(start);
+}
+
+}  // namespace fenestra

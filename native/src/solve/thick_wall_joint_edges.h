@@ -1,0 +1,52 @@
+#pragma once
+// Every side of every opening in thick walls moved at once, by real cuts. The edge search
+// (thick_wall_edges.h) moves one side or one pair of sides at a time, so it stops where one
+// panel's openings make up for another's: no single move gains though moving them together does.
+// Its cuts also carry noise of the size of the error it minimises (2 % of the goals at 4096 paths
+// per sensor in the solid two-room study), so its last moves follow that noise. Here each side's
+// effect on every sensor is measured by central differences of cuts sharing their random numbers
+// (a Jacobian), and Levenberg-Marquardt steps of all sides together are judged by cuts of more
+// paths.
+#include <cstdint>
+#include <vector>
+
+#include "solve/edge_refinement.h"
+#include "solve/record_queries.h"
+
+namespace fenestra {
+
+// Paths per sensor of the cuts that judge a step, as a multiple of the differences' paths (at most
+// the solver's): differences share their random numbers and cancel most of their noise, a step's
+// error does not.
+constexpr int kJointEdgeJudgeFactor = 4;
+// Their random numbers: neither the edge search's (kThickWallEdgeCutStream) nor the check's (0).
+constexpr uint64_t kThickWallJointEdgeStream = 2;
+// Steps at most; each costs about two difference cuts per side and kJointEdgeDampings judged cuts.
+// Measured on the solid off-grid two-room study (five openings, 20 sides): each of the first three
+// steps lowered the judged error by 14-19 %.
+constexpr int kJointEdgeMaxSteps = 6;
+// Levenberg-Marquardt dampings tried at each step, relative to the mean of J'J's diagonal: the
+// differences are linear over a step of about one difference width only.
+constexpr double kJointEdgeDampings[] = {0.001, 0.01, 0.1};
+// A step is taken when it lowers the judged error by more than this share.
+constexpr double kJointEdgeGain = 0.01;
+
+struct ThickWallJointEdges {
+  std::vector<PanelRectangle> openings;  // the start when no step gained
+  SensorValues start_values, values;     // judged cuts of the start and of `openings`
+  int steps = 0;                         // steps taken
+  int sides = 0;                         // sides moved (four per opening in a thick wall)
+  int cuts = 0;                          // difference cuts (`paths` per sensor)
+  int judged_cuts = 0;                   // judged cuts (`judge_paths` per sensor)
+};
+
+// The sides of the openings in thick walls of `start` moved together while the judged error (the
+// objective over cuts of `judge_paths` on `stream`) falls: differences of +-one finest edge step
+// (one-sided where a side cannot move both ways), steps clipped to the edge search's span, snapped
+// to the module (1 cm when edges are continuous) and halved until the openings are admissible.
+ThickWallJointEdges joint_thick_wall_edges(const OpeningDomain& domain, RecordQueries& records,
+                                           const LinearObjective& objective, const OpeningConstraints& constraints,
+                                           const std::vector<PanelRectangle>& start, int paths, int judge_paths,
+                                           uint64_t stream, Progress* progress);
+
+}  // namespace fenestra
