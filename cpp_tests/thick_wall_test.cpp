@@ -331,6 +331,36 @@ TEST(ThickWall, JointEdgeStepsMoveEverySideTowardsATruthsCut) {
   EXPECT_LT(after, 0.05 * before);
 }
 
+// The goals' second window is lower than the constraints allow, so a step towards them would make
+// the start's second window (at the smallest height allowed) too small: its sides are held, and the
+// first window's sides still move to the goals' own.
+TEST(ThickWall, JointEdgeStepsHoldAnOpeningTheyWouldMakeTooSmall) {
+  TempDir dir;
+  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, work_plane_sensors());
+  const Contributions c = compute_contributions(scene);
+  LocalRecordQueries records(scene, c, nullptr);
+  const std::vector<PanelRectangle> goals_openings = {{0, 0.43, 1.37, 0.81, 1.93}, {0, 1.9, 2.5, 1.2, 1.6}};
+  const std::vector<PanelRectangle> start = {{0, 0.35, 1.3, 0.86, 1.85}, {0, 1.9, 2.5, 1.1, 1.6}};
+  OpeningConstraints constraints;
+  constraints.min_height = 0.5;
+  const int paths = 256, judge_paths = 1024;
+  const SensorValues goals = records.cut(std::vector<OpeningInput>(goals_openings.begin(), goals_openings.end()),
+                                         judge_paths, kThickWallJointEdgeStream);
+  const LinearObjective objective = goals_objective(goals, c);
+  const ThickWallJointEdges found = joint_thick_wall_edges(scene.domain, records, objective, constraints, start,
+                                                           paths, judge_paths, kThickWallJointEdgeStream, nullptr);
+  EXPECT_GE(found.steps, 1);
+  ASSERT_EQ(found.openings.size(), 2u);
+  EXPECT_TRUE(constraint_violations(scene.domain, found.openings, constraints).empty());
+  EXPECT_GE(found.openings[1].height(), constraints.min_height - 1e-9);
+  const double half_step = 0.5 * edge_steps(scene.domain.element_size(), 0.0, true).back();
+  const PanelRectangle& r = found.openings[0];
+  EXPECT_NEAR(r.u0, goals_openings[0].u0, half_step);
+  EXPECT_NEAR(r.u1, goals_openings[0].u1, half_step);
+  EXPECT_NEAR(r.v0, goals_openings[0].v0, half_step);
+  EXPECT_NEAR(r.v1, goals_openings[0].v1, half_step);
+}
+
 TEST(ThickWall, LinesAheadCountsTheTubeSidesLeftInTheWall) {
   TempDir dir;
   const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 16);

@@ -84,10 +84,7 @@ class JointEdgeSearch {
       std::optional<std::pair<std::vector<PanelRectangle>, SensorValues>> best;
       double best_error = error;
       for (double damping : kJointEdgeDampings) {
-        Eigen::MatrixXd damped = A;
-        damped.diagonal().array() += damping * scale;
-        const Eigen::VectorXd d = -damped.ldlt().solve(g);
-        const std::optional<std::vector<PanelRectangle>> moved = admissible_step(out.openings, d);
+        const std::optional<std::vector<PanelRectangle>> moved = admissible_step(out.openings, A, g, damping * scale);
         if (!moved) continue;
         const SensorValues v = judged(*moved, &out);
         const double e = prediction_error(objective_, v.value - closed_);
@@ -103,7 +100,7 @@ class JointEdgeSearch {
   }
 
  private:
-  bool admissible(const std::vector<PanelRectangle>& openings) const {
+  bool within_constraints(const std::vector<PanelRectangle>& openings) const {
     return constraint_violations(domain_, openings, constraints_).size() <= violations_;
   }
 
@@ -129,7 +126,7 @@ class JointEdgeSearch {
     std::optional<Eigen::VectorXd> here;  // the openings' own cut at `paths_`, for one-sided ones
     for (size_t k = 0; k < sides_.size(); ++k) {
       const std::vector<PanelRectangle> up = moved(openings, k, h_), down = moved(openings, k, -h_);
-      const bool can_up = admissible(up), can_down = admissible(down);
+      const bool can_up = within_constraints(up), can_down = within_constraints(down);
       if (!can_up && !can_down) continue;
       if (!(can_up && can_down) && !here) here = counted_cut(openings, out);
       const Eigen::VectorXd high = can_up ? counted_cut(up, out) : *here;
@@ -144,25 +141,64 @@ class JointEdgeSearch {
     return cut(openings, paths_).value;
   }
 
-  // The openings moved by `d` (clipped to the span, snapped to the unit), halved up to three times
-  // until admissible; nullopt when nothing moves or none is.
+  // The damped step from `openings` (A = J'J, g = J'r), with the sides of every opening it would
+  // make inadmissible (too small, off the elements, too near another) held where they are and the
+  // others solved again; nullopt when nothing moves.
   std::optional<std::vector<PanelRectangle>> admissible_step(const std::vector<PanelRectangle>& openings,
-                                                             const Eigen::VectorXd& d) const {
-    for (double share = 1.0; share >= 0.125; share *= 0.5) {
-      std::vector<PanelRectangle> out = openings;
-      bool any = false;
+                                                             const Eigen::MatrixXd& A, const Eigen::VectorXd& g,
+                                                             double damping) const {
+    std::vector<uint8_t> held(sides_.size(), 0);
+    for (size_t round = 0; round <= openings.size(); ++round) {
+      Eigen::MatrixXd damped = A;
+      damped.diagonal().array() += damping;
+      Eigen::VectorXd rhs = -g;
       for (size_t k = 0; k < sides_.size(); ++k) {
-        const double by = share * std::clamp(d[static_cast<Eigen::Index>(k)], -span_, span_);
-        double& side = side_of(out[sides_[k].opening], sides_[k].which);
-        const double to = unit_ * std::round((side + by) / unit_);
-        if (std::abs(to - side) < 0.5 * unit_) continue;
-        side = to;
-        any = true;
+        if (!held[k]) continue;
+        const auto e = static_cast<Eigen::Index>(k);
+        damped.row(e).setZero();
+        damped.col(e).setZero();
+        damped(e, e) = 1.0;
+        rhs[e] = 0.0;
       }
-      if (!any) return std::nullopt;
-      if (admissible(out)) return out;
+      const std::optional<std::vector<PanelRectangle>> out = stepped(openings, damped.ldlt().solve(rhs));
+      if (!out) return std::nullopt;
+      const std::vector<size_t> broken = newly_inadmissible(openings, *out);
+      if (broken.empty()) return within_constraints(*out) ? out : std::nullopt;
+      for (size_t k = 0; k < sides_.size(); ++k)
+        if (std::find(broken.begin(), broken.end(), sides_[k].opening) != broken.end()) held[k] = 1;
     }
     return std::nullopt;
+  }
+
+  // The openings moved by `d`, each side clipped to the span and snapped to the unit; nullopt
+  // when nothing moves.
+  std::optional<std::vector<PanelRectangle>> stepped(const std::vector<PanelRectangle>& openings,
+                                                     const Eigen::VectorXd& d) const {
+    std::vector<PanelRectangle> out = openings;
+    bool any = false;
+    for (size_t k = 0; k < sides_.size(); ++k) {
+      double& side = side_of(out[sides_[k].opening], sides_[k].which);
+      const double to = unit_ * std::round((side + std::clamp(d[static_cast<Eigen::Index>(k)], -span_, span_)) / unit_);
+      if (std::abs(to - side) < 0.5 * unit_) continue;
+      side = to;
+      any = true;
+    }
+    if (!any) return std::nullopt;
+    return out;
+  }
+
+  // The openings `after` makes inadmissible, alone or beside another of their panel, that were not.
+  std::vector<size_t> newly_inadmissible(const std::vector<PanelRectangle>& before,
+                                         const std::vector<PanelRectangle>& after) const {
+    std::vector<size_t> out;
+    for (size_t i = 0; i < after.size(); ++i) {
+      bool broken = !admissible(after[i], domain_, constraints_) && admissible(before[i], domain_, constraints_);
+      for (size_t j = 0; j < after.size() && !broken; ++j)
+        broken = j != i && after[j].panel == after[i].panel && !apart(after[i], after[j], constraints_) &&
+                 apart(before[i], before[j], constraints_);
+      if (broken) out.push_back(i);
+    }
+    return out;
   }
 
   const OpeningDomain& domain_;

@@ -42,8 +42,9 @@ struct ThickWallJointEdges {
 
 // The sides of the openings in thick walls of `start` moved together while the judged error (the
 // objective over cuts of `judge_paths` on `stream`) falls: differences of +-one finest edge step
-// (one-sided where a side cannot move both ways), steps clipped to the edge search's span, snapped
-// to the module (1 cm when edges are continuous) and halved until the openings are admissible.
+// (one-sided where a side cannot move both ways), steps clipped to the edge search's span and
+// snapped to the module (1 cm when edges are continuous); the sides of an opening a step would make
+// inadmissible are held, and the others' step solved again.
 ThickWallJointEdges joint_thick_wall_edges(const OpeningDomain& domain, RecordQueries& records,
                                            const LinearObjective& objective, const OpeningConstraints& constraints,
                                            const std::vector<PanelRectangle>& start, int paths, int judge_paths,
