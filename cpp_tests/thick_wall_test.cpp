@@ -287,6 +287,31 @@ TEST(ThickWall, MergedOpeningsAreTheBoxAndTheJointAreaAboutTheCentroid) {
     EXPECT_NEAR(x / 0.0625, std::round(x / 0.0625), 1e-9) << x;
 }
 
+constexpr int kJointEdgeRunPaths = 256, kJointEdgeRunJudgePaths = 1024;
+
+// The joint edge steps from `start` towards goals that are `goals_openings`' own judged cut, in the
+// 3 m room with a 0.3 m wall and work-plane sensors (256 paths per difference, 1024 judged).
+struct JointEdgeRun {
+  Scene scene;
+  Contributions c;
+  LinearObjective objective;
+  ThickWallJointEdges found;
+};
+
+JointEdgeRun joint_edge_steps(const TempDir& dir, const std::vector<PanelRectangle>& goals_openings,
+                              const std::vector<PanelRectangle>& start, const OpeningConstraints& constraints) {
+  JointEdgeRun run;
+  run.scene = room(dir, {0.3f, 0.25f, false, false}, 256, work_plane_sensors());
+  run.c = compute_contributions(run.scene);
+  LocalRecordQueries records(run.scene, run.c, nullptr);
+  const SensorValues goals = records.cut(std::vector<OpeningInput>(goals_openings.begin(), goals_openings.end()),
+                                         kJointEdgeRunJudgePaths, kThickWallJointEdgeStream);
+  run.objective = goals_objective(goals, run.c);
+  run.found = joint_thick_wall_edges(run.scene.domain, records, run.objective, constraints, start,
+                                     kJointEdgeRunPaths, kJointEdgeRunJudgePaths, kThickWallJointEdgeStream, nullptr);
+  return run;
+}
+
 // Two windows whose sides are all off: one too far left and short, the other too wide. The goals
 // are the truth's own cut on the judging random numbers, so the truth's judged error is exactly 0.
 // Moving every side at once by the differences of real cuts brings each side within half the
@@ -296,19 +321,16 @@ TEST(ThickWall, MergedOpeningsAreTheBoxAndTheJointAreaAboutTheCentroid) {
 // cut of the openings returned.
 TEST(ThickWall, JointEdgeStepsMoveEverySideTowardsATruthsCut) {
   TempDir dir;
-  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, work_plane_sensors());
-  const Contributions c = compute_contributions(scene);
-  LocalRecordQueries records(scene, c, nullptr);
   const std::vector<PanelRectangle> truth = {{0, 0.43, 1.37, 0.81, 1.93}, {0, 1.9, 2.5, 1.05, 1.71}};
   const std::vector<PanelRectangle> start = {{0, 0.33, 1.29, 0.87, 1.79}, {0, 1.84, 2.58, 1.0, 1.78}};
   OpeningConstraints constraints;
   constraints.min_width = 0.6;
-  const int paths = 256, judge_paths = 1024;
-  const SensorValues goals = records.cut(std::vector<OpeningInput>(truth.begin(), truth.end()), judge_paths,
-                                         kThickWallJointEdgeStream);
-  const LinearObjective objective = goals_objective(goals, c);
-  const ThickWallJointEdges found = joint_thick_wall_edges(scene.domain, records, objective, constraints, start,
-                                                           paths, judge_paths, kThickWallJointEdgeStream, nullptr);
+  const JointEdgeRun run = joint_edge_steps(dir, truth, start, constraints);
+  const Scene& scene = run.scene;
+  const Contributions& c = run.c;
+  const LinearObjective& objective = run.objective;
+  const ThickWallJointEdges& found = run.found;
+  LocalRecordQueries records(scene, c, nullptr);
   EXPECT_EQ(found.sides, 8);
   EXPECT_GE(found.steps, 1);
   EXPECT_GE(found.cuts, found.steps * found.sides);  // every side measured before each step
@@ -324,7 +346,7 @@ TEST(ThickWall, JointEdgeStepsMoveEverySideTowardsATruthsCut) {
   }
   EXPECT_TRUE(constraint_violations(scene.domain, found.openings, constraints).empty());
   const SensorValues again = records.cut(std::vector<OpeningInput>(found.openings.begin(), found.openings.end()),
-                                         judge_paths, kThickWallJointEdgeStream);
+                                         kJointEdgeRunJudgePaths, kThickWallJointEdgeStream);
   EXPECT_TRUE((found.values.value.array() == again.value.array()).all());
   const double before = prediction_error(objective, found.start_values.value - c.closed.value);
   const double after = prediction_error(objective, found.values.value - c.closed.value);
@@ -336,19 +358,13 @@ TEST(ThickWall, JointEdgeStepsMoveEverySideTowardsATruthsCut) {
 // first window's sides still move to the goals' own.
 TEST(ThickWall, JointEdgeStepsHoldAnOpeningTheyWouldMakeTooSmall) {
   TempDir dir;
-  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, work_plane_sensors());
-  const Contributions c = compute_contributions(scene);
-  LocalRecordQueries records(scene, c, nullptr);
   const std::vector<PanelRectangle> goals_openings = {{0, 0.43, 1.37, 0.81, 1.93}, {0, 1.9, 2.5, 1.2, 1.6}};
   const std::vector<PanelRectangle> start = {{0, 0.35, 1.3, 0.86, 1.85}, {0, 1.9, 2.5, 1.1, 1.6}};
   OpeningConstraints constraints;
   constraints.min_height = 0.5;
-  const int paths = 256, judge_paths = 1024;
-  const SensorValues goals = records.cut(std::vector<OpeningInput>(goals_openings.begin(), goals_openings.end()),
-                                         judge_paths, kThickWallJointEdgeStream);
-  const LinearObjective objective = goals_objective(goals, c);
-  const ThickWallJointEdges found = joint_thick_wall_edges(scene.domain, records, objective, constraints, start,
-                                                           paths, judge_paths, kThickWallJointEdgeStream, nullptr);
+  const JointEdgeRun run = joint_edge_steps(dir, goals_openings, start, constraints);
+  const Scene& scene = run.scene;
+  const ThickWallJointEdges& found = run.found;
   EXPECT_GE(found.steps, 1);
   ASSERT_EQ(found.openings.size(), 2u);
   EXPECT_TRUE(constraint_violations(scene.domain, found.openings, constraints).empty());
