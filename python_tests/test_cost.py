@@ -243,9 +243,10 @@ def test_python_functions_refuse_before_any_work(tmp_path):
 
 
 def test_solve_estimate_counts_the_thick_walls_edge_cuts(tmp_path):
-    """A solve in a thick wall searches its openings' edges with real cutters (docs/solver.md,
-    step 7), tries a panel's several openings as one and moves every side at once: their time is in the estimate, for as
-    many openings as the constraints allow, and not without a thickness or with refine_edges off."""
+    """A solve in a thick wall places its openings' edges with real cutters (docs/solver.md,
+    step 7), searching them by pairs only with a catalogue, tries a panel's several openings as one
+    and moves every side at once: their time is in the estimate, for as many openings as the
+    constraints allow, and not without a thickness or with refine_edges off."""
     path = write_room(tmp_path)
     d = json.loads(path.read_text())
     d["opening_domain"]["thickness"] = 0.3
@@ -257,13 +258,23 @@ def test_solve_estimate_counts_the_thick_walls_edge_cuts(tmp_path):
     d["solver"] = {"constraints": {"max_openings": 3}}
     path.write_text(json.dumps(d))
     three = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")
-    assert three["seconds"]["thick_wall_edges"] == pytest.approx(3 * one["seconds"]["thick_wall_edges"])
+    # Free sizes are only placed: two cuts, however many openings.
+    assert three["seconds"]["thick_wall_edges"] == pytest.approx(one["seconds"]["thick_wall_edges"])
     # One panel can hold several of three openings: it is tried with one (the thick-wall merges).
     assert "thick_wall_merges" not in one["seconds"]
-    assert 0 < three["seconds"]["thick_wall_merges"] < three["seconds"]["thick_wall_edges"]
+    assert three["seconds"]["thick_wall_merges"] > three["seconds"]["thick_wall_edges"]
     # Every side moved at once: two cuts per side per step, and the judged cuts of each step.
     assert 0 < one["seconds"]["thick_wall_joint_edges"] < three["seconds"]["thick_wall_joint_edges"]
-    assert three["seconds"]["thick_wall_joint_edges"] < three["seconds"]["thick_wall_edges"]
+    assert three["seconds"]["thick_wall_joint_edges"] > three["seconds"]["thick_wall_edges"]
+    # A catalogue's openings slide by pairs of edges: about 130 cuts each, against the placement's two.
+    catalogue = [[0.9, 1.2], [1.2, 1.5]]
+    searched = {}
+    for n in (1, 3):
+        d["solver"] = {"constraints": {"max_openings": n, "catalogue": catalogue}}
+        path.write_text(json.dumps(d))
+        searched[n] = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")["seconds"]["thick_wall_edges"]
+    assert searched[3] == pytest.approx(3 * searched[1])
+    assert searched[1] == pytest.approx(65 * one["seconds"]["thick_wall_edges"])
     d["solver"] = {"refine_edges": False}
     path.write_text(json.dumps(d))
     off = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")

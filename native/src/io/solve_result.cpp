@@ -212,6 +212,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                                {"kept", r.thick_wall_openings.kept},
                                {"reverted", r.thick_wall_openings.reverted}}},
       {"thick_wall_edges", {{"run", r.thick_wall_edges.ran},
+                            {"searched", r.thick_wall_edges.searched},
                             {"cuts", r.thick_wall_edges.cuts},
                             {"paths_per_cut", r.thick_wall_edges.paths_per_cut},
                             {"rough_cuts", r.thick_wall_edges.rough_cuts},

@@ -53,9 +53,11 @@ struct ThickWallOpeningsSummary {
   bool reverted = false;  // and, their thick-wall edges searched, met the goals worse: the search's kept
 };
 
-// Edges in thick walls searched with real cutters (solve/thick_wall_edges.h).
+// Edges in thick walls placed, and with a catalogue searched, with real cutters
+// (solve/thick_wall_edges.h).
 struct ThickWallEdgesSummary {
   bool ran = false;
+  bool searched = false;  // pairs and single moves searched (catalogue sizes); else only placed
   int cuts = 0, paths_per_cut = 0, moves = 0;
   int rough_cuts = 0;  // of half paths_per_cut, that ranked the first scan's pairs
   bool from_placement = false;  // started where the records' interpolation placed the sides

@@ -573,11 +573,17 @@ class OpeningSolve {
         return stop_reason::kNoThickWallEdge;
       if (progress_) progress_->start("solving: edges in thick walls, with real cutters", 1);
       const int paths = std::min(kThickWallEdgeCutPaths, c_.paths_per_sensor);
+      // Free sizes: placed here, every side then moved at once (thick_wall_joint_edges); sizes
+      // from a catalogue slide by pairs of edges instead, which the joint steps cannot.
+      const bool slide = uses_catalogue(scene_.domain, constraints_);
       const ThickWallEdges cut =
-          search_thick_wall_edges(scene_.domain, records_, objective_, constraints_, final_rects_, paths, progress_);
+          slide ? search_thick_wall_edges(scene_.domain, records_, objective_, constraints_, final_rects_, paths,
+                                          progress_)
+                : place_thick_wall_edges(scene_.domain, records_, objective_, constraints_, final_rects_, paths);
       searched = true;
       ThickWallEdgesSummary& summary = out_.thick_wall_edges;
       summary.ran = true;
+      summary.searched = slide;
       summary.cuts = cut.cuts;
       summary.rough_cuts = cut.rough_cuts;
       summary.paths_per_cut = paths;

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
+#include <memory>
 
 #include "solve/cut_region_search.h"
 #include "solve/refinable_openings.h"
@@ -34,29 +34,57 @@ EdgeSearchScope thick_wall_edge_scope(const OpeningDomain& domain, const Opening
   return scope;
 }
 
-ThickWallEdges search_thick_wall_edges(const OpeningDomain& domain, RecordQueries& records,
-                                                  const LinearObjective& objective,
-                                                  const OpeningConstraints& constraints,
-                                                  const std::vector<PanelRectangle>& start, int paths,
-                                                  Progress* progress) {
+namespace {
+
+struct Placement {
   ThickWallEdges out;
+  std::unique_ptr<CutRegionSearch> given, placed;
+
+  CutRegionSearch& chosen() { return out.from_placement ? *placed : *given; }
+
+  void count() {
+    out.cuts = given->cuts() + placed->cuts();
+    out.rough_cuts = given->rough_cuts() + placed->rough_cuts();
+  }
+};
+
+Placement placement(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
+                    const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start, int paths) {
+  Placement p;
   const Eigen::VectorXd& closed = records.contributions().closed.value;
   const PlacedValues values_of = [&](const std::vector<PanelRectangle>& openings) {
     return Eigen::VectorXd(records.evaluate(openings).value - closed);
   };
-  out.placed = interpolated_placement(domain, constraints, start, values_of, objective, &out.interpolated);
-  CutRegionSearch given(records, start, paths, kThickWallEdgeCutStream),
-      placed(records, out.placed, paths, kThickWallEdgeCutStream);
-  out.start_values = given.current();
-  out.from_placement = prediction_error(objective, placed.values() - closed) <=
-                       prediction_error(objective, given.values() - closed);
-  CutRegionSearch& search = out.from_placement ? placed : given;
-  out.edges = refine_edges(domain, closed, objective, constraints, &search, progress,
-                           thick_wall_edge_scope(domain, constraints));
-  out.values = search.current();
-  out.cuts = given.cuts() + placed.cuts();
-  out.rough_cuts = given.rough_cuts() + placed.rough_cuts();
-  return out;
+  p.out.placed = interpolated_placement(domain, constraints, start, values_of, objective, &p.out.interpolated);
+  p.given = std::make_unique<CutRegionSearch>(records, start, paths, kThickWallEdgeCutStream);
+  p.placed = std::make_unique<CutRegionSearch>(records, p.out.placed, paths, kThickWallEdgeCutStream);
+  p.out.start_values = p.given->current();
+  p.out.from_placement = prediction_error(objective, p.placed->values() - closed) <=
+                         prediction_error(objective, p.given->values() - closed);
+  p.out.edges.openings = p.chosen().rectangles();
+  return p;
+}
+
+}  // namespace
+
+ThickWallEdges place_thick_wall_edges(const OpeningDomain& domain, RecordQueries& records,
+                                      const LinearObjective& objective, const OpeningConstraints& constraints,
+                                      const std::vector<PanelRectangle>& start, int paths) {
+  Placement p = placement(domain, records, objective, constraints, start, paths);
+  p.out.values = p.chosen().current();
+  p.count();
+  return std::move(p.out);
+}
+
+ThickWallEdges search_thick_wall_edges(const OpeningDomain& domain, RecordQueries& records,
+                                       const LinearObjective& objective, const OpeningConstraints& constraints,
+                                       const std::vector<PanelRectangle>& start, int paths, Progress* progress) {
+  Placement p = placement(domain, records, objective, constraints, start, paths);
+  p.out.edges = refine_edges(domain, records.contributions().closed.value, objective, constraints, &p.chosen(),
+                             progress, thick_wall_edge_scope(domain, constraints));
+  p.out.values = p.chosen().current();
+  p.count();
+  return std::move(p.out);
 }
 
 }  // namespace fenestra

@@ -38,14 +38,19 @@ struct ThickWallEdges {
 // of edges scanned over thick_wall_edge_span first (refine_edges).
 EdgeSearchScope thick_wall_edge_scope(const OpeningDomain& domain, const OpeningConstraints& constraints);
 
-// Edges in thick walls searched with real cutters: the sides placed by the interpolation of the
-// element grid's records (interpolated_placement), then moved in steps below the element
-// (edge_steps in thick walls) while the error of the real cuts falls; from the start instead when
-// its cut meets the goals better than the placement's.
+// Edges in thick walls placed by the interpolation of the element grid's records
+// (interpolated_placement) and cut: the placed openings, or the start when its cut meets the goals
+// better. `edges.openings` holds them, with no moves; two cuts.
+ThickWallEdges place_thick_wall_edges(const OpeningDomain& domain, RecordQueries& records,
+                                      const LinearObjective& objective, const OpeningConstraints& constraints,
+                                      const std::vector<PanelRectangle>& start, int paths);
+
+// Edges in thick walls searched with real cutters: placed (place_thick_wall_edges), then moved in
+// steps below the element (edge_steps in thick walls) while the error of the real cuts falls. The
+// solver searches so only where sizes are fixed (a catalogue): elsewhere every side moves at once
+// (thick_wall_joint_edges.h), for a fifth of these cuts.
 ThickWallEdges search_thick_wall_edges(const OpeningDomain& domain, RecordQueries& records,
-                                                  const LinearObjective& objective,
-                                                  const OpeningConstraints& constraints,
-                                                  const std::vector<PanelRectangle>& start, int paths,
-                                                  Progress* progress);
+                                       const LinearObjective& objective, const OpeningConstraints& constraints,
+                                       const std::vector<PanelRectangle>& start, int paths, Progress* progress);
 
 }  // namespace fenestra

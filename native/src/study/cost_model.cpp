@@ -17,6 +17,7 @@
 #include "scene/domain_estimate.h"
 #include "scene/element_size_hint.h"
 #include "scene/scene.h"
+#include "solve/catalogue_snap.h"
 #include "solve/genetic.h"
 #include "solve/thick_wall_edges.h"
 #include "solve/thick_wall_joint_edges.h"
@@ -46,13 +47,15 @@ constexpr double kThickWallRecordFactor = 7.5, kThickWallTraceFactor = 6.0;
 // 53 of half the paths), 123 per opening for the four of the solid off-grid two-room study; the
 // pair scans over both axes are most of them.
 constexpr double kThickWallEdgeCutsPerOpening = 130.0;
+// Without a catalogue the edges are only placed: the start's cut and the placement's.
+constexpr double kThickWallPlacementCuts = 2.0;
 // Cuts of the thick-wall merges (solve/thick_wall_merges.h) per thick panel with several openings,
 // a rough cut counted as half: one opening's edges searched, and the panel's candidates cut.
 // Measured: 115 on the solid off-grid two-room study.
 constexpr double kThickWallMergeCutsPerPanel = 120.0;
 // Steps of the joint edge search in thick walls (solve/thick_wall_joint_edges.h) the estimate
-// assumes: it stops when a step gains under 1 %. Measured on the solid off-grid two-room study: 2
-// (its small openings at their smallest size), 4 without the constraints.
+// assumes: it stops when a step gains under 1 %. Measured on the solid off-grid two-room study: 4
+// from the placement.
 constexpr double kJointEdgeStepsExpected = 4.0;
 // Openings in thick walls the estimate assumes per thick panel when the constraints set no
 // maximum.
@@ -288,16 +291,19 @@ void add_solver(const Scene& scene, CostEstimate* e) {
   }
   if (thick_edges) {
     // Edges in thick walls: openings really cut (solve/thick_wall_edges.h), each with at most
-    // kThickWallEdgeCutPaths paths per sensor through the wall.
+    // kThickWallEdgeCutPaths paths per sensor through the wall; searched by pairs of edges only
+    // with a catalogue, else placed.
     int thick_panels = 0;
     for (const Panel& p : scene.domain.panels()) thick_panels += p.thickness > 0.0f;
     const double openings = s.constraints.max_openings > 0 ? s.constraints.max_openings
                                                            : kThickWallOpeningsPerPanel * thick_panels;
-    const double cuts = kThickWallEdgeCutsPerOpening * openings;
+    const bool searched = uses_catalogue(scene.domain, s.constraints);
+    const double cuts = searched ? kThickWallEdgeCutsPerOpening * openings : kThickWallPlacementCuts;
     const double paths = std::min<double>(kThickWallEdgeCutPaths, static_cast<double>(e->paths_per_sensor));
     e->time.push_back({"thick_wall_edges",
-                       "cutting the openings the edge search in thick walls tries (about " + format_count(cuts) +
-                           " cuts of " + format_count(paths) + " paths per sensor)",
+                       std::string(searched ? "cutting the openings the edge search in thick walls tries"
+                                            : "cutting the openings in thick walls where the records place their edges") +
+                           " (about " + format_count(cuts) + " cuts of " + format_count(paths) + " paths per sensor)",
                        cuts * S * paths * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
                        0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
     // Each thick panel that can hold several of those openings is tried with one.
