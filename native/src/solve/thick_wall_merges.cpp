@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "solve/catalogue_snap.h"
 #include "solve/cut_region_search.h"
 #include "solve/thick_wall_edges.h"
 #include "util/progress.h"
@@ -113,10 +114,12 @@ class MergeSearch {
  private:
   double error_of(const Eigen::VectorXd& values) const { return prediction_error(objective_, values - closed_); }
 
-  // The edge search of opening `merged_index` alone, as the thick-wall edge search's.
+  // The edge search of opening `merged_index` alone, as the thick-wall edge search's; free sizes
+  // by single moves only (the joint steps follow), catalogue sizes by pairs of edges too.
   EdgeSearchScope edges_of(size_t merged_index) const {
     EdgeSearchScope scope = thick_wall_edge_scope(domain_, constraints_);
     scope.only_opening = static_cast<int>(merged_index);
+    if (!uses_catalogue(domain_, constraints_)) scope.scan_span = 0.0;
     return scope;
   }
 
