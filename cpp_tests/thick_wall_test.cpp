@@ -360,6 +360,38 @@ TEST(ThickWall, JointEdgeStepsMoveEverySideTowardsATruthsCut) {
   EXPECT_LT(after, 0.05 * before);
 }
 
+// Where the joint steps stall beyond the noise, the edge search's pair scans follow from where the
+// steps began, and their result is judged as a step is. The goals are a truth's own cut on the
+// scans' random numbers (as in EdgeSearchWithRealCuttersEndsOnEdgesBetweenGridLines): from the grid
+// window beside it the scans end on the truth's edges, and the judged cut of those openings is kept.
+TEST(ThickWall, PairScansFollowStalledJointStepsAndAreJudged) {
+  TempDir dir;
+  const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 256, work_plane_sensors());
+  const Contributions c = compute_contributions(scene);
+  LocalRecordQueries records(scene, c, nullptr);
+  const double step = edge_steps(scene.domain.element_size(), 0.0, true).back();
+  const PanelRectangle grid{0, 1.0, 2.0, 0.75, 1.75};
+  const PanelRectangle truth{0, 1.0 + 2 * step, 2.0 + step, 0.75 - step, 1.75 + 3 * step};
+  const int paths = 256, judge_paths = 1024;
+  const SensorValues goals = records.cut({OpeningInput(truth)}, paths, kThickWallEdgeCutStream);
+  const LinearObjective objective = goals_objective(goals, c);
+  ThickWallJointEdges joint;
+  joint.openings = {grid};
+  joint.start_values = joint.values = records.cut({OpeningInput(grid)}, judge_paths, kThickWallJointEdgeStream);
+  scan_stalled_joint_edges(scene.domain, records, objective, OpeningConstraints(), {grid}, paths, judge_paths,
+                           kThickWallJointEdgeStream, nullptr, &joint);
+  EXPECT_TRUE(joint.scanned);
+  EXPECT_GT(joint.scan_cuts, 0);
+  EXPECT_GT(joint.scan_moves, 0);
+  EXPECT_EQ(joint.judged_cuts, 1);
+  ASSERT_EQ(joint.openings.size(), 1u);
+  EXPECT_EQ(joint.openings[0], truth);
+  const SensorValues judged = records.cut({OpeningInput(truth)}, judge_paths, kThickWallJointEdgeStream);
+  EXPECT_TRUE((joint.values.value.array() == judged.value.array()).all());
+  EXPECT_LT(prediction_error(objective, joint.values.value - c.closed.value),
+            prediction_error(objective, joint.start_values.value - c.closed.value));
+}
+
 // The goals' second window is lower than the constraints allow, so a step towards them would make
 // the start's second window (at the smallest height allowed) too small: its sides are held, and the
 // first window's sides still move to the goals' own.

@@ -288,7 +288,8 @@ def test_solver_recovers_three_openings_of_two_rooms_with_solid_walls(tmp_path):
             assert not result["thick_wall_joint_edges"]["run"], joint
         else:  # its judged cuts: the result's, or the start's when no step gained
             assert result["thick_wall_joint_edges"]["run"] and joint["error_after"] <= joint["error_before"], joint
-            assert (result["thick_wall_joint_edges"]["steps"] > 0) == (joint["stopped_because"] == "done"), joint
+            moved = result["thick_wall_joint_edges"]["steps"] > 0 or result["thick_wall_joint_edges"]["scan_moves"] > 0
+            assert moved == (joint["stopped_because"] == "done"), joint
 
     error, noise, _ = checked_error(scene, result["openings"], goals, goals_stderr)
     assert noise < 0.01, noise

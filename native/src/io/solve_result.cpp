@@ -230,7 +230,11 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                                   {"cuts", r.thick_wall_joint_edges.cuts},
                                   {"judged_cuts", r.thick_wall_joint_edges.judged_cuts},
                                   {"paths_per_cut", r.thick_wall_joint_edges.paths_per_cut},
-                                  {"judge_paths", r.thick_wall_joint_edges.judge_paths}}},
+                                  {"judge_paths", r.thick_wall_joint_edges.judge_paths},
+                                  {"scanned", r.thick_wall_joint_edges.scanned},
+                                  {"scan_cuts", r.thick_wall_joint_edges.scan_cuts},
+                                  {"scan_rough_cuts", r.thick_wall_joint_edges.scan_rough_cuts},
+                                  {"scan_moves", r.thick_wall_joint_edges.scan_moves}}},
       {"constraint_costs", [&] {
          json costs = json::array();
          for (const ConstraintCost& c : r.constraint_costs)

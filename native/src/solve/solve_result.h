@@ -77,6 +77,8 @@ struct ThickWallJointEdgesSummary {
   int steps = 0, sides = 0;
   int cuts = 0, judged_cuts = 0;     // of `paths_per_cut` and of `judge_paths` paths per sensor
   int paths_per_cut = 0, judge_paths = 0;
+  bool scanned = false;              // the steps stalled beyond the noise: pairs of edges scanned
+  int scan_cuts = 0, scan_rough_cuts = 0, scan_moves = 0;  // scan_moves: kept (0 when not)
 };
 
 struct SolveResult {

@@ -621,9 +621,12 @@ class OpeningSolve {
       if (progress_) progress_->start("solving: all edges in thick walls together, with real cutters", 1);
       const int paths = out_.thick_wall_edges.paths_per_cut;
       const int judge_paths = std::max(paths, std::min(kJointEdgeJudgeFactor * paths, c_.paths_per_sensor));
-      const ThickWallJointEdges joint =
-          joint_thick_wall_edges(scene_.domain, records_, objective_, constraints_, final_rects_, paths,
-                                 judge_paths, kThickWallJointEdgeStream, progress_);
+      ThickWallJointEdges joint = joint_thick_wall_edges(scene_.domain, records_, objective_, constraints_,
+                                                         final_rects_, paths, judge_paths, kThickWallJointEdgeStream,
+                                                         progress_);
+      if (!within_the_noise(joint.values))
+        scan_stalled_joint_edges(scene_.domain, records_, objective_, constraints_, final_rects_, paths, judge_paths,
+                                 kThickWallJointEdgeStream, progress_, &joint);
       ThickWallJointEdgesSummary& summary = out_.thick_wall_joint_edges;
       summary.ran = true;
       summary.steps = joint.steps;
@@ -632,12 +635,16 @@ class OpeningSolve {
       summary.judged_cuts = joint.judged_cuts;
       summary.paths_per_cut = paths;
       summary.judge_paths = judge_paths;
+      summary.scanned = joint.scanned;
+      summary.scan_cuts = joint.scan_cuts;
+      summary.scan_rough_cuts = joint.scan_rough_cuts;
+      summary.scan_moves = joint.scan_moves;
       before = goal_error(out_.goals, joint.start_values.value).relative_rms;
       // The judged cut is kept either way: more paths than the edge search's, the same openings.
       out_.fitness += prediction_error(objective_, joint.values.value - c_.closed.value) - chosen_error();
       chosen_ = joint.values;
       final_rects_ = joint.openings;
-      return joint.steps > 0 ? stop_reason::kDone : stop_reason::kNoImprovement;
+      return joint.steps > 0 || joint.scan_moves > 0 ? stop_reason::kDone : stop_reason::kNoImprovement;
     });
     out_.stages.back().error_before = before;
     out_.stages.back().error_after = goal_error(out_.goals, chosen_.value).relative_rms;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 
+#include "solve/cut_region_search.h"
 #include "solve/thick_wall_edges.h"
 #include "util/progress.h"
 
@@ -222,6 +223,29 @@ ThickWallJointEdges joint_thick_wall_edges(const OpeningDomain& domain, RecordQu
                                            uint64_t stream, Progress* progress) {
   return JointEdgeSearch(domain, records, objective, constraints, start, paths, judge_paths, stream, progress)
       .run(start);
+}
+
+void scan_stalled_joint_edges(const OpeningDomain& domain, RecordQueries& records, const LinearObjective& objective,
+                              const OpeningConstraints& constraints, const std::vector<PanelRectangle>& start,
+                              int paths, int judge_paths, uint64_t stream, Progress* progress,
+                              ThickWallJointEdges* joint) {
+  const Eigen::VectorXd& closed = records.contributions().closed.value;
+  CutRegionSearch search(records, start, paths, kThickWallEdgeCutStream);
+  const EdgeRefinement scanned =
+      refine_edges(domain, closed, objective, constraints, &search, progress, thick_wall_edge_scope(domain, constraints));
+  joint->scanned = true;
+  joint->scan_cuts = search.cuts();
+  joint->scan_rough_cuts = search.rough_cuts();
+  if (scanned.moves == 0) return;
+  if (progress) progress->throw_if_cancelled();
+  const SensorValues judged = records.cut(std::vector<OpeningInput>(scanned.openings.begin(), scanned.openings.end()),
+                                          judge_paths, stream);
+  ++joint->judged_cuts;
+  if (!(prediction_error(objective, judged.value - closed) < prediction_error(objective, joint->values.value - closed)))
+    return;
+  joint->openings = scanned.openings;
+  joint->values = judged;
+  joint->scan_moves = scanned.moves;
 }
 
 }  // namespace fenestra
