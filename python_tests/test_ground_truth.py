@@ -153,6 +153,29 @@ def test_solver_recovers_a_window_between_grid_lines_in_a_thick_wall(tmp_path):
     assert difference <= 2 * prediction_noise, (difference, prediction_noise)
 
 
+def test_catalogue_windows_in_a_thick_wall_slide_by_pairs_of_edges(tmp_path):
+    """With a catalogue an opening's size is fixed, so in a thick wall its edges are searched by
+    pairs (they slide) rather than moved one side at a time (docs/solver.md, step 7); the joint
+    steps cannot change a catalogue size, and the pair scans do not run a second time after them.
+    The answer is a catalogue size."""
+    d = small_scene(tmp_path)
+    d["opening_domain"]["thickness"] = 0.3
+    d["render"]["paths_per_sensor"] = PATHS // 4
+    catalogue = [[1.05, 1.4], [1.4, 1.4], [1.4, 1.75]]
+    d["solver"]["constraints"] = {"max_openings": 1, "catalogue": catalogue}
+    scene, goals, goals_stderr = shifted_window_goals(d, tmp_path)
+    result = fenestra.solve(scene)
+    edges = next(s for s in result["stages"] if s["name"] == "thick-wall edges")
+    assert edges["stopped_because"] == "done", result["stages"]
+    assert result["thick_wall_edges"]["searched"], result["thick_wall_edges"]
+    assert result["thick_wall_edges"]["cuts"] > 2, result["thick_wall_edges"]
+    assert not result["thick_wall_joint_edges"]["scanned"], result["thick_wall_joint_edges"]
+    assert result["thick_wall_joint_edges"]["steps"] == 0, result["thick_wall_joint_edges"]
+    assert len(result["openings"]) == 1
+    size = sorted([result["openings"][0]["width"], result["openings"][0]["height"]])
+    assert any(np.allclose(size, sorted(c), atol=1e-6) for c in catalogue), size
+
+
 def quarter_cylinder_obj(radius, height, facets):
     """A quarter-circle room: floor and ceiling fans, straight walls along +X and +Y from the axis,
     and 90 degrees of a cylinder in `facets` facets (material "facade")."""

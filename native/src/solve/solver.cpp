@@ -624,7 +624,8 @@ class OpeningSolve {
       ThickWallJointEdges joint = joint_thick_wall_edges(scene_.domain, records_, objective_, constraints_,
                                                          final_rects_, paths, judge_paths, kThickWallJointEdgeStream,
                                                          progress_);
-      if (!within_the_noise(joint.values))
+      // The scans already ran from there when the thick-wall edges stage searched (a catalogue).
+      if (!within_the_noise(joint.values) && !out_.thick_wall_edges.searched)
         scan_stalled_joint_edges(scene_.domain, records_, objective_, constraints_, final_rects_, paths, judge_paths,
                                  kThickWallJointEdgeStream, progress_, &joint);
       ThickWallJointEdgesSummary& summary = out_.thick_wall_joint_edges;
