@@ -2,6 +2,7 @@
 // that met a changed element evaluated again), they equal a full evaluation of the records.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
 
@@ -9,6 +10,7 @@
 #include "solve/exact_values.h"
 #include "test_scenes.h"
 #include "trace/contributions.h"
+#include "trace/path_record.h"
 
 namespace fenestra {
 namespace {
@@ -46,6 +48,49 @@ TEST(ExactValues, EqualAFullEvaluationNearAndFarFromTheReference) {
   for (const SensorRecord& r : c.records) record_bytes += r.memory_bytes();
   EXPECT_LT(static_cast<double>(exact.memory_bytes()), 0.5 * static_cast<double>(record_bytes));
   EXPECT_GT(static_cast<double>(exact.memory_bytes()), 0.05 * static_cast<double>(record_bytes));
+}
+
+
+// Paths of the records that met element k, over all sensors (each path once).
+size_t paths_meeting(const Contributions& c, const std::vector<int32_t>& elements) {
+  size_t n = 0;
+  std::vector<int32_t> met;
+  for (const SensorRecord& r : c.records)
+    for (size_t p = 0; p < r.path_count(); ++p) {
+      path_elements(r, p, &met);
+      n += std::any_of(elements.begin(), elements.end(),
+                       [&](int32_t k) { return std::find(met.begin(), met.end(), k) != met.end(); });
+    }
+  return n;
+}
+
+// A search steps from set to set: each step re-evaluates the paths of its own change only, not
+// those of every change since the last set evaluated in full.
+TEST(ExactValues, AStepReEvaluatesOnlyThePathsOfItsOwnChange) {
+  TempDir dir;
+  const Scene scene = room_with_neighbour(dir, 1 << 9);
+  const Contributions c = compute_contributions(scene);
+  ExactValues exact(c, nullptr);
+  std::vector<uint8_t> open(c.element_count(), 0);
+  exact(open);
+  exact(std::vector<uint8_t>(open.size(), 1));  // far from the first: in full (the index is built)
+  for (size_t k = 0; k < open.size(); k += 3) open[k] = 1;
+  const size_t full_before = exact.full_evaluations();
+  exact(open);  // far from both: in full
+  ASSERT_EQ(exact.full_evaluations() - full_before, c.sensor_count());
+  // Two single-element steps, on elements that each met some paths but not the same ones.
+  const int32_t first = 1, second = static_cast<int32_t>(open.size()) - 2;
+  ASSERT_GT(paths_meeting(c, {first}), 0u);
+  ASSERT_GT(paths_meeting(c, {first, second}), paths_meeting(c, {second}));
+  open[first] ^= 1;
+  exact(open);
+  open[second] ^= 1;
+  const size_t before = exact.path_evaluations();
+  const SensorValues& got = exact(open);
+  EXPECT_EQ(exact.path_evaluations() - before, paths_meeting(c, {second}));
+  const SensorValues full = c.evaluate(open);
+  for (Eigen::Index i = 0; i < full.value.size(); ++i)
+    EXPECT_NEAR(got.value[i], full.value[i], 1e-12 * (1.0 + full.value[i])) << "sensor " << i;
 }
 
 }  // namespace

@@ -9,9 +9,11 @@
 namespace fenestra {
 namespace {
 
-// A set whose changed elements were met by more than this share of the paths is evaluated in
-// full (and becomes the reference): a search over scattered paths would cost about as much.
-constexpr double kMaxShareFromReference = 0.5;
+// A sensor more than this share of whose paths met a changed element is evaluated in full: read
+// in order, the others' values cost about as much as reading them all.
+constexpr double kMaxShareFromReference = 0.75;
+// Changed paths fewer than 1 / this of a sensor's are sorted; more are read off their marks.
+constexpr size_t kSortedPathsShare = 32;
 
 }  // namespace
 
@@ -45,9 +47,10 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
     if (reference_users_[s] > 0)
       for (size_t k = 0; k < open.size(); ++k)
         if ((open[k] != 0) != (reference_sets_[s][k] != 0)) changed[s].push_back(static_cast<int32_t>(k));
-  const int slot = free_slot();  // for the sensors evaluated in full
+  const int slot = free_slot();  // the new reference of every sensor evaluated
   reference_sets_[slot] = open;
   std::vector<uint8_t> in_full(sensors, 0);
+  std::vector<size_t> evaluated(sensors, 0);
   SensorValues out;
   out.value.resize(static_cast<Eigen::Index>(sensors));
   out.standard_error.resize(static_cast<Eigen::Index>(sensors));
@@ -56,7 +59,8 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
     if (progress_ && progress_->cancelled()) return;
     const int reference = reference_of_[i];
     bool full = false;
-    const ReplicateSums sums = sensor_sums(i, open, reference >= 0 ? &changed[reference] : nullptr, slot, &full);
+    const ReplicateSums sums =
+        sensor_sums(i, open, reference >= 0 ? &changed[reference] : nullptr, slot, &full, &evaluated[i]);
     in_full[i] = full;
     const auto e = static_cast<Eigen::Index>(i);
     sums.estimate(c_.records[i].path_count(), &out.value[e], &out.standard_error[e]);
@@ -70,28 +74,28 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   if (progress_) progress_->throw_if_cancelled();
   full_evaluations_ += static_cast<size_t>(std::count(in_full.begin(), in_full.end(), 1));
   sensor_evaluations_ += sensors;
+  for (size_t n : evaluated) path_evaluations_ += n;
   return out;
 }
 
 // In full: as Contributions::evaluate (the same sums in the same order), keeping each path's
-// value. From the reference: its sums, plus the change of every path that met a changed element.
+// value. From the reference: its sums, plus the change of every path that met a changed element,
+// whose new value it keeps.
 ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& open, const std::vector<int32_t>* changed,
-                                       int slot, bool* in_full) {
+                                       int slot, bool* in_full, size_t* evaluated) {
   const SensorRecord& r = c_.records[i];
-  if (changed) {
-    const std::vector<uint32_t>& begin = element_begin_[i];
-    double met = 0.0;
-    for (int32_t k : *changed) met += begin[k + 1] - begin[k];
-    if (!(met > kMaxShareFromReference * static_cast<double>(r.path_count()))) {
-      std::vector<uint32_t> paths;
-      for (int32_t k : *changed)
-        paths.insert(paths.end(), element_paths_[i].begin() + begin[k], element_paths_[i].begin() + begin[k + 1]);
-      std::sort(paths.begin(), paths.end());
-      paths.erase(std::unique(paths.begin(), paths.end()), paths.end());
-      ReplicateSums sums = reference_sums_[i];
-      for (uint32_t p : paths) sums.add(p, path_value(r, p, open) - reference_values_[i][p]);
-      return sums;
+  std::vector<uint32_t> paths;
+  if (changed && changed_paths(i, *changed, &paths)) {
+    ReplicateSums& sums = reference_sums_[i];
+    std::vector<double>& values = reference_values_[i];
+    for (uint32_t p : paths) {
+      const double value = path_value(r, p, open);
+      sums.add(p, value - values[p]);
+      values[p] = value;
     }
+    reference_of_[i] = slot;
+    *evaluated = paths.size();
+    return sums;
   }
   std::vector<double>& values = reference_values_[i];
   values.resize(r.path_count());
@@ -100,7 +104,40 @@ ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& ope
   reference_sums_[i] = sums;
   reference_of_[i] = slot;
   *in_full = true;
+  *evaluated = r.path_count();
   return sums;
+}
+
+bool ExactValues::changed_paths(size_t i, const std::vector<int32_t>& changed, std::vector<uint32_t>* out) const {
+  const std::vector<uint32_t>& begin = element_begin_[i];
+  const std::vector<uint32_t>& element_paths = element_paths_[i];
+  const size_t path_count = c_.records[i].path_count();
+  const auto limit = static_cast<size_t>(kMaxShareFromReference * static_cast<double>(path_count));
+  // A path met by several changed elements (a thick wall's conditions name the neighbours) is
+  // listed by each: marked when first seen.
+  thread_local std::vector<uint8_t> seen;
+  if (seen.size() < path_count) seen.resize(path_count, 0);
+  size_t count = 0;
+  for (size_t n = 0; n < changed.size() && count <= limit; ++n)
+    for (uint32_t e = begin[changed[n]], end = begin[changed[n] + 1]; e < end && count <= limit; ++e) {
+      const uint32_t p = element_paths[e];
+      if (!seen[p]) seen[p] = 1, ++count, out->push_back(p);
+    }
+  if (count > limit) {
+    for (uint32_t p : *out) seen[p] = 0;
+    return false;
+  }
+  // In the records' order (paths stored one after another are read as a stream): a few sorted,
+  // many read off the marks.
+  if (count < path_count / kSortedPathsShare) {
+    for (uint32_t p : *out) seen[p] = 0;
+    std::sort(out->begin(), out->end());
+    return true;
+  }
+  out->clear();
+  for (uint32_t p = 0; p < path_count; ++p)
+    if (seen[p]) seen[p] = 0, out->push_back(p);
+  return true;
 }
 
 void ExactValues::build_index() {

@@ -5,8 +5,6 @@
 #include <optional>
 #include <set>
 #include <tuple>
-#include <cstdio>
-#include <cstdlib>
 
 #include "util/progress.h"
 
@@ -291,7 +289,6 @@ OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const Ope
     Openings sorted = starts[k];
     std::sort(sorted.begin(), sorted.end());
     auto [set, descended] = search.descend(std::move(sorted), *s);
-    if (getenv("FENESTRA_DEBUG_SEARCH")) { fprintf(stderr, "start %zu: %g -> %g:", k, *s, descended); for (auto& r : set) fprintf(stderr, " %s", r.to_string().c_str()); fprintf(stderr, "\n"); }
     search.take(set, descended, static_cast<int>(k));
   }
   // Restarts, refits and pair moves, while any gains.
