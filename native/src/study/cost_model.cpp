@@ -362,8 +362,9 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                      "fewer solver.generations (" + format_count(gens) + ") or a smaller solver.population (" +
                          format_count(pop) + "), or a solver.time_budget_s"});
   // The exact search over whole openings: each set it scores re-evaluates the paths that met the
-  // elements it changes (measured about 35 ns per sensor and path in a 0.3 m solid wall, the share
-  // of paths included); an upper bound, as the search mostly stops before its limit.
+  // elements it changes (measured about 31 ns per sensor and path in a 0.3 m solid wall, the share
+  // of paths included: 44 ns on a machine whose tracing took 1.4 times as long); an upper bound,
+  // as the search mostly stops before its limit.
   e->time.push_back({"opening_search", "the exact search over whole openings (at most)",
                      s.search_evaluations * S * static_cast<double>(e->paths_per_sensor) * kSearchSecondsPerSensorPath,
                      0.0, "fewer solver.search_evaluations (" + format_count(s.search_evaluations) + ")"});
