@@ -6,6 +6,7 @@
 #include <set>
 
 #include "solve/opening_search.h"
+#include "util/progress.h"
 #include "test_scenes.h"
 
 namespace fenestra {
@@ -115,8 +116,11 @@ TEST(OpeningSearch, StopsAtItsEvaluationLimitWithTheBestSoFar) {
     for (size_t i = 0; i < v.size(); ++i) e += (v[i] - goal[i]) * (v[i] - goal[i]);
     return e;
   };
-  const OpeningSearchResult r = search_whole_openings(d, c, {{{wall, 5, 6, 12, 13}}}, score, 25);
+  Progress progress;
+  progress.start("searching", 25);
+  const OpeningSearchResult r = search_whole_openings(d, c, {{{wall, 5, 6, 12, 13}}}, score, 25, &progress);
   EXPECT_EQ(calls, 25);
+  EXPECT_DOUBLE_EQ(progress.fraction(), 1.0);  // one step per set scored
   EXPECT_EQ(r.evaluations, 25);
   EXPECT_TRUE(r.out_of_evaluations);
   EXPECT_LE(r.score, r.start_score);

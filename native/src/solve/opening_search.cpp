@@ -87,7 +87,7 @@ void merges(const Openings& set, std::vector<Openings>* out) {
 class Search {
  public:
   Search(const OpeningDomain& domain, const OpeningConstraints& constraints, const OpeningScore& score,
-         int max_evaluations, const Progress* progress)
+         int max_evaluations, Progress* progress)
       : domain_(domain), constraints_(constraints), score_(score), max_evaluations_(max_evaluations),
         progress_(progress) {}
 
@@ -108,6 +108,7 @@ class Search {
     if (progress_) progress_->throw_if_cancelled();
     const double s = score_(set);
     ++result.evaluations;
+    if (progress_) progress_->advance();
     known_.emplace(std::move(set), s);
     return s;
   }
@@ -262,7 +263,7 @@ class Search {
   const OpeningConstraints& constraints_;
   const OpeningScore& score_;
   const int max_evaluations_;
-  const Progress* progress_;
+  Progress* progress_;
   std::map<Openings, std::optional<double>> known_;
 };
 
@@ -270,7 +271,7 @@ class Search {
 
 OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const OpeningConstraints& constraints,
                                           const std::vector<std::vector<GridRectangle>>& starts,
-                                          const OpeningScore& score, int max_evaluations, const Progress* progress,
+                                          const OpeningScore& score, int max_evaluations, Progress* progress,
                                           const OpeningScreen& screen) {
   Search search(domain, constraints, score, max_evaluations, progress);
   for (const Openings& start : starts)

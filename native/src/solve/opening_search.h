@@ -64,9 +64,10 @@ struct OpeningSearchResult {
 
 // `starts`: sets of openings; those breaking the constraints are skipped (none left: the result
 // is empty with an infinite score). `max_evaluations` bounds the sets scored (0: no bound).
+// `progress` advances by one per set scored (its total is the caller's to start) and cancels.
 OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const OpeningConstraints& constraints,
                                           const std::vector<std::vector<GridRectangle>>& starts,
                                           const OpeningScore& score, int max_evaluations,
-                                          const Progress* progress = nullptr, const OpeningScreen& screen = nullptr);
+                                          Progress* progress = nullptr, const OpeningScreen& screen = nullptr);
 
 }  // namespace fenestra

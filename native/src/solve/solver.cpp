@@ -270,7 +270,9 @@ class OpeningSolve {
       return skip_stage(&out_.stages, "opening search", stop_reason::kNoSearchEvaluations);
     const double before = kept_.refined_error.relative_rms;
     run_stage(&out_.stages, "opening search", [&] {
-      if (progress_) progress_->start("solving: searching whole openings", 1);
+      // Its bar counts the sets scored against the limit (the search mostly stops before it).
+      if (progress_)
+        progress_->start("solving: searching whole openings", static_cast<uint64_t>(settings_.search_evaluations));
       const OpeningScore score = [&](const std::vector<GridRectangle>& rects) {
         SensorValues unused;
         return exact_of(rects, &unused);
