@@ -117,19 +117,18 @@ bool ExactValues::changed_paths(size_t i, const std::vector<int32_t>& changed, s
   // listed by each: marked when first seen.
   thread_local std::vector<uint8_t> seen;
   if (seen.size() < path_count) seen.resize(path_count, 0);
-  size_t count = 0;
-  for (size_t n = 0; n < changed.size() && count <= limit; ++n)
-    for (uint32_t e = begin[changed[n]], end = begin[changed[n] + 1]; e < end && count <= limit; ++e) {
+  for (size_t n = 0; n < changed.size() && out->size() <= limit; ++n)
+    for (uint32_t e = begin[changed[n]], end = begin[changed[n] + 1]; e < end && out->size() <= limit; ++e) {
       const uint32_t p = element_paths[e];
-      if (!seen[p]) seen[p] = 1, ++count, out->push_back(p);
+      if (!seen[p]) seen[p] = 1, out->push_back(p);
     }
-  if (count > limit) {
+  if (out->size() > limit) {
     for (uint32_t p : *out) seen[p] = 0;
     return false;
   }
   // In the records' order (paths stored one after another are read as a stream): a few sorted,
   // many read off the marks.
-  if (count < path_count / kSortedPathsShare) {
+  if (out->size() < path_count / kSortedPathsShare) {
     for (uint32_t p : *out) seen[p] = 0;
     std::sort(out->begin(), out->end());
     return true;
