@@ -306,6 +306,19 @@ def test_solve_estimate_counts_the_exact_values_index(tmp_path):
     assert "exact_values_index" not in fenestra.estimate_cost(scene, "contributions")["memory"]
 
 
+def test_solve_estimate_counts_the_flip_effects_kept(tmp_path):
+    """The solver keeps up to 16 flip-effect matrices (8 bytes per sensor and element), at most
+    128 MiB in all, and none when one matrix alone is larger (docs/cost.md)."""
+    budget = 128 * 2**20
+    for element_size, sensors, kept in ((0.5, 4, "16"), (0.05, 400, "budget"), (0.05, 5000, "none")):
+        scene = fenestra.load_scene(str(write_room(tmp_path, element_size=element_size, sensors=sensors)))
+        one = 8.0 * scene.sensor_count * scene.element_count
+        expected = {"16": 16 * one, "budget": budget, "none": 0.0}[kept]
+        assert {"16": 16 * one <= budget, "budget": one <= budget < 16 * one, "none": one > budget}[kept]
+        assert fenestra.estimate_cost(scene, "solve")["memory"]["flip_effects_kept"] == pytest.approx(expected)
+    assert "flip_effects_kept" not in fenestra.estimate_cost(scene, "contributions")["memory"]
+
+
 def test_solve_estimate_counts_the_search_over_whole_openings(tmp_path):
     """Each set the search over whole openings scores keeps its exact values and open mask, and
     re-evaluates the paths that met the elements it changes (docs/cost.md): both in proportion to

@@ -463,13 +463,15 @@ class PythonRecordQueries : public RecordQueries {
     return values_from(backend_.attr("evaluate")(rectangles_array(region)), sensors(), "region values");
   }
   Eigen::MatrixXd flip_effects(const std::vector<uint8_t>& about) override {
-    py::gil_scoped_acquire gil;
-    py::array_t<uint8_t> mask(static_cast<py::ssize_t>(about.size()), about.data());
-    Eigen::MatrixXd D = py::cast<Eigen::MatrixXd>(backend_.attr("flip_effects")(mask));
-    if (D.rows() != sensors() || D.cols() != static_cast<Eigen::Index>(c_.element_count()))
-      throw std::runtime_error("flip effects: expected " + std::to_string(sensors()) + " x " +
-                               std::to_string(c_.element_count()));
-    return D;
+    return flip_effects_.about(about, [&] {
+      py::gil_scoped_acquire gil;
+      py::array_t<uint8_t> mask(static_cast<py::ssize_t>(about.size()), about.data());
+      Eigen::MatrixXd D = py::cast<Eigen::MatrixXd>(backend_.attr("flip_effects")(mask));
+      if (D.rows() != sensors() || D.cols() != static_cast<Eigen::Index>(c_.element_count()))
+        throw std::runtime_error("flip effects: expected " + std::to_string(sensors()) + " x " +
+                                 std::to_string(c_.element_count()));
+      return D;
+    });
   }
   std::unique_ptr<RegionQueries> region_search(const std::vector<PanelRectangle>& start) override {
     py::gil_scoped_acquire gil;
@@ -550,6 +552,7 @@ class PythonRecordQueries : public RecordQueries {
   py::object backend_;
   std::shared_ptr<const AnnualRecords> annual_;
   std::map<std::vector<uint8_t>, SensorValues> known_;
+  FlipEffectsCache flip_effects_;  // as LocalRecordQueries keeps them
 };
 
 void bind_solve_with_records(py::module_& m) {

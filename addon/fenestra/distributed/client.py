@@ -571,13 +571,14 @@ def solve(scene, cluster, shards=None, base_dir=".", callback=None, max_memory=N
 # What the client of a solve on a cluster holds, by the cost model's names (docs/cost.md): the
 # contributions' arrays and the solver's own state. The records, their indexes and the tracing stay
 # on the workers.
-_CLIENT_PARTS = ("E", "E_stderr", "A", "T", "solver_copies", "population", "genetic_history", "result_history")
+_CLIENT_PARTS = ("E", "E_stderr", "A", "T", "solver_copies", "flip_effects_kept", "population", "genetic_history",
+                 "result_history")
 
 
 def check_client_fits(scene, max_memory=None):
     """Raises ValueError, naming the figures, when what the client of a solve on a cluster holds
     would not fit in max_memory (default: what this machine has available): E, E_stderr, A and T,
-    the solver's copies and population, and the flip-effect matrices the shards' answers are
+    the solver's copies, the flip effects it keeps, its population, and the flip-effect matrix the shards' answers are
     assembled into (sensors x elements, 8 bytes each). Climate goals' hourly model is checked when
     it is stacked, as one process checks it."""
     estimate = api.estimate_cost(scene, "solve", max_memory)

@@ -111,6 +111,13 @@ double grid_top_z(const Panel& panel, double a) {
 }
 
 // An explanation of why a rows x cols opening does not fit (empty when it does).
+bool size_fits(int rows, int cols, const GridLimits& g) {
+  const int64_t n = int64_t{rows} * cols;
+  return cols >= g.min_cols && cols <= g.max_cols && rows >= g.min_rows && rows <= g.max_rows &&
+         n >= g.min_elements && n <= g.max_elements && g.fits(rows, cols);
+}
+
+// Why a size does not fit (size_fits false), in the user's words.
 std::string size_problem(int rows, int cols, const OpeningConstraints& c, const GridLimits& g, double a) {
   const double width = cols * a, height = rows * a;
   std::ostringstream s;
@@ -341,18 +348,21 @@ bool heights_ok(const Panel& panel, int panel_index, int row0, int row1, const O
   const double base = wall.base, top = wall.top;
   const RowHeights rows = row_heights(panel, row0, row1, wall, a);
   const double sill = rows.sill, head = rows.head;
-  auto fail = [&](const std::string& what) {
-    if (why) *why = what;
+  auto fail = [&](const auto& what) {
+    if (why) *why = what();
     return false;
   };
-  const std::string at_sill = "has its sill at " + meters(sill), at_head = "has its head at " + meters(head);
-  if (sill < c.sill_min - kHeightTolerance) return fail(at_sill + ", below sill_min " + meters(c.sill_min));
-  if (sill > c.sill_max + kHeightTolerance) return fail(at_sill + ", above sill_max " + meters(c.sill_max));
-  if (head < c.head_min - kHeightTolerance) return fail(at_head + ", below head_min " + meters(c.head_min));
-  if (head > c.head_max + kHeightTolerance) return fail(at_head + ", above head_max " + meters(c.head_max));
+  auto at_sill = [&] { return "has its sill at " + meters(sill); };
+  auto at_head = [&] { return "has its head at " + meters(head); };
+  if (sill < c.sill_min - kHeightTolerance) return fail([&] { return at_sill() + ", below sill_min " + meters(c.sill_min); });
+  if (sill > c.sill_max + kHeightTolerance) return fail([&] { return at_sill() + ", above sill_max " + meters(c.sill_max); });
+  if (head < c.head_min - kHeightTolerance) return fail([&] { return at_head() + ", below head_min " + meters(c.head_min); });
+  if (head > c.head_max + kHeightTolerance) return fail([&] { return at_head() + ", above head_max " + meters(c.head_max); });
   if (head > top - base - c.head_clearance + kHeightTolerance)
-    return fail(at_head + ", less than head_clearance " + meters(c.head_clearance) + " below the wall's top at " +
-                meters(top - base));
+    return fail([&] {
+      return at_head() + ", less than head_clearance " + meters(c.head_clearance) + " below the wall's top at " +
+             meters(top - base);
+    });
   return true;
 }
 
@@ -446,10 +456,10 @@ bool satisfies(const GridRectangle& r, const Panel& panel, const OpeningConstrai
   for (int row = r.row0 - m; row <= r.row1 + m; ++row)
     for (int col = r.col0 - m; col <= r.col1 + m; ++col)
       if (!exists(row, col)) return fail("lies closer than margin " + meters(c.margin) + " to the panel's edge");
-  const std::string size = size_problem(r.rows(), r.cols(), c, g, a);
-  if (!size.empty()) return fail(size);
+  // Reasons are worded only when asked for: the searches check millions of rectangles.
+  if (!size_fits(r.rows(), r.cols(), g)) return fail(size_problem(r.rows(), r.cols(), c, g, a));
   std::string heights;
-  if (!heights_ok(panel, r.panel, r.row0, r.row1, all, a, &heights)) return fail(heights);
+  if (!heights_ok(panel, r.panel, r.row0, r.row1, all, a, why ? &heights : nullptr)) return fail(heights);
   return true;
 }
 

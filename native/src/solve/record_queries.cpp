@@ -1,13 +1,38 @@
 #include "solve/record_queries.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "annual/annual_contributions.h"
 #include "annual/annual_cut_study.h"
 #include "scene/scene.h"
 #include "solve/region_search.h"
 #include "trace/evaluate.h"
 #include "trace/flip_effects.h"
+#include "util/progress.h"
 
 namespace fenestra {
+
+SensorValues RecordQueries::cut_at(const std::vector<OpeningInput>& openings, int paths, uint64_t stream,
+                                   const std::vector<size_t>& sensors) {
+  const SensorValues all = cut(openings, paths, stream);
+  SensorValues out;
+  out.value.resize(static_cast<Eigen::Index>(sensors.size()));
+  out.standard_error.resize(static_cast<Eigen::Index>(sensors.size()));
+  for (size_t i = 0; i < sensors.size(); ++i) {
+    const auto s = static_cast<Eigen::Index>(sensors[i]);
+    if (s >= all.value.size())
+      throw std::invalid_argument("sensor " + std::to_string(s) + " is not one of the cut's " +
+                                  std::to_string(all.value.size()));
+    out.value[static_cast<Eigen::Index>(i)] = all.value[s];
+    out.standard_error[static_cast<Eigen::Index>(i)] = all.standard_error[s];
+  }
+  return out;
+}
+
+std::vector<size_t> RecordQueries::sensors_meeting(const std::vector<int>& panels) {
+  return PanelReach().sensors(panels, static_cast<size_t>(contributions().E.rows()));
+}
 
 LocalRecordQueries::LocalRecordQueries(const Scene& scene, const Contributions& c, Progress* progress,
                                        SensorRange sensors)
@@ -18,7 +43,8 @@ SensorValues LocalRecordQueries::evaluate(const std::vector<PanelRectangle>& reg
 }
 
 Eigen::MatrixXd LocalRecordQueries::flip_effects(const std::vector<uint8_t>& about) {
-  return fenestra::flip_effects(c_, about, progress_);
+  return flip_effects_.about(about, [&] { return fenestra::flip_effects(c_, about, progress_); },
+                             [&] { return !(progress_ && progress_->cancelled()); });
 }
 
 std::unique_ptr<RegionQueries> LocalRecordQueries::region_search(const std::vector<PanelRectangle>& start) {
@@ -27,6 +53,16 @@ std::unique_ptr<RegionQueries> LocalRecordQueries::region_search(const std::vect
 
 SensorValues LocalRecordQueries::cut(const std::vector<OpeningInput>& openings, int paths, uint64_t stream) {
   return evaluate_openings(scene_, openings, progress_, paths, {}, stream);
+}
+
+SensorValues LocalRecordQueries::cut_at(const std::vector<OpeningInput>& openings, int paths, uint64_t stream,
+                                        const std::vector<size_t>& sensors) {
+  return evaluate_openings_at(scene_, openings, sensors, progress_, paths, stream);
+}
+
+std::vector<size_t> LocalRecordQueries::sensors_meeting(const std::vector<int>& panels) {
+  if (!reach_) reach_.emplace(c_, scene_.domain);
+  return reach_->sensors(panels, static_cast<size_t>(c_.E.rows()));
 }
 
 double LocalRecordQueries::record_bytes() const {

@@ -7,12 +7,15 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "annual/annual_study.h"
 #include "annual/hourly_flip_model.h"
 #include "trace/evaluate.h"
 #include "solve/exact_values.h"
+#include "solve/flip_effects_cache.h"
+#include "solve/panel_reach.h"
 #include "trace/contributions.h"
 #include "trace/open_region.h"
 #include "trace/sensor_range.h"
@@ -47,12 +50,19 @@ class RecordQueries {
   virtual const SensorValues& exact(const std::vector<uint8_t>& open) = 0;
   // Exact values of an open region (rectangles on the domain's panels).
   virtual SensorValues evaluate(const std::vector<PanelRectangle>& region) = 0;
-  // flip_effects (trace/flip_effects.h): sensors x elements.
+  // flip_effects (trace/flip_effects.h): sensors x elements (FlipEffectsCache: kept by `about`).
   virtual Eigen::MatrixXd flip_effects(const std::vector<uint8_t>& about) = 0;
   virtual std::unique_ptr<RegionQueries> region_search(const std::vector<PanelRectangle>& start) = 0;
   // The scene path-traced with these openings really cut (evaluate_openings; `paths` per sensor,
   // 0: the scene's; `stream` of random numbers, 0: the scene's evaluation's).
   virtual SensorValues cut(const std::vector<OpeningInput>& openings, int paths, uint64_t stream) = 0;
+  // cut()'s values at the listed sensors only (indices into its answer, in the order given), bit
+  // for bit. By default the whole cut, picked; LocalRecordQueries traces only those sensors.
+  virtual SensorValues cut_at(const std::vector<OpeningInput>& openings, int paths, uint64_t stream,
+                              const std::vector<size_t>& sensors);
+  // The sensors (ascending) whose records met any of `panels`: those a change of openings on them
+  // alone can change (solve/panel_reach.h). By default every sensor.
+  virtual std::vector<size_t> sensors_meeting(const std::vector<int>& panels);
   // Bytes the path records take, over all sensors.
   virtual double record_bytes() const = 0;
 
@@ -81,6 +91,9 @@ class LocalRecordQueries : public RecordQueries {
   Eigen::MatrixXd flip_effects(const std::vector<uint8_t>& about) override;
   std::unique_ptr<RegionQueries> region_search(const std::vector<PanelRectangle>& start) override;
   SensorValues cut(const std::vector<OpeningInput>& openings, int paths, uint64_t stream) override;
+  SensorValues cut_at(const std::vector<OpeningInput>& openings, int paths, uint64_t stream,
+                      const std::vector<size_t>& sensors) override;
+  std::vector<size_t> sensors_meeting(const std::vector<int>& panels) override;
   double record_bytes() const override;
   std::shared_ptr<const AnnualRecords> annual() const override { return c_.annual; }
   HourlyFlipModel hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
@@ -94,6 +107,8 @@ class LocalRecordQueries : public RecordQueries {
   Progress* progress_;
   SensorRange sensors_;  // the scene's sensors the records hold (a shard's block)
   ExactValues exact_;
+  FlipEffectsCache flip_effects_;
+  std::optional<PanelReach> reach_;  // built when first asked
 };
 
 }  // namespace fenestra

@@ -121,7 +121,8 @@ class JointEdgeSearch {
   }
 
   // Sensors x sides: each side's effect per meter, by central differences of +-h (one-sided where
-  // the side cannot move one way; zero where it can move neither).
+  // the side cannot move one way; zero where it can move neither). A side's differences are cut
+  // at the sensors whose records met its panel; at the others they are 0 (the same paths).
   Eigen::MatrixXd value_differences(const std::vector<PanelRectangle>& openings, ThickWallJointEdges* out) {
     Eigen::MatrixXd dv = Eigen::MatrixXd::Zero(closed_.size(), static_cast<Eigen::Index>(sides_.size()));
     std::optional<Eigen::VectorXd> here;  // the openings' own cut at `paths_`, for one-sided ones
@@ -129,17 +130,31 @@ class JointEdgeSearch {
       const std::vector<PanelRectangle> up = moved(openings, k, h_), down = moved(openings, k, -h_);
       const bool can_up = within_constraints(up), can_down = within_constraints(down);
       if (!can_up && !can_down) continue;
-      if (!(can_up && can_down) && !here) here = counted_cut(openings, out);
-      const Eigen::VectorXd high = can_up ? counted_cut(up, out) : *here;
-      const Eigen::VectorXd low = can_down ? counted_cut(down, out) : *here;
-      dv.col(static_cast<Eigen::Index>(k)) = (high - low) / ((can_up && can_down ? 2.0 : 1.0) * h_);
+      const std::vector<size_t> reached = records_.sensors_meeting({openings[sides_[k].opening].panel});
+      if (reached.empty()) continue;
+      if (!(can_up && can_down) && !here) here = counted_cut(openings, {}, out);
+      const Eigen::VectorXd high = can_up ? counted_cut(up, reached, out) : picked(*here, reached);
+      const Eigen::VectorXd low = can_down ? counted_cut(down, reached, out) : picked(*here, reached);
+      const Eigen::VectorXd d = (high - low) / ((can_up && can_down ? 2.0 : 1.0) * h_);
+      for (size_t i = 0; i < reached.size(); ++i)
+        dv(static_cast<Eigen::Index>(reached[i]), static_cast<Eigen::Index>(k)) = d[static_cast<Eigen::Index>(i)];
     }
     return dv;
   }
 
-  Eigen::VectorXd counted_cut(const std::vector<PanelRectangle>& openings, ThickWallJointEdges* out) {
+  // The openings cut at the sensors `at` (empty: every sensor, in order).
+  Eigen::VectorXd counted_cut(const std::vector<PanelRectangle>& openings, const std::vector<size_t>& at,
+                              ThickWallJointEdges* out) {
     ++out->cuts;
-    return cut(openings, paths_).value;
+    if (progress_) progress_->throw_if_cancelled();
+    const std::vector<OpeningInput> inputs(openings.begin(), openings.end());
+    return at.empty() ? records_.cut(inputs, paths_, stream_).value : records_.cut_at(inputs, paths_, stream_, at).value;
+  }
+
+  static Eigen::VectorXd picked(const Eigen::VectorXd& all, const std::vector<size_t>& at) {
+    Eigen::VectorXd out(static_cast<Eigen::Index>(at.size()));
+    for (size_t i = 0; i < at.size(); ++i) out[static_cast<Eigen::Index>(i)] = all[static_cast<Eigen::Index>(at[i])];
+    return out;
   }
 
   // The damped step from `openings` (A = J'J, g = J'r), with the sides of every opening it would

@@ -18,6 +18,7 @@
 #include "scene/element_size_hint.h"
 #include "scene/scene.h"
 #include "solve/catalogue_snap.h"
+#include "solve/flip_effects_cache.h"
 #include "solve/genetic.h"
 #include "solve/thick_wall_edges.h"
 #include "solve/thick_wall_joint_edges.h"
@@ -273,6 +274,13 @@ void add_solver(const Scene& scene, CostEstimate* e) {
   const double pop = s.population, gens = s.generations;
   e->memory.push_back({"solver_copies", "the solver's copies of E", kSolverCopiesOfE * 8 * S * N, "solving",
                        "fewer sensors or " + std::string(kLargerElementSize)});
+  // The linearisations' flip effects kept for the next about the same set (solve/flip_effects_cache.h).
+  const double flip_effects = 8.0 * S * N;
+  e->memory.push_back({"flip_effects_kept", "the flip effects kept for linearising about the same openings again",
+                       flip_effects <= static_cast<double>(kFlipEffectsCacheBytes)
+                           ? std::min(static_cast<double>(kFlipEffectsCacheBytes), kFlipEffectsKept * flip_effects)
+                           : 0.0,
+                       "solving", "fewer sensors or " + std::string(kLargerElementSize)});
   const bool thick_edges = s.refine_edges && scene.domain.has_thick_walls();
   if (s.verify || thick_edges)
     e->memory.push_back({"verification_scene", "the ray-tracing scene of a cut (the verification, thick walls' edges)",

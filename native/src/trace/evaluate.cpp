@@ -106,28 +106,39 @@ OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInp
 SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings, Progress* progress,
                                int paths_per_sensor, SensorRange range, uint64_t stream) {
   range = range.within(scene.sensors.size());
+  std::vector<size_t> sensors(range.size());
+  for (size_t i = 0; i < sensors.size(); ++i) sensors[i] = range.begin + i;
+  return evaluate_openings_at(scene, openings, sensors, progress, paths_per_sensor, stream);
+}
+
+SensorValues evaluate_openings_at(const Scene& scene, const std::vector<OpeningInput>& openings,
+                                  const std::vector<size_t>& sensors, Progress* progress, int paths_per_sensor,
+                                  uint64_t stream) {
+  for (size_t s : sensors)
+    if (s >= scene.sensors.size())
+      throw std::invalid_argument("sensor " + std::to_string(s) + " is not one of the scene's " +
+                                  std::to_string(scene.sensors.size()));
   OpeningsGeometry g = build_openings(scene, openings);
   const PathTracer tracer(scene, std::move(g.cutters), std::move(g.reveals));
-  tracer.check_sensors(range);
+  for (size_t s : sensors) tracer.check_sensors({s, s + 1});
 
-  const size_t sensors = range.size();
   const int paths = paths_per_sensor > 0 ? paths_per_sensor : scene.render.paths_per_sensor;
   const size_t tasks_per_sensor = path_tasks_per_sensor(paths);
   // Per task, its paths' sums by replicate group: stratified paths are not independent, the
   // groups are (replicates.h).
-  std::vector<ReplicateSums> sums(sensors * tasks_per_sensor);
+  std::vector<ReplicateSums> sums(sensors.size() * tasks_per_sensor);
   // Streams apart by an odd multiplier: their seeds differ in many bits.
   const uint64_t seed = scene.render.seed ^ kEvaluateStream ^ (stream * 0x9e3779b97f4a7c15ULL);
   if (progress) progress->start("tracing the scene with its openings", sums.size());
-  parallel_path_tasks(range, paths, scene.render.threads, progress, [&](const PathTask& task) {
+  parallel_path_tasks(sensors, paths, scene.render.threads, progress, [&](const PathTask& task) {
     task.for_each_path(scene.render, seed, [&](size_t p, Rng& rng, const PathSamples* samples) {
       sums[task.index].add(p, tracer.sensor_sample(task.sensor, samples, rng));
     });
   });
   SensorValues out;
-  out.value.resize(sensors);
-  out.standard_error.resize(sensors);
-  for (size_t i = 0; i < sensors; ++i) {
+  out.value.resize(static_cast<Eigen::Index>(sensors.size()));
+  out.standard_error.resize(static_cast<Eigen::Index>(sensors.size()));
+  for (size_t i = 0; i < sensors.size(); ++i) {
     ReplicateSums total;
     for (size_t t = 0; t < tasks_per_sensor; ++t) total.merge(sums[i * tasks_per_sensor + t]);
     total.estimate(paths, &out.value[i], &out.standard_error[i]);

@@ -45,5 +45,11 @@ OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInp
 SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInput>& openings,
                                Progress* progress = nullptr, int paths_per_sensor = 0, SensorRange sensors = {},
                                uint64_t stream = 0);
+// The same at the listed sensors only (the scene's indices, in the order given): each sensor's
+// values bit for bit those of a run over the whole scene. For cuts that change what only some
+// sensors can see.
+SensorValues evaluate_openings_at(const Scene& scene, const std::vector<OpeningInput>& openings,
+                                  const std::vector<size_t>& sensors, Progress* progress = nullptr,
+                                  int paths_per_sensor = 0, uint64_t stream = 0);
 
 }  // namespace fenestra

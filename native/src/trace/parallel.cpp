@@ -31,17 +31,32 @@ void parallel_tasks(size_t count, int threads, Progress* progress, const std::fu
   if (progress) progress->throw_if_cancelled();
 }
 
-void parallel_path_tasks(SensorRange sensors, int paths, int threads, Progress* progress,
-                         const std::function<void(const PathTask&)>& fn) {
+namespace {
+
+// Tasks for the pass's i-th sensor, scene index sensor_at(i).
+void path_tasks(size_t count, const std::function<size_t(size_t)>& sensor_at, int paths, int threads,
+                Progress* progress, const std::function<void(const PathTask&)>& fn) {
   const size_t per_sensor = path_tasks_per_sensor(paths);
-  parallel_tasks(sensors.size() * per_sensor, threads, progress, [&](size_t task) {
+  parallel_tasks(count * per_sensor, threads, progress, [&](size_t task) {
     PathTask t;
     t.index = task;
-    t.sensor = sensors.begin + task / per_sensor;
+    t.sensor = sensor_at(task / per_sensor);
     t.first = (task % per_sensor) * kPathsPerTask;
     t.last = std::min<size_t>(static_cast<size_t>(paths), t.first + kPathsPerTask);
     fn(t);
   });
+}
+
+}  // namespace
+
+void parallel_path_tasks(SensorRange sensors, int paths, int threads, Progress* progress,
+                         const std::function<void(const PathTask&)>& fn) {
+  path_tasks(sensors.size(), [&](size_t i) { return sensors.begin + i; }, paths, threads, progress, fn);
+}
+
+void parallel_path_tasks(const std::vector<size_t>& sensors, int paths, int threads, Progress* progress,
+                         const std::function<void(const PathTask&)>& fn) {
+  path_tasks(sensors.size(), [&](size_t i) { return sensors[i]; }, paths, threads, progress, fn);
 }
 
 void for_each_sensor(size_t count, const Progress* progress, const std::function<void(size_t)>& fn) {

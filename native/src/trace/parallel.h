@@ -4,6 +4,7 @@
 // and writes only its own results, so every figure is the same for any thread count.
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 #include "trace/path_samples.h"
 #include "trace/sensor_range.h"
@@ -42,6 +43,10 @@ struct PathTask {
 // Traces `paths` paths of every sensor of `sensors` in tasks of kPathsPerTask (parallel_tasks):
 // fn(task) for the range.size() * path_tasks_per_sensor(paths) tasks.
 void parallel_path_tasks(SensorRange sensors, int paths, int threads, Progress* progress,
+                         const std::function<void(const PathTask&)>& fn);
+// The same for the listed sensors (the scene's indices), the i-th of the list as the i-th sensor
+// of the pass: each sensor's tasks are those of any pass over it.
+void parallel_path_tasks(const std::vector<size_t>& sensors, int paths, int threads, Progress* progress,
                          const std::function<void(const PathTask&)>& fn);
 
 // Runs fn(sensor) for sensor in [0, count) on TBB's threads, for passes over the path records

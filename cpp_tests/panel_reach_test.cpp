@@ -1,0 +1,145 @@
+// Cuts that change the openings of one panel need trace only the sensors whose records met it: a
+// sensor whose paths never reach the panel traces the same paths, bit for bit, whatever its
+// openings. Two rooms with 0.3 m walls, each with one panel of the opening domain: the sensors of
+// one room are not traced again for the other's change, and the values kept for them equal a
+// whole cut's.
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <vector>
+
+#include "annual/annual_contributions.h"
+#include "solve/cut_region_search.h"
+#include "solve/panel_reach.h"
+#include "solve/record_queries.h"
+#include "solve/thick_wall_edges.h"
+#include "test_scenes.h"
+#include "trace/contributions.h"
+#include "trace/evaluate.h"
+
+namespace fenestra {
+namespace {
+
+using test::ObjBuilder;
+using test::TempDir;
+
+// Room A (0..3 x 0..3) opens south, room B (0..3 x 6..9) north; sensors 0, 1 in A and 2, 3 in B.
+// With `ground`, light leaving one room may reach the other's facade off the ground.
+Scene two_rooms(const TempDir& dir, bool ground, int paths) {
+  ObjBuilder obj;
+  obj.box({0, 0, 0}, {3, 3, 2.5f}, [](const std::string& f) { return f == "south" ? "facade" : "plaster"; });
+  obj.box({0, 6, 0}, {3, 9, 2.5f}, [](const std::string& f) { return f == "north" ? "facade" : "plaster"; });
+  if (ground) obj.quad("ground", "ground", {-20, -20, -0.01f}, {20, -20, -0.01f}, {20, 20, -0.01f}, {-20, 20, -0.01f});
+  dir.write("scene.obj", obj.str());
+  std::ostringstream s;
+  s << R"({"fenestra": 1, "geometry": "scene.obj",
+      "materials": {"plaster": {"reflectance": 0.6}, "facade": {"reflectance": 0.5}, "ground": {"reflectance": 0.3}},
+      "opening_domain": {"materials": ["facade"], "element_size": 0.25, "thickness": 0.3},
+      "sensors": {"points": [[1.5, 1.5, 0.8], [1, 2.2, 0.8], [1.5, 7.5, 0.8], [2, 6.8, 0.8]], "normals": [0, 0, 1]},
+      "sky": {"type": "cie_overcast", "resolution": [64, 32]},
+      "render": {"paths_per_sensor": )"
+    << paths << R"(, "max_bounces": 6, "seed": 7}})";
+  dir.write("scene.json", s.str());
+  return load_scene(dir.file("scene.json"));
+}
+
+// The panel of the domain facing `sign` along y (-1: room A's south wall).
+int panel_facing(const Scene& scene, float sign) {
+  for (size_t p = 0; p < scene.domain.panels().size(); ++p)
+    if (scene.domain.panels()[p].normal.y() * sign > 0.5f) return static_cast<int>(p);
+  return -1;
+}
+
+std::vector<OpeningInput> inputs(const std::vector<PanelRectangle>& rects) { return {rects.begin(), rects.end()}; }
+
+// The two rooms traced, with their records' queries; `a` and `b` their panels.
+struct TwoRooms {
+  TempDir dir;
+  Scene scene;
+  Contributions c;
+  LocalRecordQueries records;
+  int a, b;
+  explicit TwoRooms(bool ground)
+      : scene(two_rooms(dir, ground, 256)), c(compute_contributions(scene)), records(scene, c, nullptr),
+        a(panel_facing(scene, -1.0f)), b(panel_facing(scene, 1.0f)) {}
+};
+
+TEST(PanelReach, ARoomsSensorsDoNotMeetTheOtherRoomsPanel) {
+  TwoRooms rooms(false);
+  LocalRecordQueries& records = rooms.records;
+  const int a = rooms.a, b = rooms.b;
+  ASSERT_GE(a, 0);
+  ASSERT_GE(b, 0);
+  EXPECT_EQ(records.sensors_meeting({a}), (std::vector<size_t>{0, 1}));
+  EXPECT_EQ(records.sensors_meeting({b}), (std::vector<size_t>{2, 3}));
+  EXPECT_EQ(records.sensors_meeting({a, b}), (std::vector<size_t>{0, 1, 2, 3}));
+  EXPECT_TRUE(records.sensors_meeting({}).empty());
+  // Not known (records elsewhere): every sensor.
+  EXPECT_EQ(PanelReach().sensors({a}, 4), (std::vector<size_t>{0, 1, 2, 3}));
+}
+
+TEST(PanelReach, SensorsAPanelDoesNotReachCutTheSameWhateverItsOpenings) {
+  for (bool ground : {false, true}) {
+    TwoRooms rooms(ground);
+    LocalRecordQueries& records = rooms.records;
+    const int a = rooms.a, b = rooms.b;
+    const std::vector<PanelRectangle> before = {{a, 1.0, 2.0, 0.75, 1.75}, {b, 1.0, 2.0, 0.75, 1.75}};
+    std::vector<PanelRectangle> after = before;
+    after[0] = {a, 0.9, 2.1, 0.6, 1.9};  // room A's window changed, off the element grid
+    const SensorValues one = records.cut(inputs(before), 256, kThickWallEdgeCutStream);
+    const SensorValues two = records.cut(inputs(after), 256, kThickWallEdgeCutStream);
+    const std::vector<size_t> reached = records.sensors_meeting({a});
+    size_t changed = 0;
+    for (Eigen::Index i = 0; i < one.value.size(); ++i) {
+      const bool in_reach = std::find(reached.begin(), reached.end(), static_cast<size_t>(i)) != reached.end();
+      if (!in_reach) EXPECT_EQ(one.value[i], two.value[i]) << "sensor " << i << (ground ? ", ground" : "");
+      changed += one.value[i] != two.value[i];
+    }
+    EXPECT_GE(changed, 1u);  // the change is seen where it can be
+  }
+}
+
+TEST(PanelReach, CutAtGivesTheWholeCutsValuesAtTheListedSensors) {
+  TwoRooms rooms(true);
+  LocalRecordQueries& records = rooms.records;
+  const std::vector<PanelRectangle> rects = {{rooms.a, 1.0, 2.0, 0.75, 1.75}};
+  const SensorValues all = records.cut(inputs(rects), 384, 3);
+  const std::vector<size_t> listed = {3, 1};
+  const SensorValues at = records.cut_at(inputs(rects), 384, 3, listed);
+  ASSERT_EQ(at.value.size(), 2);
+  for (size_t i = 0; i < listed.size(); ++i) {
+    EXPECT_EQ(at.value[static_cast<Eigen::Index>(i)], all.value[static_cast<Eigen::Index>(listed[i])]);
+    EXPECT_EQ(at.standard_error[static_cast<Eigen::Index>(i)], all.standard_error[static_cast<Eigen::Index>(listed[i])]);
+  }
+  // The interface's own (a whole cut, picked), as queries whose records are elsewhere answer.
+  const SensorValues picked = records.RecordQueries::cut_at(inputs(rects), 384, 3, listed);
+  for (size_t i = 0; i < listed.size(); ++i)
+    EXPECT_EQ(picked.value[static_cast<Eigen::Index>(i)], all.value[static_cast<Eigen::Index>(listed[i])]);
+  EXPECT_THROW(records.cut_at(inputs(rects), 384, 3, {4}), std::invalid_argument);
+}
+
+TEST(PanelReach, ARegionSearchTracesOnlyTheChangedPanelsSensorsAndGivesAWholeCutsValues) {
+  TwoRooms rooms(true);
+  LocalRecordQueries& records = rooms.records;
+  const int a = rooms.a, b = rooms.b;
+  const std::vector<PanelRectangle> start = {{a, 1.0, 2.0, 0.75, 1.75}, {b, 1.0, 2.0, 0.75, 1.75}};
+  CutRegionSearch search(records, start, 256, kThickWallEdgeCutStream);
+  std::vector<PanelRectangle> moved = start;
+  moved[1].u1 = 2.1;  // room B's window only
+  const Eigen::VectorXd tried = search.try_region(moved);
+  const SensorValues whole = records.cut(inputs(moved), 256, kThickWallEdgeCutStream);
+  EXPECT_TRUE((tried.array() == whole.value.array()).all());
+  search.accept();
+  const Eigen::VectorXd rough = search.rough_values(start);
+  const SensorValues whole_rough = records.cut(inputs(start), 128, kThickWallEdgeCutStream);
+  EXPECT_TRUE((rough.array() == whole_rough.value.array()).all());
+  // The start traced every sensor; the try and the rough cut only room B's (unless the ground
+  // carried room A's paths to B's facade in the records), the current rough cut every sensor.
+  const size_t b_sensors = records.sensors_meeting({b}).size();
+  EXPECT_EQ(search.sensors_cut(), 4u * 4u);
+  EXPECT_EQ(search.sensors_traced(), 4u + b_sensors + 4u + b_sensors);
+  EXPECT_LT(b_sensors, 4u);
+}
+
+}  // namespace
+}  // namespace fenestra
