@@ -330,12 +330,13 @@ def test_solve_estimate_counts_the_search_over_whole_openings(tmp_path):
     assert e["memory"]["opening_search_values"] == pytest.approx(3000 * (16 * sensors + elements + 96))
     paths = scene.render.paths_per_sensor
     assert e["seconds"]["opening_search"] == pytest.approx(3000 * sensors * paths * 40e-9)
-    assert "thick_wall_openings" not in e["seconds"]  # a thin wall
+    assert "thick_wall_openings" not in e["seconds"] and "change_reach" not in e["memory"]  # a thin wall
     d = json.loads(path.read_text())
     d["opening_domain"]["thickness"] = 0.3
     path.write_text(json.dumps(d))
     e = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")
     assert e["memory"]["thick_wall_openings_values"] == pytest.approx(3000 * (24 * sensors + elements + 160))
+    assert e["memory"]["change_reach"] == pytest.approx(sensors * elements)  # the thick-wall cuts' reach
     assert e["seconds"]["thick_wall_openings"] == pytest.approx(3000 * sensors * paths * 40e-9)
     d["solver"] = {"search_evaluations": 0}
     path.write_text(json.dumps(d))

@@ -313,6 +313,8 @@ def test_solver_recovers_three_openings_of_two_rooms_with_solid_walls(tmp_path):
             assert result["thick_wall_joint_edges"]["run"] and joint["error_after"] <= joint["error_before"], joint
             moved = result["thick_wall_joint_edges"]["steps"] > 0 or result["thick_wall_joint_edges"]["scan_moves"] > 0
             assert moved == (joint["stopped_because"] == "done"), joint
+        for stage in ("thick_wall_merges", "thick_wall_joint_edges"):  # cuts trace the sensors a change can reach
+            assert 0.0 < result[stage]["traced_share"] <= 1.0, result[stage]
 
     error, noise, _ = checked_error(scene, result["openings"], goals, goals_stderr)
     assert noise < 0.01, noise

@@ -1,6 +1,6 @@
 """Type stubs for the native module fenestra._core (see native/python/module.cpp)."""
 
-from typing import Dict, Optional, Tuple
+from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -120,6 +120,9 @@ class RecordQueries:
     def evaluate(self, rectangles: npt.ArrayLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
     def flip_effects(self, about: npt.ArrayLike) -> npt.NDArray[np.float64]: ...  # (sensors, elements)
     def region_search(self, rectangles: npt.ArrayLike) -> RegionSearch: ...
+    # Positions (ascending) of these records' sensors that a change of openings from the rectangles
+    # `before` to `after` (n, 5) can reach: those whose paths met an element near it.
+    def sensors_reached(self, before: npt.ArrayLike, after: npt.ArrayLike) -> List[int]: ...
     @property
     def record_bytes(self) -> float: ...
     # Climate goals: rows are these records' sensors; columns (hour, occupied, daylight,

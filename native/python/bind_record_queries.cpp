@@ -359,6 +359,17 @@ void bind_shard_queries(py::module_& m) {
           py::arg("rectangles"), "A region search starting from these rectangles (n, 5).")
       .def_property_readonly("record_bytes", [](const ShardQueries& q) { return q.queries.record_bytes(); })
       .def(
+          "sensors_reached",
+          [](ShardQueries& q, const DoubleArray& before, const DoubleArray& after) {
+            const std::vector<PanelRectangle> b = rectangles_of(before, q.scene->domain),
+                                              a = rectangles_of(after, q.scene->domain);
+            py::gil_scoped_release release;
+            return q.queries.sensors_reached(b, a);
+          },
+          py::arg("before"), py::arg("after"),
+          "These records' sensors (positions, ascending) that a change of openings from the rectangles `before` to "
+          "`after` (n, 5) can reach: those whose paths met an element near it.")
+      .def(
           "hourly_model",
           [](ShardQueries& q, const MaskArray& about, const IntArray& rows, const py::tuple& columns, bool flips) {
             const std::vector<uint8_t> mask = mask_of(about, q.contributions->element_count());

@@ -223,7 +223,8 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                              {"rough_cuts", r.thick_wall_merges.rough_cuts},
                              {"removed", r.thick_wall_merges.removed},
                              {"merged", r.thick_wall_merges.merged},
-                             {"merges_searched", r.thick_wall_merges.merges_searched}}},
+                             {"merges_searched", r.thick_wall_merges.merges_searched},
+                             {"traced_share", r.thick_wall_merges.traced_share}}},
       {"thick_wall_joint_edges", {{"run", r.thick_wall_joint_edges.ran},
                                   {"steps", r.thick_wall_joint_edges.steps},
                                   {"sides", r.thick_wall_joint_edges.sides},
@@ -234,7 +235,8 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                                   {"scanned", r.thick_wall_joint_edges.scanned},
                                   {"scan_cuts", r.thick_wall_joint_edges.scan_cuts},
                                   {"scan_rough_cuts", r.thick_wall_joint_edges.scan_rough_cuts},
-                                  {"scan_moves", r.thick_wall_joint_edges.scan_moves}}},
+                                  {"scan_moves", r.thick_wall_joint_edges.scan_moves},
+                                  {"traced_share", r.thick_wall_joint_edges.traced_share}}},
       {"constraint_costs", [&] {
          json costs = json::array();
          for (const ConstraintCost& c : r.constraint_costs)

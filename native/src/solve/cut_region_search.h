@@ -3,9 +3,9 @@
 // (RecordQueries::cut, reveals in thick walls), so that any rectangle is evaluated, whatever grid
 // the records were traced on. The same random numbers for every candidate (one seed), so that
 // nearby candidates differ by the light their change makes, not by noise of their own. A candidate
-// that changes the openings of some panels only is traced at the sensors whose records met them
-// (RecordQueries::sensors_meeting); the others keep their values, which their own paths, never
-// reaching those panels, would give again bit for bit.
+// is traced at the sensors its change from the current rectangles can reach
+// (RecordQueries::sensors_reached); the others keep the current values, which their own paths,
+// never coming near the change, would give again bit for bit.
 #include <optional>
 #include <cstdint>
 #include <vector>
@@ -27,8 +27,12 @@ class CutRegionSearch : public RegionQueries {
   // A cut of half the paths, on the same stream (all of the scene's when `paths` is 0).
   Eigen::VectorXd rough_values(const std::vector<PanelRectangle>& candidate) override;
 
-  // The current rectangles' values with their standard errors.
+  // The current rectangles' values with their standard errors (the sensors a change did not reach
+  // keep the values cut before it).
   const SensorValues& current() const { return current_; }
+  // The same from a cut of every sensor (cut once, unless the current values are one): the values
+  // a search hands on.
+  const SensorValues& whole();
   int cuts() const { return cuts_; }
   int rough_cuts() const { return rough_cuts_; }
   // Sensors traced over every cut and rough cut, and what tracing every sensor each time would
@@ -37,10 +41,11 @@ class CutRegionSearch : public RegionQueries {
   size_t sensors_cut() const { return sensors_cut_; }
 
  private:
-  SensorValues cut(const std::vector<PanelRectangle>& rects, int paths);  // counted in cuts()
+  // Counted in cuts(); *whole: whether every sensor was traced.
+  SensorValues cut(const std::vector<PanelRectangle>& rects, int paths, bool* whole);
   // `rects` cut at the sensors its change from the current rectangles can reach, the others'
   // values taken from `base` (the current rectangles' at the same paths; nullptr: every sensor).
-  SensorValues traced(const std::vector<PanelRectangle>& rects, int paths, const SensorValues* base);
+  SensorValues traced(const std::vector<PanelRectangle>& rects, int paths, const SensorValues* base, bool* whole);
 
   RecordQueries& records_;
   int paths_;
@@ -48,6 +53,7 @@ class CutRegionSearch : public RegionQueries {
   std::vector<PanelRectangle> rects_, tried_;
   SensorValues current_, tried_values_;
   std::optional<SensorValues> rough_current_;  // the current rectangles' rough cut, when asked
+  bool current_whole_ = true, tried_whole_ = true;  // the values come from a cut of every sensor
   int cuts_ = 0, rough_cuts_ = 0;
   size_t sensors_traced_ = 0, sensors_cut_ = 0;
 };

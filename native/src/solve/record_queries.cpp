@@ -30,8 +30,9 @@ SensorValues RecordQueries::cut_at(const std::vector<OpeningInput>& openings, in
   return out;
 }
 
-std::vector<size_t> RecordQueries::sensors_meeting(const std::vector<int>& panels) {
-  return PanelReach().sensors(panels, static_cast<size_t>(contributions().E.rows()));
+std::vector<size_t> RecordQueries::sensors_reached(const std::vector<PanelRectangle>&,
+                                                   const std::vector<PanelRectangle>&) {
+  return ChangeReach().sensors({}, static_cast<size_t>(contributions().E.rows()));
 }
 
 LocalRecordQueries::LocalRecordQueries(const Scene& scene, const Contributions& c, Progress* progress,
@@ -60,9 +61,10 @@ SensorValues LocalRecordQueries::cut_at(const std::vector<OpeningInput>& opening
   return evaluate_openings_at(scene_, openings, sensors, progress_, paths, stream);
 }
 
-std::vector<size_t> LocalRecordQueries::sensors_meeting(const std::vector<int>& panels) {
+std::vector<size_t> LocalRecordQueries::sensors_reached(const std::vector<PanelRectangle>& before,
+                                                        const std::vector<PanelRectangle>& after) {
   if (!reach_) reach_.emplace(c_, scene_.domain);
-  return reach_->sensors(panels, static_cast<size_t>(c_.E.rows()));
+  return reach_->sensors(elements_near_change(scene_.domain, before, after), static_cast<size_t>(c_.E.rows()));
 }
 
 double LocalRecordQueries::record_bytes() const {

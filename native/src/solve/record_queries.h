@@ -15,7 +15,7 @@
 #include "trace/evaluate.h"
 #include "solve/exact_values.h"
 #include "solve/flip_effects_cache.h"
-#include "solve/panel_reach.h"
+#include "solve/change_reach.h"
 #include "trace/contributions.h"
 #include "trace/open_region.h"
 #include "trace/sensor_range.h"
@@ -60,9 +60,10 @@ class RecordQueries {
   // for bit. By default the whole cut, picked; LocalRecordQueries traces only those sensors.
   virtual SensorValues cut_at(const std::vector<OpeningInput>& openings, int paths, uint64_t stream,
                               const std::vector<size_t>& sensors);
-  // The sensors (ascending) whose records met any of `panels`: those a change of openings on them
-  // alone can change (solve/panel_reach.h). By default every sensor.
-  virtual std::vector<size_t> sensors_meeting(const std::vector<int>& panels);
+  // The sensors (ascending) a change of openings from `before` to `after` can reach: those whose
+  // records met an element near it (solve/change_reach.h). By default every sensor.
+  virtual std::vector<size_t> sensors_reached(const std::vector<PanelRectangle>& before,
+                                              const std::vector<PanelRectangle>& after);
   // Bytes the path records take, over all sensors.
   virtual double record_bytes() const = 0;
 
@@ -93,7 +94,8 @@ class LocalRecordQueries : public RecordQueries {
   SensorValues cut(const std::vector<OpeningInput>& openings, int paths, uint64_t stream) override;
   SensorValues cut_at(const std::vector<OpeningInput>& openings, int paths, uint64_t stream,
                       const std::vector<size_t>& sensors) override;
-  std::vector<size_t> sensors_meeting(const std::vector<int>& panels) override;
+  std::vector<size_t> sensors_reached(const std::vector<PanelRectangle>& before,
+                                      const std::vector<PanelRectangle>& after) override;
   double record_bytes() const override;
   std::shared_ptr<const AnnualRecords> annual() const override { return c_.annual; }
   HourlyFlipModel hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
@@ -108,7 +110,7 @@ class LocalRecordQueries : public RecordQueries {
   SensorRange sensors_;  // the scene's sensors the records hold (a shard's block)
   ExactValues exact_;
   FlipEffectsCache flip_effects_;
-  std::optional<PanelReach> reach_;  // built when first asked
+  std::optional<ChangeReach> reach_;  // built when first asked
 };
 
 }  // namespace fenestra

@@ -69,6 +69,7 @@ struct ThickWallMergesSummary {
   int cuts = 0, rough_cuts = 0;  // of ThickWallEdgesSummary::paths_per_cut paths, and of half as many
   int removed = 0, merged = 0;   // openings removed, pairs merged into one
   int merges_searched = 0;       // merged openings whose edges were searched again
+  double traced_share = 1.0;     // of the sensors its cuts could have traced, those they did
 };
 
 // Every side of the openings in thick walls moved at once by real cuts (solve/thick_wall_joint_edges.h).
@@ -79,6 +80,7 @@ struct ThickWallJointEdgesSummary {
   int paths_per_cut = 0, judge_paths = 0;
   bool scanned = false;              // the steps stalled beyond the noise: pairs of edges scanned
   int scan_cuts = 0, scan_rough_cuts = 0, scan_moves = 0;  // scan_moves: kept (0 when not)
+  double traced_share = 1.0;  // of the sensors its difference and scan cuts could have traced, those they did
 };
 
 struct SolveResult {

@@ -66,6 +66,11 @@ std::vector<std::string> all_violations(const OpeningDomain& domain, const std::
   return out;
 }
 
+// Of the sensors cuts could have traced, the share they did (1 when none were cut).
+double traced_share(size_t traced, size_t cut) {
+  return cut > 0 ? static_cast<double>(traced) / static_cast<double>(cut) : 1.0;
+}
+
 bool composes(const OpeningDomain& domain, const OpeningConstraints& constraints) {
   for (size_t p = 0; p < domain.panels().size(); ++p)
     if (constraints.for_panel(static_cast<int>(p)).composes()) return true;
@@ -642,6 +647,7 @@ class OpeningSolve {
       summary.scan_cuts = joint.scan_cuts;
       summary.scan_rough_cuts = joint.scan_rough_cuts;
       summary.scan_moves = joint.scan_moves;
+      summary.traced_share = traced_share(joint.sensors_traced, joint.sensors_cut);
       before = goal_error(out_.goals, joint.start_values.value).relative_rms;
       // The judged cut is kept either way: more paths than the edge search's, the same openings.
       out_.fitness += prediction_error(objective_, joint.values.value - c_.closed.value) - chosen_error();
@@ -674,6 +680,7 @@ class OpeningSolve {
       summary.removed = merges.removed;
       summary.merged = merges.merged;
       summary.merges_searched = merges.merges_searched;
+      summary.traced_share = traced_share(merges.sensors_traced, merges.sensors_cut);
       if (merges.removed + merges.merged > 0) {
         out_.fitness += prediction_error(objective_, merges.values.value - c_.closed.value) - chosen_error();
         chosen_ = merges.values;

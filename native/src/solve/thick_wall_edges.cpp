@@ -82,7 +82,7 @@ ThickWallEdges search_thick_wall_edges(const OpeningDomain& domain, RecordQuerie
   Placement p = placement(domain, records, objective, constraints, start, paths);
   p.out.edges = refine_edges(domain, records.contributions().closed.value, objective, constraints, &p.chosen(),
                              progress, thick_wall_edge_scope(domain, constraints));
-  p.out.values = p.chosen().current();
+  p.out.values = p.chosen().whole();
   p.count();
   return std::move(p.out);
 }

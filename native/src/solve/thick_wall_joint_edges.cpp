@@ -84,9 +84,11 @@ class JointEdgeSearch {
       const Eigen::VectorXd g = J.transpose() * r;
       std::optional<std::pair<std::vector<PanelRectangle>, SensorValues>> best;
       double best_error = error;
+      std::vector<std::vector<PanelRectangle>> tried;  // dampings that snap to the same openings are judged once
       for (double damping : kJointEdgeDampings) {
         const std::optional<std::vector<PanelRectangle>> moved = admissible_step(out.openings, A, g, damping * scale);
-        if (!moved) continue;
+        if (!moved || std::find(tried.begin(), tried.end(), *moved) != tried.end()) continue;
+        tried.push_back(*moved);
         const SensorValues v = judged(*moved, &out);
         const double e = prediction_error(objective_, v.value - closed_);
         if (e < best_error) best_error = e, best = std::make_pair(*moved, v);
@@ -122,7 +124,8 @@ class JointEdgeSearch {
 
   // Sensors x sides: each side's effect per meter, by central differences of +-h (one-sided where
   // the side cannot move one way; zero where it can move neither). A side's differences are cut
-  // at the sensors whose records met its panel; at the others they are 0 (the same paths).
+  // at the sensors its moves can reach (RecordQueries::sensors_reached); at the others they are 0
+  // (the same paths).
   Eigen::MatrixXd value_differences(const std::vector<PanelRectangle>& openings, ThickWallJointEdges* out) {
     Eigen::MatrixXd dv = Eigen::MatrixXd::Zero(closed_.size(), static_cast<Eigen::Index>(sides_.size()));
     std::optional<Eigen::VectorXd> here;  // the openings' own cut at `paths_`, for one-sided ones
@@ -130,7 +133,10 @@ class JointEdgeSearch {
       const std::vector<PanelRectangle> up = moved(openings, k, h_), down = moved(openings, k, -h_);
       const bool can_up = within_constraints(up), can_down = within_constraints(down);
       if (!can_up && !can_down) continue;
-      const std::vector<size_t> reached = records_.sensors_meeting({openings[sides_[k].opening].panel});
+      std::vector<size_t> reached = records_.sensors_reached(openings, up);
+      for (size_t i : records_.sensors_reached(openings, down)) reached.push_back(i);
+      std::sort(reached.begin(), reached.end());
+      reached.erase(std::unique(reached.begin(), reached.end()), reached.end());
       if (reached.empty()) continue;
       if (!(can_up && can_down) && !here) here = counted_cut(openings, {}, out);
       const Eigen::VectorXd high = can_up ? counted_cut(up, reached, out) : picked(*here, reached);
@@ -147,6 +153,8 @@ class JointEdgeSearch {
                               ThickWallJointEdges* out) {
     ++out->cuts;
     if (progress_) progress_->throw_if_cancelled();
+    out->sensors_cut += static_cast<size_t>(closed_.size());
+    out->sensors_traced += at.empty() ? static_cast<size_t>(closed_.size()) : at.size();
     const std::vector<OpeningInput> inputs(openings.begin(), openings.end());
     return at.empty() ? records_.cut(inputs, paths_, stream_).value : records_.cut_at(inputs, paths_, stream_, at).value;
   }
@@ -251,6 +259,8 @@ void scan_stalled_joint_edges(const OpeningDomain& domain, RecordQueries& record
   joint->scanned = true;
   joint->scan_cuts = search.cuts();
   joint->scan_rough_cuts = search.rough_cuts();
+  joint->sensors_traced += search.sensors_traced();
+  joint->sensors_cut += search.sensors_cut();
   if (scanned.moves == 0) return;
   if (progress) progress->throw_if_cancelled();
   const SensorValues judged = records.cut(std::vector<OpeningInput>(scanned.openings.begin(), scanned.openings.end()),

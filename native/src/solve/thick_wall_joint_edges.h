@@ -42,6 +42,9 @@ struct ThickWallJointEdges {
   bool scanned = false;                  // scan_stalled_joint_edges ran
   int scan_cuts = 0, scan_rough_cuts = 0;  // its cuts (`paths`, and half as many)
   int scan_moves = 0;                    // its moves, when kept
+  // Sensors the difference and scan cuts traced, and as many as tracing every sensor each time
+  // (a side's cuts trace the sensors its moves can reach: RecordQueries::sensors_reached).
+  size_t sensors_traced = 0, sensors_cut = 0;
 };
 
 // The sides of the openings in thick walls of `start` moved together while the judged error (the

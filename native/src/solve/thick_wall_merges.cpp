@@ -110,6 +110,7 @@ class MergeSearch {
   }
 
   const CutRegionSearch& search() const { return search_; }
+  const SensorValues& whole() { return search_.whole(); }
 
  private:
   double error_of(const Eigen::VectorXd& values) const { return prediction_error(objective_, values - closed_); }
@@ -181,9 +182,11 @@ ThickWallMerges merge_thick_wall_openings(const OpeningDomain& domain, RecordQue
   while (search.remove_one(&out)) {
   }
   out.openings = search.search().rectangles();
-  out.values = search.search().current();
+  out.values = search.whole();
   out.cuts = search.search().cuts();
   out.rough_cuts = search.search().rough_cuts();
+  out.sensors_traced = search.search().sensors_traced();
+  out.sensors_cut = search.search().sensors_cut();
   return out;
 }
 

@@ -20,6 +20,7 @@ struct ThickWallMerges {
   int removed = 0, merged = 0;           // openings removed, pairs merged into one
   int cuts = 0, rough_cuts = 0;          // as ThickWallEdges' (the start's cut included)
   int merges_searched = 0;               // panels whose one opening's edges were searched
+  size_t sensors_traced = 0, sensors_cut = 0;  // CutRegionSearch's
 };
 
 // A panel's one opening has its edges searched (single moves of its sides at the thick walls' edge

@@ -300,6 +300,10 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                          kEdgeSearchIndexShare * path_records, "solving", "fewer solver paths, or solver.refine_edges off"});
   }
   if (thick_edges) {
+    // Which elements each sensor's records met, so that a cut traces only the sensors a change
+    // can reach (solve/change_reach.h).
+    e->memory.push_back({"change_reach", "the elements each sensor's records met (which sensors a cut must trace)",
+                         S * N, "solving", "fewer sensors or " + std::string(kLargerElementSize)});
     // Edges in thick walls: openings really cut (solve/thick_wall_edges.h), each with at most
     // kThickWallEdgeCutPaths paths per sensor through the wall; searched by pairs of edges only
     // with a catalogue, else placed.

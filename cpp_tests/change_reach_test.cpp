@@ -1,6 +1,6 @@
-// Cuts that change the openings of one panel need trace only the sensors whose records met it: a
-// sensor whose paths never reach the panel traces the same paths, bit for bit, whatever its
-// openings. Two rooms with 0.3 m walls, each with one panel of the opening domain: the sensors of
+// A cut need trace only the sensors a change of openings can reach (those whose records met an
+// element near it): a sensor whose paths never come near the change traces the same paths, bit
+// for bit. Two rooms with 0.3 m walls, each with one panel of the opening domain: the sensors of
 // one room are not traced again for the other's change, and the values kept for them equal a
 // whole cut's.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 
 #include "annual/annual_contributions.h"
 #include "solve/cut_region_search.h"
-#include "solve/panel_reach.h"
+#include "solve/change_reach.h"
 #include "solve/record_queries.h"
 #include "solve/thick_wall_edges.h"
 #include "test_scenes.h"
@@ -64,21 +64,46 @@ struct TwoRooms {
         a(panel_facing(scene, -1.0f)), b(panel_facing(scene, 1.0f)) {}
 };
 
-TEST(PanelReach, ARoomsSensorsDoNotMeetTheOtherRoomsPanel) {
+TEST(ChangeReach, TheElementsNearAChangeAreThoseCoveredDifferentlyAndTheirNeighbours) {
   TwoRooms rooms(false);
-  LocalRecordQueries& records = rooms.records;
-  const int a = rooms.a, b = rooms.b;
-  ASSERT_GE(a, 0);
-  ASSERT_GE(b, 0);
-  EXPECT_EQ(records.sensors_meeting({a}), (std::vector<size_t>{0, 1}));
-  EXPECT_EQ(records.sensors_meeting({b}), (std::vector<size_t>{2, 3}));
-  EXPECT_EQ(records.sensors_meeting({a, b}), (std::vector<size_t>{0, 1, 2, 3}));
-  EXPECT_TRUE(records.sensors_meeting({}).empty());
-  // Not known (records elsewhere): every sensor.
-  EXPECT_EQ(PanelReach().sensors({a}, 4), (std::vector<size_t>{0, 1, 2, 3}));
+  const OpeningDomain& domain = rooms.scene.domain;
+  const PanelRectangle window{rooms.a, 1.0, 2.0, 0.75, 1.75};
+  PanelRectangle wider = window;
+  wider.u1 = 2.1;  // its right side into the next column, off the grid
+  const std::vector<int32_t> near = elements_near_change(domain, {window}, {wider});
+  ASSERT_FALSE(near.empty());
+  for (int32_t k : near) {
+    const Element& e = domain.elements()[static_cast<size_t>(k)];
+    EXPECT_EQ(e.panel, rooms.a);
+    EXPECT_GE(e.u1, 2.0 - 0.25 - 1e-6) << k;  // the column it covers, and one on either side
+    EXPECT_LE(e.u0, 2.1 + 0.25 + 1e-6) << k;
+    EXPECT_GE(e.v1, 0.75 - 0.25 - 1e-6) << k;  // its rows, and one above and below
+    EXPECT_LE(e.v0, 1.75 + 0.25 + 1e-6) << k;
+  }
+  // The column the side moved into (four rows), the columns on either side, a row above and below.
+  EXPECT_EQ(near.size(), 3u * 6u);
+  EXPECT_TRUE(elements_near_change(domain, {window}, {window}).empty());
+  EXPECT_TRUE(elements_near_change(domain, {window}, {PanelRectangle{rooms.a, 1.0, 2.0, 0.75, 1.75}}).empty());
 }
 
-TEST(PanelReach, SensorsAPanelDoesNotReachCutTheSameWhateverItsOpenings) {
+TEST(ChangeReach, ARoomsSensorsAreNotReachedByTheOtherRoomsChange) {
+  TwoRooms rooms(false);
+  LocalRecordQueries& records = rooms.records;
+  ASSERT_GE(rooms.a, 0);
+  ASSERT_GE(rooms.b, 0);
+  const std::vector<PanelRectangle> before = {{rooms.a, 1.0, 2.0, 0.75, 1.75}, {rooms.b, 1.0, 2.0, 0.75, 1.75}};
+  std::vector<PanelRectangle> a_moved = before, b_moved = before, both = before;
+  a_moved[0].v1 = both[0].v1 = 1.9;
+  b_moved[1].u0 = both[1].u0 = 0.9;
+  EXPECT_EQ(records.sensors_reached(before, a_moved), (std::vector<size_t>{0, 1}));
+  EXPECT_EQ(records.sensors_reached(before, b_moved), (std::vector<size_t>{2, 3}));
+  EXPECT_EQ(records.sensors_reached(before, both), (std::vector<size_t>{0, 1, 2, 3}));
+  EXPECT_TRUE(records.sensors_reached(before, before).empty());
+  // Not known (records elsewhere): every sensor.
+  EXPECT_EQ(ChangeReach().sensors({0}, 4), (std::vector<size_t>{0, 1, 2, 3}));
+}
+
+TEST(ChangeReach, SensorsAChangeDoesNotReachCutTheSameWhateverTheOpenings) {
   for (bool ground : {false, true}) {
     TwoRooms rooms(ground);
     LocalRecordQueries& records = rooms.records;
@@ -88,7 +113,7 @@ TEST(PanelReach, SensorsAPanelDoesNotReachCutTheSameWhateverItsOpenings) {
     after[0] = {a, 0.9, 2.1, 0.6, 1.9};  // room A's window changed, off the element grid
     const SensorValues one = records.cut(inputs(before), 256, kThickWallEdgeCutStream);
     const SensorValues two = records.cut(inputs(after), 256, kThickWallEdgeCutStream);
-    const std::vector<size_t> reached = records.sensors_meeting({a});
+    const std::vector<size_t> reached = records.sensors_reached(before, after);
     size_t changed = 0;
     for (Eigen::Index i = 0; i < one.value.size(); ++i) {
       const bool in_reach = std::find(reached.begin(), reached.end(), static_cast<size_t>(i)) != reached.end();
@@ -99,7 +124,7 @@ TEST(PanelReach, SensorsAPanelDoesNotReachCutTheSameWhateverItsOpenings) {
   }
 }
 
-TEST(PanelReach, CutAtGivesTheWholeCutsValuesAtTheListedSensors) {
+TEST(ChangeReach, CutAtGivesTheWholeCutsValuesAtTheListedSensors) {
   TwoRooms rooms(true);
   LocalRecordQueries& records = rooms.records;
   const std::vector<PanelRectangle> rects = {{rooms.a, 1.0, 2.0, 0.75, 1.75}};
@@ -118,7 +143,7 @@ TEST(PanelReach, CutAtGivesTheWholeCutsValuesAtTheListedSensors) {
   EXPECT_THROW(records.cut_at(inputs(rects), 384, 3, {4}), std::invalid_argument);
 }
 
-TEST(PanelReach, ARegionSearchTracesOnlyTheChangedPanelsSensorsAndGivesAWholeCutsValues) {
+TEST(ChangeReach, ARegionSearchTracesOnlyTheSensorsAChangeReachesAndGivesAWholeCutsValues) {
   TwoRooms rooms(true);
   LocalRecordQueries& records = rooms.records;
   const int a = rooms.a, b = rooms.b;
@@ -133,12 +158,19 @@ TEST(PanelReach, ARegionSearchTracesOnlyTheChangedPanelsSensorsAndGivesAWholeCut
   const Eigen::VectorXd rough = search.rough_values(start);
   const SensorValues whole_rough = records.cut(inputs(start), 128, kThickWallEdgeCutStream);
   EXPECT_TRUE((rough.array() == whole_rough.value.array()).all());
-  // The start traced every sensor; the try and the rough cut only room B's (unless the ground
-  // carried room A's paths to B's facade in the records), the current rough cut every sensor.
-  const size_t b_sensors = records.sensors_meeting({b}).size();
+  // The start traced every sensor; the try and the rough cut only those B's change reaches (room
+  // B's, unless the ground carried room A's paths to B's facade in the records), the current
+  // rough cut every sensor.
+  const size_t b_sensors = records.sensors_reached(start, moved).size();
   EXPECT_EQ(search.sensors_cut(), 4u * 4u);
   EXPECT_EQ(search.sensors_traced(), 4u + b_sensors + 4u + b_sensors);
   EXPECT_LT(b_sensors, 4u);
+  // Handed on, the values of a cut of every sensor: the same as those kept.
+  const SensorValues kept = search.current();
+  EXPECT_TRUE((search.whole().value.array() == kept.value.array()).all());
+  EXPECT_EQ(search.cuts(), 3);
+  search.whole();  // already whole
+  EXPECT_EQ(search.cuts(), 3);
 }
 
 }  // namespace
