@@ -93,5 +93,32 @@ TEST(ExactValues, AStepReEvaluatesOnlyThePathsOfItsOwnChange) {
     EXPECT_NEAR(got.value[i], full.value[i], 1e-12 * (1.0 + full.value[i])) << "sensor " << i;
 }
 
+// A search scores the neighbours of its best set one after another: each starts from the best
+// (one move away), the reference the neighbour before started from, not from that neighbour (two
+// moves away).
+TEST(ExactValues, ANeighbourStartsFromTheSetItsPredecessorStartedFrom) {
+  TempDir dir;
+  const Scene scene = room_with_neighbour(dir, 1 << 9);
+  const Contributions c = compute_contributions(scene);
+  ExactValues exact(c, nullptr);
+  std::vector<uint8_t> best(c.element_count(), 0);
+  exact(best);
+  exact(std::vector<uint8_t>(best.size(), 1));  // the index is built
+  for (size_t k = 0; k < best.size(); k += 3) best[k] = 1;
+  exact(best);  // in full
+  const int32_t first = 1, second = static_cast<int32_t>(best.size()) - 2;
+  ASSERT_GT(paths_meeting(c, {first, second}), paths_meeting(c, {second}));
+  std::vector<uint8_t> one = best, two = best;
+  one[first] ^= 1;
+  two[second] ^= 1;
+  exact(one);
+  const size_t before = exact.path_evaluations();
+  const SensorValues& got = exact(two);
+  EXPECT_EQ(exact.path_evaluations() - before, paths_meeting(c, {second}));
+  const SensorValues full = c.evaluate(two);
+  for (Eigen::Index i = 0; i < full.value.size(); ++i)
+    EXPECT_NEAR(got.value[i], full.value[i], 1e-12 * (1.0 + full.value[i])) << "sensor " << i;
+}
+
 }  // namespace
 }  // namespace fenestra

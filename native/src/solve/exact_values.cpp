@@ -34,10 +34,9 @@ int ExactValues::free_slot() {
 SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   if (open.size() != c_.element_count()) return c_.evaluate(open, progress_);  // which refuses it
   const size_t sensors = c_.records.size();
-  if (reference_of_.empty()) {
-    reference_of_.assign(sensors, -1);
-    reference_values_.resize(sensors);
-    reference_sums_.assign(sensors, ReplicateSums{});
+  if (references_.empty()) {
+    references_.resize(sensors);
+    last_.assign(sensors, 0);
   } else if (element_begin_.empty()) {
     build_index();
   }
@@ -57,18 +56,17 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   // A cancelled pass leaves some sensors unevaluated: the bookkeeping below runs before it throws.
   for_each_sensor(sensors, nullptr, [&](size_t i) {
     if (progress_ && progress_->cancelled()) return;
-    const int reference = reference_of_[i];
     bool full = false;
-    const ReplicateSums sums =
-        sensor_sums(i, open, reference >= 0 ? &changed[reference] : nullptr, slot, &full, &evaluated[i]);
+    const ReplicateSums sums = sensor_sums(i, open, changed, slot, &full, &evaluated[i]);
     in_full[i] = full;
     const auto e = static_cast<Eigen::Index>(i);
     sums.estimate(c_.records[i].path_count(), &out.value[e], &out.standard_error[e]);
   });
   // The references' users, from the sensors' choices (a cancelled pass leaves some unchanged).
   std::fill(reference_users_.begin(), reference_users_.end(), 0);
-  for (int reference : reference_of_)
-    if (reference >= 0) ++reference_users_[reference];
+  for (const std::array<Reference, 2>& refs : references_)
+    for (const Reference& r : refs)
+      if (r.slot >= 0) ++reference_users_[static_cast<size_t>(r.slot)];
   for (size_t s = 0; s < reference_sets_.size(); ++s)
     if (reference_users_[s] == 0) std::vector<uint8_t>().swap(reference_sets_[s]);
   if (progress_) progress_->throw_if_cancelled();
@@ -79,33 +77,53 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
 }
 
 // In full: as Contributions::evaluate (the same sums in the same order), keeping each path's
-// value. From the reference: its sums, plus the change of every path that met a changed element,
+// value. From a reference: its sums, plus the change of every path that met a changed element,
 // whose new value it keeps.
-ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& open, const std::vector<int32_t>* changed,
-                                       int slot, bool* in_full, size_t* evaluated) {
+ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& open,
+                                       const std::vector<std::vector<int32_t>>& changed, int slot, bool* in_full,
+                                       size_t* evaluated) {
   const SensorRecord& r = c_.records[i];
+  std::array<Reference, 2>& refs = references_[i];
+  const int last = last_[i], other = 1 - last;
+  int from = -1;  // the reference fewer paths' changes separate from `open` (the last on a tie)
+  size_t fewest = 0;
+  for (int k : {last, other})
+    if (refs[k].slot >= 0 && !element_begin_.empty()) {
+      const size_t met = paths_met(i, changed[static_cast<size_t>(refs[k].slot)]);
+      if (from < 0 || met < fewest) from = k, fewest = met;
+    }
   std::vector<uint32_t> paths;
-  if (changed && changed_paths(i, *changed, &paths)) {
-    ReplicateSums& sums = reference_sums_[i];
-    std::vector<double>& values = reference_values_[i];
+  if (from >= 0 && changed_paths(i, changed[static_cast<size_t>(refs[from].slot)], &paths)) {
+    // The reference started from becomes the other; the last becomes `open`.
+    refs[from == last ? other : last] = refs[from];
+    Reference& to = refs[last];
     for (uint32_t p : paths) {
       const double value = path_value(r, p, open);
-      sums.add(p, value - values[p]);
-      values[p] = value;
+      to.sums.add(p, value - to.values[p]);
+      to.values[p] = value;
     }
-    reference_of_[i] = slot;
+    to.slot = slot;
     *evaluated = paths.size();
-    return sums;
+    return to.sums;
   }
-  std::vector<double>& values = reference_values_[i];
-  values.resize(r.path_count());
+  // In full into the other: the last stays as the reference beside it.
+  Reference& to = refs[other];
+  to.values.resize(r.path_count());
   ReplicateSums sums;
-  for (size_t p = 0; p < r.path_count(); ++p) sums.add(p, values[p] = path_value(r, p, open));
-  reference_sums_[i] = sums;
-  reference_of_[i] = slot;
+  for (size_t p = 0; p < r.path_count(); ++p) sums.add(p, to.values[p] = path_value(r, p, open));
+  to.sums = sums;
+  to.slot = slot;
+  last_[i] = static_cast<uint8_t>(other);
   *in_full = true;
   *evaluated = r.path_count();
   return sums;
+}
+
+size_t ExactValues::paths_met(size_t i, const std::vector<int32_t>& changed) const {
+  const std::vector<uint32_t>& begin = element_begin_[i];
+  size_t n = 0;
+  for (int32_t k : changed) n += begin[static_cast<size_t>(k) + 1] - begin[static_cast<size_t>(k)];
+  return n;
 }
 
 bool ExactValues::changed_paths(size_t i, const std::vector<int32_t>& changed, std::vector<uint32_t>* out) const {
@@ -164,9 +182,10 @@ void ExactValues::build_index() {
 }
 
 size_t ExactValues::memory_bytes() const {
-  size_t bytes = reference_sums_.capacity() * sizeof(ReplicateSums) + reference_of_.capacity() * sizeof(int);
+  size_t bytes = references_.capacity() * sizeof(std::array<Reference, 2>) + last_.capacity();
   for (const std::vector<uint8_t>& set : reference_sets_) bytes += set.capacity();
-  for (size_t i = 0; i < reference_values_.size(); ++i) bytes += reference_values_[i].capacity() * sizeof(double);
+  for (const std::array<Reference, 2>& refs : references_)
+    for (const Reference& r : refs) bytes += r.values.capacity() * sizeof(double);
   for (size_t i = 0; i < element_begin_.size(); ++i)
     bytes += (element_begin_[i].capacity() + element_paths_[i].capacity()) * sizeof(uint32_t);
   return bytes;

@@ -1,11 +1,14 @@
 #pragma once
 // Exact sensor values of open-element sets from the path records (Contributions::evaluate), for
 // the solver's stages, which evaluate many sets, most of them near one another: every set is
-// kept, and a new one is evaluated from the last one evaluated (each sensor's reference) by
-// re-evaluating only the paths that met an element whose state differs from it. The reference
-// follows the sets evaluated (the new paths' values replace the old), so a search that steps from
-// set to set re-evaluates only the paths of each step's change, never those of every step since
-// some earlier set.
+// kept, and a new one is evaluated from a set evaluated before (a reference) by re-evaluating only
+// the paths that met an element whose state differs from it. Each sensor keeps two references: the
+// last set it was evaluated for, and the one that evaluation started from. A search that scores
+// the neighbours of its best set one after another starts each from the best (one move away)
+// rather than from the neighbour before (two moves); one that steps from set to set starts each
+// from the last. The references follow the sets evaluated, so no change accumulates since some
+// earlier set.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -35,11 +38,15 @@ class ExactValues {
 
  private:
   SensorValues evaluate(const std::vector<uint8_t>& open);
-  // Sensor i's replicate sums for `open`, which becomes its reference (slot `slot`): in full, or
-  // from its reference when the paths that met an element of `changed` (those whose state differs
-  // from it) are at most kMaxShareFromReference of its paths. `evaluated`: the paths evaluated.
-  ReplicateSums sensor_sums(size_t i, const std::vector<uint8_t>& open, const std::vector<int32_t>* changed, int slot,
-                            bool* in_full, size_t* evaluated);
+  // Sensor i's replicate sums for `open`, which becomes its last reference (slot `slot`): in full,
+  // or from whichever of its references fewer paths met an element of `changed[its slot]` (those
+  // whose state differs from it) when they are at most kMaxShareFromReference of its paths; that
+  // reference becomes the other. `evaluated`: the paths evaluated.
+  ReplicateSums sensor_sums(size_t i, const std::vector<uint8_t>& open,
+                            const std::vector<std::vector<int32_t>>& changed, int slot, bool* in_full,
+                            size_t* evaluated);
+  // Paths of sensor i that met an element of `changed`, counted once per element (a bound).
+  size_t paths_met(size_t i, const std::vector<int32_t>& changed) const;
   // Sensor i's paths that met an element of `changed`, each once, in order; false (and `out`
   // partly filled) when they are more than kMaxShareFromReference of its paths.
   bool changed_paths(size_t i, const std::vector<int32_t>& changed, std::vector<uint32_t>* out) const;
@@ -52,15 +59,18 @@ class ExactValues {
   // Per sensor: the paths that met each element, by any of their events or conditions (CSR:
   // element k's at paths[begin[k]] .. paths[begin[k + 1]]).
   std::vector<std::vector<uint32_t>> element_begin_, element_paths_;
-  // Each sensor's reference: the last set it was evaluated for (a slot of reference_sets_, -1
-  // before any), its per-path values and their sums. Every choice is the
-  // sensor's own, so a sensor's values do not depend on the others (a study's shards give the
-  // same numbers as one process).
+  // A sensor's reference: a set it was evaluated for (a slot of reference_sets_, -1 before any),
+  // its per-path values and their sums. Every choice is the sensor's own, so a sensor's values do
+  // not depend on the others (a study's shards give the same numbers as one process).
+  struct Reference {
+    int slot = -1;
+    std::vector<double> values;  // [path]
+    ReplicateSums sums;
+  };
   std::vector<std::vector<uint8_t>> reference_sets_;
-  std::vector<size_t> reference_users_;  // sensors per slot (an empty slot is reused)
-  std::vector<int> reference_of_;
-  std::vector<std::vector<double>> reference_values_;  // [sensor][path]
-  std::vector<ReplicateSums> reference_sums_;
+  std::vector<size_t> reference_users_;  // references per slot (an empty slot is reused)
+  std::vector<std::array<Reference, 2>> references_;  // [sensor]
+  std::vector<uint8_t> last_;  // [sensor]: which of its two references is the last set evaluated
   size_t full_evaluations_ = 0, sensor_evaluations_ = 0, path_evaluations_ = 0;
 };
 

@@ -73,8 +73,10 @@ constexpr double kRecordAssembly = 2.0;
 // measured (open_region_test).
 constexpr double kEdgeSearchIndexShare = 2.0;
 // The exact values' index (solve/exact_values.h): 4 bytes per element a path met (at most one
-// per point, against at least 8 in the records) and 8 per path for the reference's values.
+// per point, against at least 8 in the records) and 8 per path for the first reference's values;
+// the second reference's values are counted apart (kExactValuesSecondReferenceBytesPerPath).
 constexpr double kExactValuesIndexShare = 0.5;
+constexpr double kExactValuesSecondReferenceBytesPerPath = 8.0;
 // Embree's BVH, the tracer's triangle data and the mesh copies, per triangle.
 constexpr double kRaySceneBytesPerTriangle = 256.0;
 // And whatever the triangles: Embree's scene and its builder's first blocks, the tracer's tables.
@@ -290,7 +292,9 @@ void add_solver(const Scene& scene, CostEstimate* e) {
   if (!scene.sensors.climate_goals.empty() && scene.climate && scene.climate->sky) add_climate_goals(scene, e);
   const double path_records = S * static_cast<double>(e->paths_per_sensor) * e->bytes_per_path;
   e->memory.push_back({"exact_values_index", "the exact evaluation's index of the elements each path met",
-                       kExactValuesIndexShare * path_records, "solving", "fewer solver paths"});
+                       kExactValuesIndexShare * path_records +
+                           kExactValuesSecondReferenceBytesPerPath * S * static_cast<double>(e->paths_per_sensor),
+                       "solving", "fewer solver paths"});
   // Every set the search over whole openings scores keeps its exact values (a value and a standard
   // error per sensor) and its open mask, with the map's nodes.
   e->memory.push_back({"opening_search_values", "the exact values of the sets the search over whole openings scores",
