@@ -64,6 +64,22 @@ size_t paths_meeting(const Contributions& c, const std::vector<int32_t>& element
   return n;
 }
 
+// Every element closed, then every one open (the index is built on the second): returns every
+// third element open, far from both, not yet evaluated.
+std::vector<uint8_t> after_two_far_sets(ExactValues& exact, size_t elements) {
+  std::vector<uint8_t> open(elements, 0);
+  exact(open);
+  exact(std::vector<uint8_t>(elements, 1));
+  for (size_t k = 0; k < elements; k += 3) open[k] = 1;
+  return open;
+}
+
+void expect_full_evaluations_values(const Contributions& c, const std::vector<uint8_t>& open, const SensorValues& got) {
+  const SensorValues full = c.evaluate(open);
+  for (Eigen::Index i = 0; i < full.value.size(); ++i)
+    EXPECT_NEAR(got.value[i], full.value[i], 1e-12 * (1.0 + full.value[i])) << "sensor " << i;
+}
+
 // A search steps from set to set: each step re-evaluates the paths of its own change only, not
 // those of every change since the last set evaluated in full.
 TEST(ExactValues, AStepReEvaluatesOnlyThePathsOfItsOwnChange) {
@@ -71,10 +87,7 @@ TEST(ExactValues, AStepReEvaluatesOnlyThePathsOfItsOwnChange) {
   const Scene scene = room_with_neighbour(dir, 1 << 9);
   const Contributions c = compute_contributions(scene);
   ExactValues exact(c, nullptr);
-  std::vector<uint8_t> open(c.element_count(), 0);
-  exact(open);
-  exact(std::vector<uint8_t>(open.size(), 1));  // far from the first: in full (the index is built)
-  for (size_t k = 0; k < open.size(); k += 3) open[k] = 1;
+  std::vector<uint8_t> open = after_two_far_sets(exact, c.element_count());
   const size_t full_before = exact.full_evaluations();
   exact(open);  // far from both: in full
   ASSERT_EQ(exact.full_evaluations() - full_before, c.sensor_count());
@@ -88,9 +101,7 @@ TEST(ExactValues, AStepReEvaluatesOnlyThePathsOfItsOwnChange) {
   const size_t before = exact.path_evaluations();
   const SensorValues& got = exact(open);
   EXPECT_EQ(exact.path_evaluations() - before, paths_meeting(c, {second}));
-  const SensorValues full = c.evaluate(open);
-  for (Eigen::Index i = 0; i < full.value.size(); ++i)
-    EXPECT_NEAR(got.value[i], full.value[i], 1e-12 * (1.0 + full.value[i])) << "sensor " << i;
+  expect_full_evaluations_values(c, open, got);
 }
 
 // A search scores the neighbours of its best set one after another: each starts from the best
@@ -101,10 +112,7 @@ TEST(ExactValues, ANeighbourStartsFromTheSetItsPredecessorStartedFrom) {
   const Scene scene = room_with_neighbour(dir, 1 << 9);
   const Contributions c = compute_contributions(scene);
   ExactValues exact(c, nullptr);
-  std::vector<uint8_t> best(c.element_count(), 0);
-  exact(best);
-  exact(std::vector<uint8_t>(best.size(), 1));  // the index is built
-  for (size_t k = 0; k < best.size(); k += 3) best[k] = 1;
+  const std::vector<uint8_t> best = after_two_far_sets(exact, c.element_count());
   exact(best);  // in full
   const int32_t first = 1, second = static_cast<int32_t>(best.size()) - 2;
   ASSERT_GT(paths_meeting(c, {first, second}), paths_meeting(c, {second}));
@@ -115,9 +123,7 @@ TEST(ExactValues, ANeighbourStartsFromTheSetItsPredecessorStartedFrom) {
   const size_t before = exact.path_evaluations();
   const SensorValues& got = exact(two);
   EXPECT_EQ(exact.path_evaluations() - before, paths_meeting(c, {second}));
-  const SensorValues full = c.evaluate(two);
-  for (Eigen::Index i = 0; i < full.value.size(); ++i)
-    EXPECT_NEAR(got.value[i], full.value[i], 1e-12 * (1.0 + full.value[i])) << "sensor " << i;
+  expect_full_evaluations_values(c, two, got);
 }
 
 }  // namespace
