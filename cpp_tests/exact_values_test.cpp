@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <random>
 
@@ -124,6 +125,65 @@ TEST(ExactValues, ANeighbourStartsFromTheSetItsPredecessorStartedFrom) {
   const SensorValues& got = exact(two);
   EXPECT_EQ(exact.path_evaluations() - before, paths_meeting(c, {second}));
   expect_full_evaluations_values(c, two, got);
+}
+
+// The screen's values, from one path in four of those that changed since a sensor's reference:
+// each is within its own sampling error of the exact value (z scores over many sets and sensors,
+// under a sun whose few paths carry much of the light), for well under half the path
+// evaluations, and the exact values that follow are bit for bit those without the screen.
+TEST(ExactValues, SampledValuesAreWithinTheirOwnSamplingErrorOfTheExactOnes) {
+  TempDir dir;
+  const Scene scene = room_with_neighbour(dir, 1 << 14);
+  const Contributions c = compute_contributions(scene);
+  ExactValues screened(c, nullptr), unscreened(c, nullptr);
+  std::vector<uint8_t> best(c.element_count(), 0);
+  for (size_t k = 0; k < best.size(); k += 4) best[k] = 1;
+  screened(best);
+  unscreened(best);
+  std::mt19937 rng(3);
+  double squares = 0.0, worst = 0.0;
+  size_t sampled_sensors = 0, exact_paths = 0;
+  for (int set = 0; set < 60; ++set) {
+    std::vector<uint8_t> candidate = best;
+    for (int f = 0; f < 6; ++f) candidate[rng() % candidate.size()] ^= 1;
+    const size_t paths_before = screened.path_evaluations();
+    const SensorValues s = screened.sampled(candidate, 4);
+    ASSERT_EQ(screened.path_evaluations(), paths_before);
+    const SensorValues e = screened(candidate);
+    exact_paths += screened.path_evaluations() - paths_before;
+    const SensorValues& u = unscreened(candidate);
+    for (Eigen::Index i = 0; i < e.value.size(); ++i) {
+      ASSERT_EQ(e.value[i], u.value[i]) << "set " << set << " sensor " << i;
+      if (s.standard_error[i] > 0.0) {
+        const double z = (s.value[i] - e.value[i]) / s.standard_error[i];
+        squares += z * z, worst = std::max(worst, std::abs(z)), ++sampled_sensors;
+      } else {
+        EXPECT_NEAR(s.value[i], e.value[i], 1e-9 * (1.0 + e.value[i])) << "set " << set << " sensor " << i;
+      }
+    }
+    if (set % 6 == 5) best = candidate;  // the search moves on now and then
+  }
+  std::printf("[ sampled  ] %zu sampled sensor values: mean z^2 %.3f, worst |z| %.2f; %zu of %zu paths\n",
+              sampled_sensors, squares / double(sampled_sensors), worst, screened.sampled_path_evaluations(), exact_paths);
+  ASSERT_GT(sampled_sensors, 100u);
+  // Mean z^2 of n standard normals: 1 with standard deviation sqrt(2 / n).
+  const double spread = std::sqrt(2.0 / double(sampled_sensors));
+  EXPECT_NEAR(squares / double(sampled_sensors), 1.0, 4.0 * spread);
+  EXPECT_LT(worst, 5.0);
+  EXPECT_LT(screened.sampled_path_evaluations(), exact_paths / 2);
+  EXPECT_GT(screened.sampled_path_evaluations(), exact_paths / 8);
+}
+
+// With a share of one every changed path is evaluated: the exact values, with no sampling error.
+TEST(ExactValues, SampledWithAShareOfOneAreTheExactValues) {
+  TempDir dir;
+  const Scene scene = room_with_neighbour(dir, 1 << 9);
+  const Contributions c = compute_contributions(scene);
+  ExactValues exact(c, nullptr);
+  const std::vector<uint8_t> open = after_two_far_sets(exact, c.element_count());
+  const SensorValues s = exact.sampled(open, 1);
+  EXPECT_EQ(s.standard_error.cwiseAbs().maxCoeff(), 0.0);
+  expect_full_evaluations_values(c, open, s);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "solve/exact_values.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "trace/parallel.h"
 #include "trace/path_record.h"
@@ -14,6 +15,15 @@ namespace {
 constexpr double kMaxShareFromReference = 0.75;
 // Changed paths fewer than 1 / this of a sensor's are sorted; more are read off their marks.
 constexpr size_t kSortedPathsShare = 32;
+// Paths asked of the memory ahead of their reading (prefetch_path).
+constexpr size_t kPrefetchAhead = 8;
+// A sensor whose changed paths are at most this many times the share is not sampled: all of them
+// cost little, and a sample of few would estimate its own error poorly.
+constexpr size_t kSampledAtLeast = 64;
+
+// Whether path p is in the sample of one path in `share` (a fixed, scrambled choice: not every
+// share-th path, which could follow the replicate groups or the order paths were traced in).
+bool in_sample(uint32_t p, uint32_t share) { return share <= 1 || ((p * 2654435761u) >> 8) % share == 0; }
 
 }  // namespace
 
@@ -40,12 +50,7 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   } else if (element_begin_.empty()) {
     build_index();
   }
-  // The elements whose state differs from each reference in use.
-  std::vector<std::vector<int32_t>> changed(reference_sets_.size());
-  for (size_t s = 0; s < reference_sets_.size(); ++s)
-    if (reference_users_[s] > 0)
-      for (size_t k = 0; k < open.size(); ++k)
-        if ((open[k] != 0) != (reference_sets_[s][k] != 0)) changed[s].push_back(static_cast<int32_t>(k));
+  const std::vector<std::vector<int32_t>> changed = changed_elements(open);
   const int slot = free_slot();  // the new reference of every sensor evaluated
   reference_sets_[slot] = open;
   std::vector<uint8_t> in_full(sensors, 0);
@@ -85,19 +90,16 @@ ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& ope
   const SensorRecord& r = c_.records[i];
   std::array<Reference, 2>& refs = references_[i];
   const int last = last_[i], other = 1 - last;
-  int from = -1;  // the reference fewer paths' changes separate from `open` (the last on a tie)
-  size_t fewest = 0;
-  for (int k : {last, other})
-    if (refs[k].slot >= 0 && !element_begin_.empty()) {
-      const size_t met = paths_met(i, changed[static_cast<size_t>(refs[k].slot)]);
-      if (from < 0 || met < fewest) from = k, fewest = met;
-    }
+  size_t met = 0;
+  const int from = nearer_reference(i, changed, &met);
   std::vector<uint32_t> paths;
   if (from >= 0 && changed_paths(i, changed[static_cast<size_t>(refs[from].slot)], &paths)) {
     // The reference started from becomes the other; the last becomes `open`.
     refs[from == last ? other : last] = refs[from];
     Reference& to = refs[last];
-    for (uint32_t p : paths) {
+    for (size_t n = 0; n < paths.size(); ++n) {
+      if (n + kPrefetchAhead < paths.size()) prefetch_path(r, paths[n + kPrefetchAhead]);
+      const uint32_t p = paths[n];
       const double value = path_value(r, p, open);
       to.sums.add(p, value - to.values[p]);
       to.values[p] = value;
@@ -117,6 +119,100 @@ ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& ope
   *in_full = true;
   *evaluated = r.path_count();
   return sums;
+}
+
+std::vector<std::vector<int32_t>> ExactValues::changed_elements(const std::vector<uint8_t>& open) const {
+  std::vector<std::vector<int32_t>> changed(reference_sets_.size());
+  for (size_t s = 0; s < reference_sets_.size(); ++s)
+    if (reference_users_[s] > 0)
+      for (size_t k = 0; k < open.size(); ++k)
+        if ((open[k] != 0) != (reference_sets_[s][k] != 0)) changed[s].push_back(static_cast<int32_t>(k));
+  return changed;
+}
+
+int ExactValues::nearer_reference(size_t i, const std::vector<std::vector<int32_t>>& changed, size_t* met) const {
+  const std::array<Reference, 2>& refs = references_[i];
+  const int last = last_[i];
+  int from = -1;
+  for (int k : {last, 1 - last})
+    if (refs[k].slot >= 0 && !element_begin_.empty()) {
+      const size_t n = paths_met(i, changed[static_cast<size_t>(refs[k].slot)]);
+      if (from < 0 || n < *met) from = k, *met = n;
+    }
+  return from;
+}
+
+SensorValues ExactValues::sampled(const std::vector<uint8_t>& open, uint32_t share) {
+  if (share <= 1 || references_.empty() || open.size() != c_.element_count() || known_.count(open)) {
+    SensorValues exact = (*this)(open);
+    exact.standard_error.setZero();
+    return exact;
+  }
+  if (element_begin_.empty()) build_index();
+  const std::vector<std::vector<int32_t>> changed = changed_elements(open);
+  const size_t sensors = c_.records.size();
+  SensorValues out;
+  out.value.resize(static_cast<Eigen::Index>(sensors));
+  out.standard_error.resize(static_cast<Eigen::Index>(sensors));
+  std::vector<size_t> evaluated(sensors, 0);
+  for_each_sensor(sensors, nullptr, [&](size_t i) {
+    if (progress_ && progress_->cancelled()) return;
+    const auto e = static_cast<Eigen::Index>(i);
+    sampled_sensor(i, open, changed, share, &out.value[e], &out.standard_error[e], &evaluated[i]);
+  });
+  if (progress_) progress_->throw_if_cancelled();
+  for (size_t n : evaluated) sampled_path_evaluations_ += n;
+  return out;
+}
+
+// Horvitz-Thompson: each changed path is in the sample with probability 1 / share, so the sampled
+// changes times share estimate the whole change, with variance share (share - 1) sum d^2 / N^2.
+void ExactValues::sampled_sensor(size_t i, const std::vector<uint8_t>& open,
+                                 const std::vector<std::vector<int32_t>>& changed, uint32_t share, double* value,
+                                 double* standard_error, size_t* evaluated) const {
+  const SensorRecord& r = c_.records[i];
+  const size_t n = r.path_count();
+  size_t met = 0;
+  const int from = nearer_reference(i, changed, &met);
+  if (from < 0) {  // never evaluated (a cancelled pass): every path
+    ReplicateSums sums;
+    for (size_t p = 0; p < n; ++p) sums.add(p, path_value(r, p, open));
+    sums.estimate(n, value, standard_error);
+    *standard_error = 0.0, *evaluated = n;
+    return;
+  }
+  const Reference& ref = references_[i][static_cast<size_t>(from)];
+  const std::vector<int32_t>& differs = changed[static_cast<size_t>(ref.slot)];
+  if (met <= kSampledAtLeast * share) share = 1;  // so few that sampling would save nothing
+  std::vector<uint32_t> paths;
+  sampled_paths(i, differs, share, &paths);
+  double change = 0.0, squares = 0.0;
+  for (size_t k = 0; k < paths.size(); ++k) {
+    if (k + kPrefetchAhead < paths.size()) prefetch_path(r, paths[k + kPrefetchAhead]);
+    const double d = path_value(r, paths[k], open) - ref.values[paths[k]];
+    change += d, squares += d * d;
+  }
+  double reference_value = 0.0, unused = 0.0;
+  ref.sums.estimate(n, &reference_value, &unused);
+  const double scale = static_cast<double>(share), count = static_cast<double>(n);
+  *value = reference_value + scale * change / count;
+  *standard_error = std::sqrt(scale * (scale - 1.0) * squares) / count;
+  *evaluated = paths.size();
+}
+
+void ExactValues::sampled_paths(size_t i, const std::vector<int32_t>& changed, uint32_t share,
+                                std::vector<uint32_t>* out) const {
+  const std::vector<uint32_t>& begin = element_begin_[i];
+  const std::vector<uint32_t>& element_paths = element_paths_[i];
+  thread_local std::vector<uint8_t> seen;
+  if (seen.size() < c_.records[i].path_count()) seen.resize(c_.records[i].path_count(), 0);
+  for (int32_t k : changed)
+    for (uint32_t e = begin[k], end = begin[k + 1]; e < end; ++e) {
+      const uint32_t p = element_paths[e];
+      if (!seen[p] && in_sample(p, share)) seen[p] = 1, out->push_back(p);
+    }
+  for (uint32_t p : *out) seen[p] = 0;
+  std::sort(out->begin(), out->end());
 }
 
 size_t ExactValues::paths_met(size_t i, const std::vector<int32_t>& changed) const {

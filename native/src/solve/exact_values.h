@@ -26,6 +26,16 @@ class ExactValues {
   ExactValues(const Contributions& c, const Progress* progress) : c_(c), progress_(progress) {}
 
   const SensorValues& operator()(const std::vector<uint8_t>& open);
+  // Values of `open` from one path in `share` of those that changed (a screen that rules sets out
+  // before operator() scores them): per sensor, its nearer reference's exact value plus the
+  // change of the sampled paths, scaled. The paths sampled are a fixed choice (the same for every
+  // set, so that sets compare on the same paths). `standard_error` is the sampling's, how far the
+  // estimate may be from operator()'s value, not the records' own noise. A sensor with few changed
+  // paths has them all evaluated (error 0), and a set already evaluated is given exactly. Leaves
+  // the references and the counters above as they were.
+  SensorValues sampled(const std::vector<uint8_t>& open, uint32_t share);
+  // Paths evaluated by sampled() so far, over all sensors.
+  size_t sampled_path_evaluations() const { return sampled_path_evaluations_; }
   // Sensor evaluations done in full so far, and all of them (the others were evaluated from the
   // sensor's reference).
   size_t full_evaluations() const { return full_evaluations_; }
@@ -50,6 +60,17 @@ class ExactValues {
   // Sensor i's paths that met an element of `changed`, each once, in order; false (and `out`
   // partly filled) when they are more than kMaxShareFromReference of its paths.
   bool changed_paths(size_t i, const std::vector<int32_t>& changed, std::vector<uint32_t>* out) const;
+  // Per reference slot in use, the elements whose state differs from it in `open`.
+  std::vector<std::vector<int32_t>> changed_elements(const std::vector<uint8_t>& open) const;
+  // Which of sensor i's references fewer paths' changes separate from `open` (the last on a tie;
+  // -1 without one), and that number (counted once per element, a bound).
+  int nearer_reference(size_t i, const std::vector<std::vector<int32_t>>& changed, size_t* met) const;
+  // Sensor i's sampled() value and its sampling error.
+  void sampled_sensor(size_t i, const std::vector<uint8_t>& open, const std::vector<std::vector<int32_t>>& changed,
+                      uint32_t share, double* value, double* standard_error, size_t* evaluated) const;
+  // Sensor i's paths in the sample of one in `share` that met an element of `changed`, each once,
+  // in order.
+  void sampled_paths(size_t i, const std::vector<int32_t>& changed, uint32_t share, std::vector<uint32_t>* out) const;
   void build_index();
   int free_slot();
 
@@ -71,7 +92,7 @@ class ExactValues {
   std::vector<size_t> reference_users_;  // references per slot (an empty slot is reused)
   std::vector<std::array<Reference, 2>> references_;  // [sensor]
   std::vector<uint8_t> last_;  // [sensor]: which of its two references is the last set evaluated
-  size_t full_evaluations_ = 0, sensor_evaluations_ = 0, path_evaluations_ = 0;
+  size_t full_evaluations_ = 0, sensor_evaluations_ = 0, path_evaluations_ = 0, sampled_path_evaluations_ = 0;
 };
 
 }  // namespace fenestra

@@ -143,6 +143,17 @@ struct SensorRecord {
   uint32_t dither_of_next(float value, int32_t element, uint8_t flags) const;
 };
 
+// Asks the memory for the start of path p's events and conditions ahead of reading them: the
+// solver reads a few paths of each sensor out of millions, and waits on memory, not arithmetic.
+inline void prefetch_path(const SensorRecord& r, size_t p) {
+  const PathEvent* events = r.events.data() + r.path_begin[p];
+  const int32_t* conditions = r.conditions.data() + r.path_conditions_begin[p];
+  __builtin_prefetch(events);
+  __builtin_prefetch(reinterpret_cast<const char*>(events) + 64);
+  __builtin_prefetch(conditions);
+  __builtin_prefetch(conditions + 16);
+}
+
 // Elements path p's value can depend on (its escapes' and its conditions'), sorted, without repeats.
 void path_elements(const SensorRecord& record, size_t p, std::vector<int32_t>* out);
 
