@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <utility>
 
 #include "solve/opening_search.h"
 #include "util/progress.h"
@@ -161,6 +162,71 @@ TEST(OpeningSearch, SameStartsAndScoreGiveTheSameAnswer) {
   EXPECT_EQ(a.score, b.score);
   EXPECT_EQ(a.evaluations, b.evaluations);
   EXPECT_LT(a.score, a.start_score);
+}
+
+// A bound below every score (here the score less a tenth) rules out moves that cannot gain before
+// they are scored: the search takes the same steps to the same answer, considering the same sets,
+// and scores fewer of them.
+TEST(OpeningSearch, ABoundBelowTheScoreGivesTheSameAnswerFromFewerScores) {
+  const OpeningDomain d = wall_and_roof();
+  const int wall = panel_of_rows(d, 10), roof = 1 - wall;
+  const OpeningConstraints c = automatic_like();
+  const SuperlinearLight model(d);
+  const std::vector<double> goal = model.light({{wall, 2, 7, 2, 6}, {wall, 3, 6, 12, 16}, {roof, 4, 8, 5, 8}});
+  auto error = [&](const std::vector<GridRectangle>& rects) {
+    const std::vector<double> v = model.light(rects);
+    double e = 0.0;
+    for (size_t i = 0; i < v.size(); ++i) e += (v[i] - goal[i]) * (v[i] - goal[i]);
+    return e;
+  };
+  int calls = 0, bounds = 0;
+  const OpeningScore score = [&](const std::vector<GridRectangle>& rects) { return ++calls, error(rects); };
+  const OpeningBound bound = [&](const std::vector<GridRectangle>& rects) { return ++bounds, 0.9 * error(rects); };
+  const std::vector<std::vector<GridRectangle>> starts = {{{wall, 3, 6, 3, 5}, {wall, 2, 5, 13, 16}},
+                                                          {{roof, 2, 9, 6, 11}}};
+  const OpeningSearchResult plain = search_whole_openings(d, c, starts, score, 0);
+  const int plain_calls = std::exchange(calls, 0);
+  EXPECT_EQ(plain.scored, plain_calls);
+  EXPECT_EQ(plain.evaluations, plain_calls);
+  const OpeningSearchResult bounded = search_whole_openings(d, c, starts, score, 0, nullptr, nullptr, bound);
+  EXPECT_EQ(bounded.rects, plain.rects);
+  EXPECT_EQ(bounded.score, plain.score);
+  EXPECT_EQ(bounded.evaluations, plain.evaluations);
+  EXPECT_EQ(bounded.moves, plain.moves);
+  EXPECT_EQ(bounded.best_found_after, plain.best_found_after);
+  EXPECT_EQ(bounded.scored, calls);
+  EXPECT_LT(bounded.scored, plain.scored / 2);
+  EXPECT_GT(bounds, 0);
+  EXPECT_LE(bounds, bounded.evaluations);
+}
+
+// With a limit, the sets ruled out by the bound count against it as the scored ones do: the search
+// stops where the search without a bound stops.
+TEST(OpeningSearch, SetsRuledOutByTheBoundCountAgainstTheLimit) {
+  const OpeningDomain d = wall_and_roof();
+  const int wall = panel_of_rows(d, 10);
+  const OpeningConstraints c = automatic_like();
+  const SuperlinearLight model(d);
+  const std::vector<double> goal = model.light({{wall, 2, 7, 2, 6}});
+  auto error = [&](const std::vector<GridRectangle>& rects) {
+    const std::vector<double> v = model.light(rects);
+    double e = 0.0;
+    for (size_t i = 0; i < v.size(); ++i) e += (v[i] - goal[i]) * (v[i] - goal[i]);
+    return e;
+  };
+  const OpeningScore score = error;
+  const OpeningBound bound = [&](const std::vector<GridRectangle>& rects) { return 0.9 * error(rects); };
+  const std::vector<std::vector<GridRectangle>> starts = {{{wall, 3, 7, 3, 6}}};  // one step from the truth
+  Progress progress;
+  progress.start("searching", 40);
+  const OpeningSearchResult bounded = search_whole_openings(d, c, starts, score, 40, &progress, nullptr, bound);
+  const OpeningSearchResult plain = search_whole_openings(d, c, starts, score, 40);
+  EXPECT_DOUBLE_EQ(progress.fraction(), 1.0);  // one step per set considered
+  EXPECT_EQ(bounded.evaluations, 40);
+  EXPECT_TRUE(bounded.out_of_evaluations);
+  EXPECT_LT(bounded.scored, bounded.evaluations);
+  EXPECT_EQ(bounded.rects, plain.rects);
+  EXPECT_EQ(bounded.score, plain.score);
 }
 
 }  // namespace

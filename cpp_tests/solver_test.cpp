@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
 
 #include "annual/annual_contributions.h"
 #include "solve/coarse_grid.h"
 #include "solve/compensation.h"
 #include "solve/goals.h"
 #include "solve/least_glazing.h"
+#include "solve/linear_objective.h"
 #include "solve/rectangles.h"
 #include "solve/solver.h"
 #include "test_scenes.h"
@@ -124,6 +127,47 @@ TEST(SolverExact, OneElementOpenEqualsTheLinearModel) {
     for (Eigen::Index i = 0; i < exact.size(); ++i)
       EXPECT_NEAR(exact[i], linear[i], 1e-9 * std::max(1.0, linear[i])) << "element " << k << ", sensor " << i;
   }
+}
+
+// The bound that rules a set out before it is scored: never above the fitness of any predictions
+// within the half widths (random ones, and the interval's ends), equal to it at zero width, and
+// below it by the most a sensor's term can fall.
+TEST(SolverExact, FitnessLowerBoundIsBelowEveryPredictionWithinTheWidths) {
+  const ElementGrid grid = ElementGrid::rectangle(2, 3);
+  LinearObjective o;
+  const Eigen::Index sensors = 5;
+  o.E = Eigen::MatrixXd::Zero(sensors, 6);
+  o.target = Eigen::VectorXd::LinSpaced(sensors, 100.0, 500.0);
+  o.weight = Eigen::VectorXd::Constant(sensors, 1e-5);
+  o.lower = o.target * 0.8;
+  o.upper = o.target * 1.5;
+  o.lower[4] = -std::numeric_limits<double>::infinity();  // one sensor bounded on one side only
+  o.bound_weight = 3.0;
+  const ShapeWeights shape;
+  const std::vector<uint8_t> open = {1, 1, 0, 0, 1, 0};
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    Eigen::VectorXd predicted(sensors), width(sensors);
+    for (Eigen::Index i = 0; i < sensors; ++i)
+      predicted[i] = o.target[i] * (0.3 + 1.6 * uniform(rng)), width[i] = o.target[i] * 0.4 * uniform(rng);
+    const double bound = exact_fitness_lower_bound(o, grid, shape, open, predicted, width);
+    EXPECT_DOUBLE_EQ(exact_fitness_lower_bound(o, grid, shape, open, predicted, Eigen::VectorXd::Zero(sensors)),
+                     exact_fitness(o, grid, shape, open, predicted));
+    for (int draw = 0; draw < 20; ++draw) {
+      Eigen::VectorXd within(sensors);
+      for (Eigen::Index i = 0; i < sensors; ++i) {
+        const double t = draw == 0 ? 0.0 : draw == 1 ? 1.0 : uniform(rng);
+        within[i] = predicted[i] - width[i] + 2.0 * width[i] * t;
+      }
+      ASSERT_LE(bound, exact_fitness(o, grid, shape, open, within) * (1.0 + 1e-12)) << "trial " << trial;
+    }
+  }
+  // A sensor whose interval holds its target and lies within its bounds adds nothing.
+  Eigen::VectorXd at_target = o.target, width = Eigen::VectorXd::Constant(sensors, 1.0);
+  at_target[2] += 0.5;
+  const double shape_only = exact_fitness(o, grid, shape, open, o.target);
+  EXPECT_DOUBLE_EQ(exact_fitness_lower_bound(o, grid, shape, open, at_target, width), shape_only);
 }
 
 TEST(SolverRectangles, MergesOpenElementsIntoMaximalRectangles) {

@@ -326,6 +326,20 @@ void bind_shard_queries(py::module_& m) {
           },
           py::arg("open"), "Exact (values, standard errors) with these elements open (kept; near sets from a reference).")
       .def(
+          "sampled",
+          [](ShardQueries& q, const MaskArray& open) {
+            const std::vector<uint8_t> mask = mask_of(open, q.contributions->element_count());
+            SensorValues v;
+            {
+              py::gil_scoped_release release;
+              v = q.queries.sampled(mask);
+            }
+            return values_pair(v);
+          },
+          py::arg("open"),
+          "(values, sampling errors) with these elements open from one in four of the paths the change met since "
+          "each sensor's nearest set (a screen before exact; the references are left as they are).")
+      .def(
           "evaluate",
           [](ShardQueries& q, const DoubleArray& rects) {
             const std::vector<PanelRectangle> region = rectangles_of(rects, q.scene->domain);
@@ -468,6 +482,16 @@ class PythonRecordQueries : public RecordQueries {
     py::gil_scoped_acquire gil;
     py::array_t<uint8_t> mask(static_cast<py::ssize_t>(open.size()), open.data());
     return known_.emplace(open, values_from(backend_.attr("exact")(mask), sensors(), "exact values")).first->second;
+  }
+  SensorValues sampled(const std::vector<uint8_t>& open) override {
+    {
+      py::gil_scoped_acquire gil;
+      if (py::hasattr(backend_, "sampled")) {
+        py::array_t<uint8_t> mask(static_cast<py::ssize_t>(open.size()), open.data());
+        return values_from(backend_.attr("sampled")(mask), sensors(), "sampled values");
+      }
+    }
+    return RecordQueries::sampled(open);  // a backend without a screen: the exact values
   }
   SensorValues evaluate(const std::vector<PanelRectangle>& region) override {
     py::gil_scoped_acquire gil;

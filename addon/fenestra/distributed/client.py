@@ -381,7 +381,8 @@ class _ShardedRecords:
 
     def _ask(self, op, *args):
         self.calls += 1
-        changes = op not in ("evaluate", "flip_effects", "record_bytes", "try", "hourly_model", "annual_parts")
+        changes = op not in (
+            "evaluate", "sampled", "flip_effects", "record_bytes", "try", "hourly_model", "annual_parts")
         parts = self._ask_shards(op, args)
         if changes:
             self._log.append((op, args))
@@ -478,6 +479,9 @@ class _ShardedRecords:
 
     def exact(self, open_mask):
         return self._pairs(self._ask("exact", np.asarray(open_mask, dtype=np.uint8)))
+
+    def sampled(self, open_mask):
+        return self._pairs(self._ask("sampled", np.asarray(open_mask, dtype=np.uint8)))
 
     def evaluate(self, rectangles):
         return self._pairs(self._ask("evaluate", np.asarray(rectangles, dtype=np.float64)))

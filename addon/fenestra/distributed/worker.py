@@ -145,6 +145,8 @@ def _apply(state, op, args, sensors):
     queries, searches = state["queries"], state["searches"]
     if op == "evaluate":
         return queries.evaluate(args[0])
+    if op == "sampled":  # reads the references, leaves them
+        return queries.sampled(args[0])
     if op == "hourly_model":
         return _hourly_model(queries, sensors, *args)
     if op == "annual_parts":

@@ -198,6 +198,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
                           {"starts", r.opening_search.starts},
                           {"best_start", r.opening_search.best_start},
                           {"evaluations", r.opening_search.evaluations},
+                          {"scored", r.opening_search.scored},
                           {"best_found_after", r.opening_search.best_found_after},
                           {"moves", r.opening_search.moves},
                           {"restarts", r.opening_search.restarts},

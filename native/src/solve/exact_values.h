@@ -32,7 +32,8 @@ class ExactValues {
   // set, so that sets compare on the same paths). `standard_error` is the sampling's, how far the
   // estimate may be from operator()'s value, not the records' own noise. A sensor with few changed
   // paths has them all evaluated (error 0), and a set already evaluated is given exactly. Leaves
-  // the references and the counters above as they were.
+  // the references and the counters above as they were, unless no set was evaluated yet: then
+  // `open` is evaluated as operator() does (exactly, error 0), and becomes the references.
   SensorValues sampled(const std::vector<uint8_t>& open, uint32_t share);
   // Paths evaluated by sampled() so far, over all sensors.
   size_t sampled_path_evaluations() const { return sampled_path_evaluations_; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "solve/genetic_search.h"
 #include "solve/record_queries.h"
 
 namespace fenestra {
@@ -75,6 +76,21 @@ bool opens_any(const std::vector<uint8_t>& open, const std::vector<uint8_t>& fla
 double exact_fitness(const LinearObjective& o, const ElementGrid& grid, const ShapeWeights& shape,
                      const std::vector<uint8_t>& open, const Eigen::VectorXd& predicted_net) {
   return prediction_error(o, predicted_net) + shape_penalty(shape, shape_counts(grid, open));
+}
+
+double exact_fitness_lower_bound(const LinearObjective& o, const ElementGrid& grid, const ShapeWeights& shape,
+                                 const std::vector<uint8_t>& open, const Eigen::VectorXd& predicted_net,
+                                 const Eigen::VectorXd& half_width) {
+  double error = 0.0;
+  for (Eigen::Index i = 0; i < predicted_net.size(); ++i) {
+    const double low = predicted_net[i] - half_width[i], high = predicted_net[i] + half_width[i];
+    const double r = std::max(0.0, std::max(low - o.target[i], o.target[i] - high));  // the nearest to the target
+    double bounds = 0.0;  // each excess is least at the end of the interval nearer its bound
+    if (o.lower.size()) bounds += genetic_search::squared_excess(o.lower[i] - high);
+    if (o.upper.size()) bounds += genetic_search::squared_excess(low - o.upper[i]);
+    error += o.weight[i] * (r * r + o.bound_weight * bounds);
+  }
+  return error + shape_penalty(shape, shape_counts(grid, open));
 }
 
 }  // namespace fenestra

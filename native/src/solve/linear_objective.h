@@ -39,5 +39,11 @@ bool opens_any(const std::vector<uint8_t>& open, const std::vector<uint8_t>& fla
 // shape part as the genetic algorithm counts it).
 double exact_fitness(const LinearObjective& o, const ElementGrid& grid, const ShapeWeights& shape,
                      const std::vector<uint8_t>& open, const Eigen::VectorXd& predicted_net);
+// The least exact_fitness can be with each sensor's prediction anywhere within `half_width[i]` of
+// `predicted_net[i]`: each sensor's terms at their least over its interval, summed (a bound from
+// below, reached when all are at once).
+double exact_fitness_lower_bound(const LinearObjective& o, const ElementGrid& grid, const ShapeWeights& shape,
+                                 const std::vector<uint8_t>& open, const Eigen::VectorXd& predicted_net,
+                                 const Eigen::VectorXd& half_width);
 
 }  // namespace fenestra

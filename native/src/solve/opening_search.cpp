@@ -1,6 +1,7 @@
 #include "solve/opening_search.h"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -87,30 +88,37 @@ void merges(const Openings& set, std::vector<Openings>* out) {
 class Search {
  public:
   Search(const OpeningDomain& domain, const OpeningConstraints& constraints, const OpeningScore& score,
-         int max_evaluations, Progress* progress)
-      : domain_(domain), constraints_(constraints), score_(score), max_evaluations_(max_evaluations),
+         const OpeningBound& bound, int max_evaluations, Progress* progress)
+      : domain_(domain), constraints_(constraints), score_(score), bound_(bound), max_evaluations_(max_evaluations),
         progress_(progress) {}
 
-  // The score of an admissible set (sorted), once per set; nullopt when it breaks the constraints
-  // or the evaluations ran out.
-  std::optional<double> scored(Openings set) {
+  // The score of an admissible set (sorted), once per set; nullopt when it breaks the constraints,
+  // the evaluations ran out, or (with a bound) it cannot be below `beat`.
+  std::optional<double> scored(Openings set, double beat = std::numeric_limits<double>::infinity()) {
     std::sort(set.begin(), set.end());
-    const auto known = known_.find(set);
-    if (known != known_.end()) return known->second;
-    if (!all_well_formed(set) || !satisfies_all(domain_, set, constraints_)) {
-      known_.emplace(std::move(set), std::nullopt);
-      return std::nullopt;
+    auto known = known_.find(set);
+    if (known == known_.end()) {
+      if (!all_well_formed(set) || !satisfies_all(domain_, set, constraints_))
+        return known_.emplace(std::move(set), Judged{}).first->second.score;
+      if (max_evaluations_ > 0 && result.evaluations >= max_evaluations_) {
+        result.out_of_evaluations = true;
+        return std::nullopt;
+      }
+      if (progress_) progress_->throw_if_cancelled();
+      Judged judged;
+      judged.admissible = true;
+      if (bound_ && beat < std::numeric_limits<double>::infinity()) judged.bound = bound_(set);
+      ++result.evaluations;
+      if (progress_) progress_->advance();
+      known = known_.emplace(std::move(set), judged).first;
     }
-    if (max_evaluations_ > 0 && result.evaluations >= max_evaluations_) {
-      result.out_of_evaluations = true;
-      return std::nullopt;
-    }
+    Judged& j = known->second;
+    if (!j.admissible || j.score) return j.score;
+    if (j.bound >= beat) return std::nullopt;  // it cannot win here
     if (progress_) progress_->throw_if_cancelled();
-    const double s = score_(set);
-    ++result.evaluations;
-    if (progress_) progress_->advance();
-    known_.emplace(std::move(set), s);
-    return s;
+    j.score = score_(known->first);
+    ++result.scored;
+    return j.score;
   }
 
   // Descent from `set` (admissible, scored `s`): the first neighbour that gains is taken and the
@@ -131,8 +139,9 @@ class Search {
       bool gained = false;
       for (size_t t = 0; t < candidates.size() && !gained; ++t) {
         const size_t k = (next + t) % candidates.size();
-        const std::optional<double> cs = scored(candidates[k]);
-        if (!cs || !(*cs < s - kRelativeGain * std::abs(s))) continue;
+        const double beat = s - kRelativeGain * std::abs(s);
+        const std::optional<double> cs = scored(candidates[k], beat);
+        if (!cs || !(*cs < beat)) continue;
         set = std::move(candidates[k]), s = *cs, next = k + 1, gained = true;
         if (only < 0) std::sort(set.begin(), set.end());
         ++result.moves;
@@ -160,7 +169,7 @@ class Search {
       std::optional<Openings> best;
       double best_score = result.score;
       for (Openings& c : candidates) {
-        const std::optional<double> cs = scored(c);
+        const std::optional<double> cs = scored(c, best_score);
         if (cs && *cs < best_score) best_score = *cs, best = std::move(c);
       }
       if (!best || !(best_score < result.score - kRelativeGain * std::abs(result.score))) continue;
@@ -204,8 +213,9 @@ class Search {
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return predicted[a] < predicted[b]; });
     for (size_t n = 0; n < order.size() && n < kPairScores && !result.out_of_evaluations; ++n) {
       Openings& c = fresh[order[n]];
-      const std::optional<double> s = scored(c);
-      if (!s || !(*s < before - kRelativeGain * std::abs(before))) continue;
+      const double beat = before - kRelativeGain * std::abs(before);
+      const std::optional<double> s = scored(c, beat);
+      if (!s || !(*s < beat)) continue;
       ++result.pair_moves;
       auto [set, score] = descend(std::move(c), *s);
       take(set, score, -1);
@@ -261,10 +271,18 @@ class Search {
  private:
   const OpeningDomain& domain_;
   const OpeningConstraints& constraints_;
+  // What is known of a set considered: whether it is admissible, its bound, its score once scored.
+  struct Judged {
+    bool admissible = false;
+    double bound = -std::numeric_limits<double>::infinity();
+    std::optional<double> score;
+  };
+
   const OpeningScore& score_;
+  const OpeningBound& bound_;
   const int max_evaluations_;
   Progress* progress_;
-  std::map<Openings, std::optional<double>> known_;
+  std::map<Openings, Judged> known_;
 };
 
 }  // namespace
@@ -272,8 +290,8 @@ class Search {
 OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const OpeningConstraints& constraints,
                                           const std::vector<std::vector<GridRectangle>>& starts,
                                           const OpeningScore& score, int max_evaluations, Progress* progress,
-                                          const OpeningScreen& screen) {
-  Search search(domain, constraints, score, max_evaluations, progress);
+                                          const OpeningScreen& screen, const OpeningBound& bound) {
+  Search search(domain, constraints, score, bound, max_evaluations, progress);
   for (const Openings& start : starts)
     for (const GridRectangle& r : start)
       if (std::find(search.pool.begin(), search.pool.end(), r) == search.pool.end()) search.pool.push_back(r);

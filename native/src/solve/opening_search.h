@@ -22,7 +22,10 @@
 //     openings that light the same room can each compensate the other's error, so that neither
 //     alone can move.
 // Restarts, refits and pair moves repeat while any gains.
-// Every set is scored once (kept by its openings). The same starts and score give the same answer.
+// Every set is considered once (kept by its openings). With a bound (a cheap score no set's can be
+// below with any likelihood), a set that must beat a score is scored only when its bound does not
+// rule it out: the moves that lose, most of them, cost the bound alone, and the search takes the
+// same steps as without it. The same starts, score and bound give the same answer.
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -46,6 +49,10 @@ using OpeningScore = std::function<double(const std::vector<GridRectangle>&)>;
 using OpeningScreen = std::function<std::vector<double>(
     const std::vector<GridRectangle>& about, const std::vector<std::array<std::vector<GridRectangle>, 2>>& singles)>;
 
+// Optional: a score the set's is not below (but for a small chance), cheaper than the score (e.g.
+// from a sample of the records' paths, with its sampling error).
+using OpeningBound = std::function<double(const std::vector<GridRectangle>&)>;
+
 struct OpeningSearchResult {
   std::vector<GridRectangle> rects;  // sorted
   // Other sets where a descent ended (local optima), best first, at most kSearchAlternatives: the
@@ -54,8 +61,9 @@ struct OpeningSearchResult {
   double score = std::numeric_limits<double>::infinity();
   double start_score = std::numeric_limits<double>::infinity();  // the best start's, before any move
   int best_start = -1;   // which start the answer descends from
-  int evaluations = 0;   // distinct sets scored
-  int best_found_after = 0;  // sets scored when the answer was found
+  int evaluations = 0;   // distinct sets considered: scored, or ruled out by the bound
+  int scored = 0;        // sets scored (the others were ruled out by the bound)
+  int best_found_after = 0;  // sets considered when the answer was found
   int moves = 0;         // moves taken, over every descent
   int restarts = 0;      // restarts run
   int pair_moves = 0;    // pair moves taken
@@ -63,11 +71,12 @@ struct OpeningSearchResult {
 };
 
 // `starts`: sets of openings; those breaking the constraints are skipped (none left: the result
-// is empty with an infinite score). `max_evaluations` bounds the sets scored (0: no bound).
-// `progress` advances by one per set scored (its total is the caller's to start) and cancels.
+// is empty with an infinite score). `max_evaluations` bounds the sets considered (0: no bound).
+// `progress` advances by one per set considered (its total is the caller's to start) and cancels.
 OpeningSearchResult search_whole_openings(const OpeningDomain& domain, const OpeningConstraints& constraints,
                                           const std::vector<std::vector<GridRectangle>>& starts,
                                           const OpeningScore& score, int max_evaluations,
-                                          Progress* progress = nullptr, const OpeningScreen& screen = nullptr);
+                                          Progress* progress = nullptr, const OpeningScreen& screen = nullptr,
+                                          const OpeningBound& bound = nullptr);
 
 }  // namespace fenestra

@@ -38,7 +38,7 @@ struct OpeningSearchSummary {
   bool ran = false;
   std::vector<std::string> starts;  // where it started, in order
   std::string best_start;           // the start its best answer descends from ("" when a restart found it)
-  int evaluations = 0, best_found_after = 0, moves = 0, restarts = 0, pair_moves = 0;
+  int evaluations = 0, scored = 0, best_found_after = 0, moves = 0, restarts = 0, pair_moves = 0;
   int alternatives_kept = 0;  // other local optima whose edges off the grid beat the answer's
   bool kept = false;  // its answer replaced the openings within the constraints
 };

@@ -93,6 +93,10 @@ struct Constrained {
 // the element search's best states up to this many in all.
 constexpr double kSearchRoundingLevels[] = {0.25, 0.5, 0.75};
 constexpr size_t kSearchElementStarts = 3;
+// A set the search considers is ruled out when its error, each sensor's sampled value moved by up
+// to this many sampling errors towards its goal, does not gain: a sensor beyond it once in about
+// 16 000 (a normal's two-sided tail), and then only that sensor's term is off.
+constexpr double kBoundStandardErrors = 4.0;
 // Edges in thick walls leave the grid on records traced again, the longest stage of a solid-wall
 // solve: not traced when the openings on the grid miss the goals by at most this relative RMS
 // beyond the records' noise (nothing the refinement could gain would show).
@@ -300,12 +304,21 @@ class OpeningSolve {
         }
         return predicted;
       };
+      // A move is ruled out when even its sampled values' least error (each sensor anywhere within
+      // kBoundStandardErrors of its sampling error) does not gain.
+      const OpeningBound bound = [&](const std::vector<GridRectangle>& rects) {
+        const std::vector<uint8_t> open = rectangles_mask(scene_.domain, rects);
+        const SensorValues sampled = records_.sampled(open);
+        return exact_fitness_lower_bound(objective_, grid_, ga_.shape, open, sampled.value - c_.closed.value,
+                                         kBoundStandardErrors * sampled.standard_error);
+      };
       const OpeningSearchResult found = search_whole_openings(scene_.domain, grid_constraints_, starts, score,
-                                                              settings_.search_evaluations, progress_, screen);
+                                                              settings_.search_evaluations, progress_, screen, bound);
       OpeningSearchSummary& summary = out_.opening_search;
       summary.ran = true;
       summary.starts = names;
       summary.evaluations = found.evaluations;
+      summary.scored = found.scored;
       summary.best_found_after = found.best_found_after;
       summary.moves = found.moves;
       summary.restarts = found.restarts;
