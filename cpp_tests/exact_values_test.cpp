@@ -130,7 +130,8 @@ TEST(ExactValues, ANeighbourStartsFromTheSetItsPredecessorStartedFrom) {
 // The screen's values, from one path in four of those that changed since a sensor's reference:
 // each is within its own sampling error of the exact value (z scores over many sets and sensors,
 // under a sun whose few paths carry much of the light), for well under half the path
-// evaluations, and the exact values that follow are bit for bit those without the screen.
+// evaluations, and the exact values that follow (taking the sampled paths' values) are bit for
+// bit those without the screen.
 TEST(ExactValues, SampledValuesAreWithinTheirOwnSamplingErrorOfTheExactOnes) {
   TempDir dir;
   const Scene scene = room_with_neighbour(dir, 1 << 14);
@@ -170,6 +171,9 @@ TEST(ExactValues, SampledValuesAreWithinTheirOwnSamplingErrorOfTheExactOnes) {
   const double spread = std::sqrt(2.0 / double(sampled_sensors));
   EXPECT_NEAR(squares / double(sampled_sensors), 1.0, 4.0 * spread);
   EXPECT_LT(worst, 5.0);
+  // Each set scored right after its sample takes the sampled paths' values, bit for bit (above).
+  EXPECT_GT(screened.sampled_paths_reused(), screened.sampled_path_evaluations() * 9 / 10);
+  EXPECT_LE(screened.sampled_paths_reused(), screened.sampled_path_evaluations());
   EXPECT_LT(screened.sampled_path_evaluations(), exact_paths / 2);
   EXPECT_GT(screened.sampled_path_evaluations(), exact_paths / 8);
 }

@@ -299,12 +299,13 @@ def test_solve_estimate_counts_the_edge_search_index(tmp_path):
 
 def test_solve_estimate_counts_the_exact_values_index(tmp_path):
     """The exact evaluation indexes the elements each path met and keeps two references' values
-    (docs/cost.md): half the path records and 8 bytes per path while solving; the contributions
+    and the last sample's path values (docs/cost.md): half the path records and 11 bytes per path
+    while solving; the contributions
     alone have none."""
     scene = fenestra.load_scene(str(write_room(tmp_path)))
     e = fenestra.estimate_cost(scene, "solve")
     paths = scene.sensor_count * scene.render.paths_per_sensor
-    assert e["memory"]["exact_values_index"] == pytest.approx(0.5 * e["memory"]["path_records"] + 8 * paths)
+    assert e["memory"]["exact_values_index"] == pytest.approx(0.5 * e["memory"]["path_records"] + 11 * paths)
     assert "exact_values_index" not in fenestra.estimate_cost(scene, "contributions")["memory"]
 
 

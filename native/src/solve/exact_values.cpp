@@ -54,7 +54,7 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   const int slot = free_slot();  // the new reference of every sensor evaluated
   reference_sets_[slot] = open;
   std::vector<uint8_t> in_full(sensors, 0);
-  std::vector<size_t> evaluated(sensors, 0);
+  std::vector<size_t> evaluated(sensors, 0), reused(sensors, 0);
   SensorValues out;
   out.value.resize(static_cast<Eigen::Index>(sensors));
   out.standard_error.resize(static_cast<Eigen::Index>(sensors));
@@ -62,7 +62,7 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   for_each_sensor(sensors, nullptr, [&](size_t i) {
     if (progress_ && progress_->cancelled()) return;
     bool full = false;
-    const ReplicateSums sums = sensor_sums(i, open, changed, slot, &full, &evaluated[i]);
+    const ReplicateSums sums = sensor_sums(i, open, changed, slot, &full, &evaluated[i], &reused[i]);
     in_full[i] = full;
     const auto e = static_cast<Eigen::Index>(i);
     sums.estimate(c_.records[i].path_count(), &out.value[e], &out.standard_error[e]);
@@ -78,6 +78,7 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   full_evaluations_ += static_cast<size_t>(std::count(in_full.begin(), in_full.end(), 1));
   sensor_evaluations_ += sensors;
   for (size_t n : evaluated) path_evaluations_ += n;
+  for (size_t n : reused) sampled_paths_reused_ += n;
   return out;
 }
 
@@ -86,7 +87,7 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
 // whose new value it keeps.
 ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& open,
                                        const std::vector<std::vector<int32_t>>& changed, int slot, bool* in_full,
-                                       size_t* evaluated) {
+                                       size_t* evaluated, size_t* reused_paths) {
   const SensorRecord& r = c_.records[i];
   std::array<Reference, 2>& refs = references_[i];
   const int last = last_[i], other = 1 - last;
@@ -97,13 +98,24 @@ ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& ope
     // The reference started from becomes the other; the last becomes `open`.
     refs[from == last ? other : last] = refs[from];
     Reference& to = refs[last];
+    // The paths the sample of this set evaluated (ascending, as `paths`) are not evaluated again.
+    static const SampledPaths kNone;
+    const SampledPaths& sample = !sampled_paths_.empty() && open == sampled_set_ ? sampled_paths_[i] : kNone;
+    size_t s = 0, reused = 0;
     for (size_t n = 0; n < paths.size(); ++n) {
-      if (n + kPrefetchAhead < paths.size()) prefetch_path(r, paths[n + kPrefetchAhead]);
       const uint32_t p = paths[n];
-      const double value = path_value(r, p, open);
+      while (s < sample.paths.size() && sample.paths[s] < p) ++s;
+      double value;
+      if (s < sample.paths.size() && sample.paths[s] == p) {
+        value = sample.values[s], ++reused;
+      } else {
+        if (n + kPrefetchAhead < paths.size()) prefetch_path(r, paths[n + kPrefetchAhead]);
+        value = path_value(r, p, open);
+      }
       to.sums.add(p, value - to.values[p]);
       to.values[p] = value;
     }
+    *reused_paths = reused;
     to.slot = slot;
     *evaluated = paths.size();
     return to.sums;
@@ -155,8 +167,10 @@ SensorValues ExactValues::sampled(const std::vector<uint8_t>& open, uint32_t sha
   out.value.resize(static_cast<Eigen::Index>(sensors));
   out.standard_error.resize(static_cast<Eigen::Index>(sensors));
   std::vector<size_t> evaluated(sensors, 0);
+  sampled_set_ = open;
+  sampled_paths_.resize(sensors);
   for_each_sensor(sensors, nullptr, [&](size_t i) {
-    if (progress_ && progress_->cancelled()) return;
+    if (progress_ && progress_->cancelled()) return sampled_paths_[i].paths.clear();
     const auto e = static_cast<Eigen::Index>(i);
     sampled_sensor(i, open, changed, share, &out.value[e], &out.standard_error[e], &evaluated[i]);
   });
@@ -169,11 +183,13 @@ SensorValues ExactValues::sampled(const std::vector<uint8_t>& open, uint32_t sha
 // changes times share estimate the whole change, with variance share (share - 1) sum d^2 / N^2.
 void ExactValues::sampled_sensor(size_t i, const std::vector<uint8_t>& open,
                                  const std::vector<std::vector<int32_t>>& changed, uint32_t share, double* value,
-                                 double* standard_error, size_t* evaluated) const {
+                                 double* standard_error, size_t* evaluated) {
   const SensorRecord& r = c_.records[i];
   const size_t n = r.path_count();
   size_t met = 0;
   const int from = nearer_reference(i, changed, &met);
+  SampledPaths& kept = sampled_paths_[i];
+  kept.paths.clear(), kept.values.clear();
   if (from < 0) {  // never evaluated (a cancelled pass): every path
     ReplicateSums sums;
     for (size_t p = 0; p < n; ++p) sums.add(p, path_value(r, p, open));
@@ -184,12 +200,14 @@ void ExactValues::sampled_sensor(size_t i, const std::vector<uint8_t>& open,
   const Reference& ref = references_[i][static_cast<size_t>(from)];
   const std::vector<int32_t>& differs = changed[static_cast<size_t>(ref.slot)];
   if (met <= kSampledAtLeast * share) share = 1;  // so few that sampling would save nothing
-  std::vector<uint32_t> paths;
+  std::vector<uint32_t>& paths = kept.paths;
   sampled_paths(i, differs, share, &paths);
+  kept.values.resize(paths.size());
   double change = 0.0, squares = 0.0;
   for (size_t k = 0; k < paths.size(); ++k) {
     if (k + kPrefetchAhead < paths.size()) prefetch_path(r, paths[k + kPrefetchAhead]);
-    const double d = path_value(r, paths[k], open) - ref.values[paths[k]];
+    kept.values[k] = path_value(r, paths[k], open);
+    const double d = kept.values[k] - ref.values[paths[k]];
     change += d, squares += d * d;
   }
   double reference_value = 0.0, unused = 0.0;
@@ -282,6 +300,9 @@ size_t ExactValues::memory_bytes() const {
   for (const std::vector<uint8_t>& set : reference_sets_) bytes += set.capacity();
   for (const std::array<Reference, 2>& refs : references_)
     for (const Reference& r : refs) bytes += r.values.capacity() * sizeof(double);
+  bytes += sampled_set_.capacity() + sampled_paths_.capacity() * sizeof(SampledPaths);
+  for (const SampledPaths& kept : sampled_paths_)
+    bytes += kept.paths.capacity() * sizeof(uint32_t) + kept.values.capacity() * sizeof(double);
   for (size_t i = 0; i < element_begin_.size(); ++i)
     bytes += (element_begin_[i].capacity() + element_paths_[i].capacity()) * sizeof(uint32_t);
   return bytes;

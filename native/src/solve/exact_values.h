@@ -21,6 +21,10 @@ namespace fenestra {
 
 class Progress;
 
+// The solver's samples (RecordQueries::sampled) evaluate one in this many of the paths a change
+// met: a quarter of the cost, with the sampling's error about the exact value.
+constexpr uint32_t kSampledShare = 4;
+
 class ExactValues {
  public:
   ExactValues(const Contributions& c, const Progress* progress) : c_(c), progress_(progress) {}
@@ -35,13 +39,16 @@ class ExactValues {
   // the references and the counters above as they were, unless no set was evaluated yet: then
   // `open` is evaluated as operator() does (exactly, error 0), and becomes the references.
   SensorValues sampled(const std::vector<uint8_t>& open, uint32_t share);
-  // Paths evaluated by sampled() so far, over all sensors.
+  // Paths evaluated by sampled() so far, over all sensors, and those of them whose values
+  // operator() took again (a set scored after its sample).
   size_t sampled_path_evaluations() const { return sampled_path_evaluations_; }
+  size_t sampled_paths_reused() const { return sampled_paths_reused_; }
   // Sensor evaluations done in full so far, and all of them (the others were evaluated from the
   // sensor's reference).
   size_t full_evaluations() const { return full_evaluations_; }
   size_t sensor_evaluations() const { return sensor_evaluations_; }
-  // Paths evaluated so far, over all sensors (in full or from the reference).
+  // Paths evaluated so far, over all sensors (in full or from the reference; those whose values
+  // the last sampled() of the same set had evaluated included).
   size_t path_evaluations() const { return path_evaluations_; }
   // Bytes of the index of paths per element and the reference's per-path values (the cost
   // model's exact_values_index).
@@ -52,10 +59,11 @@ class ExactValues {
   // Sensor i's replicate sums for `open`, which becomes its last reference (slot `slot`): in full,
   // or from whichever of its references fewer paths met an element of `changed[its slot]` (those
   // whose state differs from it) when they are at most kMaxShareFromReference of its paths; that
-  // reference becomes the other. `evaluated`: the paths evaluated.
+  // reference becomes the other. `evaluated`: the paths evaluated; `reused`: those of them whose
+  // values the last sampled() of the same set had evaluated.
   ReplicateSums sensor_sums(size_t i, const std::vector<uint8_t>& open,
                             const std::vector<std::vector<int32_t>>& changed, int slot, bool* in_full,
-                            size_t* evaluated);
+                            size_t* evaluated, size_t* reused);
   // Paths of sensor i that met an element of `changed`, counted once per element (a bound).
   size_t paths_met(size_t i, const std::vector<int32_t>& changed) const;
   // Sensor i's paths that met an element of `changed`, each once, in order; false (and `out`
@@ -68,7 +76,7 @@ class ExactValues {
   int nearer_reference(size_t i, const std::vector<std::vector<int32_t>>& changed, size_t* met) const;
   // Sensor i's sampled() value and its sampling error.
   void sampled_sensor(size_t i, const std::vector<uint8_t>& open, const std::vector<std::vector<int32_t>>& changed,
-                      uint32_t share, double* value, double* standard_error, size_t* evaluated) const;
+                      uint32_t share, double* value, double* standard_error, size_t* evaluated);
   // Sensor i's paths in the sample of one in `share` that met an element of `changed`, each once,
   // in order.
   void sampled_paths(size_t i, const std::vector<int32_t>& changed, uint32_t share, std::vector<uint32_t>* out) const;
@@ -93,7 +101,16 @@ class ExactValues {
   std::vector<size_t> reference_users_;  // references per slot (an empty slot is reused)
   std::vector<std::array<Reference, 2>> references_;  // [sensor]
   std::vector<uint8_t> last_;  // [sensor]: which of its two references is the last set evaluated
+  // The last set sampled() and, per sensor, the paths it evaluated with their values (ascending):
+  // a set scored right after its sample takes them rather than evaluating them again.
+  struct SampledPaths {
+    std::vector<uint32_t> paths;
+    std::vector<double> values;
+  };
+  std::vector<uint8_t> sampled_set_;
+  std::vector<SampledPaths> sampled_paths_;  // [sensor]
   size_t full_evaluations_ = 0, sensor_evaluations_ = 0, path_evaluations_ = 0, sampled_path_evaluations_ = 0;
+  size_t sampled_paths_reused_ = 0;
 };
 
 }  // namespace fenestra

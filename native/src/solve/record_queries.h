@@ -40,10 +40,6 @@ class RegionQueries {
   virtual Eigen::VectorXd rough_values(const std::vector<PanelRectangle>& candidate) { return try_region(candidate); }
 };
 
-// RecordQueries::sampled evaluates one in this many of the paths a change met: a quarter of the
-// cost, twice the exact change's sampling noise.
-constexpr uint32_t kSampledShare = 4;
-
 class RecordQueries {
  public:
   virtual ~RecordQueries() = default;

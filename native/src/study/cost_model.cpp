@@ -18,6 +18,7 @@
 #include "scene/element_size_hint.h"
 #include "scene/scene.h"
 #include "solve/catalogue_snap.h"
+#include "solve/exact_values.h"
 #include "solve/flip_effects_cache.h"
 #include "solve/genetic.h"
 #include "solve/thick_wall_edges.h"
@@ -77,6 +78,9 @@ constexpr double kEdgeSearchIndexShare = 2.0;
 // the second reference's values are counted apart (kExactValuesSecondReferenceBytesPerPath).
 constexpr double kExactValuesIndexShare = 0.5;
 constexpr double kExactValuesSecondReferenceBytesPerPath = 8.0;
+// The last sample's path values (ExactValues::sampled): 12 bytes for one path in kSampledShare
+// at most.
+constexpr double kSampledValuesBytesPerPath = 12.0 / kSampledShare;
 // Embree's BVH, the tracer's triangle data and the mesh copies, per triangle.
 constexpr double kRaySceneBytesPerTriangle = 256.0;
 // And whatever the triangles: Embree's scene and its builder's first blocks, the tracer's tables.
@@ -293,7 +297,8 @@ void add_solver(const Scene& scene, CostEstimate* e) {
   const double path_records = S * static_cast<double>(e->paths_per_sensor) * e->bytes_per_path;
   e->memory.push_back({"exact_values_index", "the exact evaluation's index of the elements each path met",
                        kExactValuesIndexShare * path_records +
-                           kExactValuesSecondReferenceBytesPerPath * S * static_cast<double>(e->paths_per_sensor),
+                           (kExactValuesSecondReferenceBytesPerPath + kSampledValuesBytesPerPath) * S *
+                               static_cast<double>(e->paths_per_sensor),
                        "solving", "fewer solver paths"});
   // Every set the search over whole openings scores keeps its exact values (a value and a standard
   // error per sensor) and its open mask, with the map's nodes.
