@@ -55,6 +55,7 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   reference_sets_[slot] = open;
   std::vector<uint8_t> in_full(sensors, 0);
   std::vector<size_t> evaluated(sensors, 0), reused(sensors, 0);
+  const bool after_sample = !sampled_paths_.empty() && open == sampled_set_;  // its paths' values taken
   SensorValues out;
   out.value.resize(static_cast<Eigen::Index>(sensors));
   out.standard_error.resize(static_cast<Eigen::Index>(sensors));
@@ -62,7 +63,8 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
   for_each_sensor(sensors, nullptr, [&](size_t i) {
     if (progress_ && progress_->cancelled()) return;
     bool full = false;
-    const ReplicateSums sums = sensor_sums(i, open, changed, slot, &full, &evaluated[i], &reused[i]);
+    const ReplicateSums sums = sensor_sums(i, open, changed, slot, after_sample ? &sampled_paths_[i] : nullptr, &full,
+                                            &evaluated[i], &reused[i]);
     in_full[i] = full;
     const auto e = static_cast<Eigen::Index>(i);
     sums.estimate(c_.records[i].path_count(), &out.value[e], &out.standard_error[e]);
@@ -86,8 +88,9 @@ SensorValues ExactValues::evaluate(const std::vector<uint8_t>& open) {
 // value. From a reference: its sums, plus the change of every path that met a changed element,
 // whose new value it keeps.
 ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& open,
-                                       const std::vector<std::vector<int32_t>>& changed, int slot, bool* in_full,
-                                       size_t* evaluated, size_t* reused_paths) {
+                                       const std::vector<std::vector<int32_t>>& changed, int slot,
+                                       const SampledPaths* sampled, bool* in_full, size_t* evaluated,
+                                       size_t* reused_paths) {
   const SensorRecord& r = c_.records[i];
   std::array<Reference, 2>& refs = references_[i];
   const int last = last_[i], other = 1 - last;
@@ -100,7 +103,7 @@ ReplicateSums ExactValues::sensor_sums(size_t i, const std::vector<uint8_t>& ope
     Reference& to = refs[last];
     // The paths the sample of this set evaluated (ascending, as `paths`) are not evaluated again.
     static const SampledPaths kNone;
-    const SampledPaths& sample = !sampled_paths_.empty() && open == sampled_set_ ? sampled_paths_[i] : kNone;
+    const SampledPaths& sample = sampled ? *sampled : kNone;
     size_t s = 0, reused = 0;
     for (size_t n = 0; n < paths.size(); ++n) {
       const uint32_t p = paths[n];
@@ -155,12 +158,13 @@ int ExactValues::nearer_reference(size_t i, const std::vector<std::vector<int32_
 }
 
 SensorValues ExactValues::sampled(const std::vector<uint8_t>& open, uint32_t share) {
-  if (share <= 1 || references_.empty() || open.size() != c_.element_count() || known_.count(open)) {
+  if (references_.empty() || open.size() != c_.element_count() || known_.count(open)) {
     SensorValues exact = (*this)(open);
     exact.standard_error.setZero();
     return exact;
   }
   if (element_begin_.empty()) build_index();
+  share = std::max<uint32_t>(share, 1);
   const std::vector<std::vector<int32_t>> changed = changed_elements(open);
   const size_t sensors = c_.records.size();
   SensorValues out;

@@ -59,11 +59,13 @@ class ExactValues {
   // Sensor i's replicate sums for `open`, which becomes its last reference (slot `slot`): in full,
   // or from whichever of its references fewer paths met an element of `changed[its slot]` (those
   // whose state differs from it) when they are at most kMaxShareFromReference of its paths; that
-  // reference becomes the other. `evaluated`: the paths evaluated; `reused`: those of them whose
-  // values the last sampled() of the same set had evaluated.
+  // reference becomes the other. `sampled`: this set's sample of sensor i's paths (sampled() of
+  // the same set just before), whose values are taken, or nullptr. `evaluated`: the paths
+  // evaluated; `reused`: those of them whose values came from the sample.
+  struct SampledPaths;
   ReplicateSums sensor_sums(size_t i, const std::vector<uint8_t>& open,
-                            const std::vector<std::vector<int32_t>>& changed, int slot, bool* in_full,
-                            size_t* evaluated, size_t* reused);
+                            const std::vector<std::vector<int32_t>>& changed, int slot, const SampledPaths* sampled,
+                            bool* in_full, size_t* evaluated, size_t* reused);
   // Paths of sensor i that met an element of `changed`, counted once per element (a bound).
   size_t paths_met(size_t i, const std::vector<int32_t>& changed) const;
   // Sensor i's paths that met an element of `changed`, each once, in order; false (and `out`
