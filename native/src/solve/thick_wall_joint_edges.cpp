@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <cstdio>
 
 #include <Eigen/Dense>
 
@@ -92,7 +91,6 @@ class JointEdgeSearch {
         tried.push_back(*moved);
         const SensorValues v = judged(*moved, &out);
         const double e = prediction_error(objective_, v.value - closed_);
-        fprintf(stderr, "JOINT step %d damping %g error %.5f (from %.5f)\n", out.steps, damping, std::sqrt(e), std::sqrt(error));
         if (e < best_error) best_error = e, best = std::make_pair(*moved, v);
       }
       if (!best || !(std::sqrt(best_error) < (1.0 - kJointEdgeGain) * std::sqrt(error))) break;
