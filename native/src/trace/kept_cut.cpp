@@ -43,9 +43,11 @@ ChangedRegion region_in(const Cutter& frame, float u0, float u1, float v0, float
 ChangedRegion whole(const Cutter& c) { return region_in(c, 0.0f, c.width, 0.0f, c.height, -c.depth_back, c.depth_front); }
 
 // The slabs holding what differs between two cutters of one frame (a's): each side that moved,
-// between its two positions, along the whole of both rectangles' other extent; and the reveal faces
-// of the sides across it, whose triangles it stretched (a surface met on another triangle of the
-// same plane need not give the same normal to the last bit, nor the same path).
+// between its two positions, along the whole of both rectangles' other extent; and the planes of
+// all four sides, before and after, through the wall: a side's reveal face is stretched when a
+// side across it moves, and every corner is computed from the cutter's origin and extent, so a
+// face that did not move may still lie an ulp away (a surface met on another triangle, or on one an
+// ulp away, need not give the same path to the last bit).
 void add_moved_sides(const Cutter& a, const Cutter& b, std::vector<ChangedRegion>* out) {
   const Vec3 d = b.origin - a.origin;
   const float a_u[2] = {0.0f, a.width}, a_v[2] = {0.0f, a.height};
@@ -53,22 +55,9 @@ void add_moved_sides(const Cutter& a, const Cutter& b, std::vector<ChangedRegion
   const float n0 = -std::max(a.depth_back, b.depth_back), n1 = std::max(a.depth_front, b.depth_front);
   const float u_lo = std::min(a_u[0], b_u[0]), u_hi = std::max(a_u[1], b_u[1]);
   const float v_lo = std::min(a_v[0], b_v[0]), v_hi = std::max(a_v[1], b_v[1]);
-  const bool u_moved = a_u[0] != b_u[0] || a_u[1] != b_u[1], v_moved = a_v[0] != b_v[0] || a_v[1] != b_v[1];
   for (int k = 0; k < 2; ++k) {
-    if (a_u[k] != b_u[k])
-      out->push_back(region_in(a, std::min(a_u[k], b_u[k]), std::max(a_u[k], b_u[k]), v_lo, v_hi, n0, n1));
-    if (a_v[k] != b_v[k])
-      out->push_back(region_in(a, u_lo, u_hi, std::min(a_v[k], b_v[k]), std::max(a_v[k], b_v[k]), n0, n1));
-  }
-  for (int k = 0; k < 2; ++k) {
-    if (u_moved) {  // the head's and sill's faces
-      out->push_back(region_in(a, u_lo, u_hi, a_v[k], a_v[k], n0, n1));
-      if (b_v[k] != a_v[k]) out->push_back(region_in(a, u_lo, u_hi, b_v[k], b_v[k], n0, n1));
-    }
-    if (v_moved) {  // the jambs' faces
-      out->push_back(region_in(a, a_u[k], a_u[k], v_lo, v_hi, n0, n1));
-      if (b_u[k] != a_u[k]) out->push_back(region_in(a, b_u[k], b_u[k], v_lo, v_hi, n0, n1));
-    }
+    out->push_back(region_in(a, std::min(a_u[k], b_u[k]), std::max(a_u[k], b_u[k]), v_lo, v_hi, n0, n1));
+    out->push_back(region_in(a, u_lo, u_hi, std::min(a_v[k], b_v[k]), std::max(a_v[k], b_v[k]), n0, n1));
   }
 }
 

@@ -32,7 +32,8 @@ struct ChangedRegion {
 
 // The regions outside which `before` and `after` cut the same solid and line it with the same reveal
 // faces: for an opening moved within its panel's plane, a slab per side that moved (between its two
-// positions, along the whole of both openings' other extent, through the cutter's depth); for one
+// positions, along the whole of both openings' other extent, through the cutter's depth) and a thin
+// one about each side's plane that did not; for one
 // added, removed or reshaped otherwise, its whole box. nullopt where no box holds the change (a cutter
 // on a curved panel's chart).
 std::optional<std::vector<ChangedRegion>> changed_regions(const CutterSet& before, const CutterSet& after);
