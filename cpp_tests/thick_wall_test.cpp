@@ -296,14 +296,11 @@ TEST(ThickWall, MergedOpeningsAreTheBoxAndTheJointAreaAboutTheCentroid) {
     EXPECT_NEAR(x / 0.0625, std::round(x / 0.0625), 1e-9) << x;
 }
 
-constexpr int kJointEdgeRunPaths = 256, kJointEdgeRunJudgePaths = 1024;
-
-// The joint edge steps from `start` towards goals that are `goals_openings`' own judged cut, in the
 // A cut that keeps its paths (trace/kept_cut.h) against fresh cuts of the same openings, sensors,
 // paths and stream, through the changes the searches with real cutters make: a side moved by a few
 // centimetres, two at once, an opening slid by an element, removed, put back, a cut of some sensors
-// (the others keep paths of an older cut), another stream. Every value and standard error is the
-// fresh cut's, bit for bit, and a side moved by 3 cm traces again less than half the paths.
+// (the others keep paths of an older cut), another stream, another scene. Every value and standard
+// error is the fresh cut's, bit for bit, and a side moved by 3 cm traces again less than half the paths.
 TEST(ThickWall, KeptCutsEqualFreshCutsBitForBit) {
   TempDir dir;
   const Scene scene = room(dir, {0.3f, 0.25f, true, true}, 256, work_plane_sensors());
@@ -312,10 +309,11 @@ TEST(ThickWall, KeptCutsEqualFreshCutsBitForBit) {
   for (size_t i = 0; i < all.size(); i += 2) half.push_back(i);
   KeptCut kept;
   auto same_as_fresh = [&](const std::vector<PanelRectangle>& openings, const std::vector<size_t>& sensors,
-                           uint64_t stream, const std::string& what) {
+                           uint64_t stream, const std::string& what, const Scene* in_scene = nullptr) {
+    const Scene& traced = in_scene ? *in_scene : scene;
     const std::vector<OpeningInput> in(openings.begin(), openings.end());
-    const SensorValues a = kept.cut(scene, in, sensors, nullptr, 256, stream);
-    const SensorValues b = evaluate_openings_at(scene, in, sensors, nullptr, 256, stream);
+    const SensorValues a = kept.cut(traced, in, sensors, nullptr, 256, stream);
+    const SensorValues b = evaluate_openings_at(traced, in, sensors, nullptr, 256, stream);
     ASSERT_EQ(a.value.size(), b.value.size()) << what;
     for (Eigen::Index i = 0; i < a.value.size(); ++i) {
       EXPECT_EQ(a.value[i], b.value[i]) << what << ", sensor " << sensors[static_cast<size_t>(i)];
@@ -343,6 +341,9 @@ TEST(ThickWall, KeptCutsEqualFreshCutsBitForBit) {
   o[1].v1 += 0.03;
   same_as_fresh(o, all, 2, "a head moved, every sensor (half of them kept from the cut before)");
   same_as_fresh(o, all, 5, "another stream");
+  TempDir other_dir;  // the same room and random numbers under an overcast sky: nothing is kept for it
+  const Scene overcast = room(other_dir, {0.3f, 0.25f, true, false}, 256, work_plane_sensors());
+  same_as_fresh(o, all, 5, "another scene", &overcast);
 }
 
 // A region of change holds the segments that pass through it, from either end, and those that
@@ -375,6 +376,9 @@ TEST(ThickWall, ChangedRegionsHoldTheRaysThatMeetThem) {
   EXPECT_EQ(changed_regions({a}, {})->size(), 1u);
 }
 
+constexpr int kJointEdgeRunPaths = 256, kJointEdgeRunJudgePaths = 1024;
+
+// The joint edge steps from `start` towards goals that are `goals_openings`' own judged cut, in the
 // 3 m room with a 0.3 m wall and work-plane sensors (256 paths per difference, 1024 judged).
 struct JointEdgeRun {
   Scene scene;

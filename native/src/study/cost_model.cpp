@@ -360,10 +360,11 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                        joint_cut_paths * S * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
                        0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
     // Each of those cuts keeps its paths for the next (trace/kept_cut.h): the edge search's cuts and
-    // their rough ones of half the paths, the joint steps' differences and their judged cuts.
+    // their rough ones of half the paths, the joint steps' differences and their judged cuts; the
+    // largest, the judged cuts', twice while a cut's new paths replace the kept ones.
     e->memory.push_back({"kept_cuts",
                          "the paths the thick-wall stages' cuts keep (a value and the rays each path looked along)",
-                         S * (2.5 * paths + judge_paths) *
+                         S * (2.5 * paths + 2.0 * judge_paths) *
                              (kKeptCutBytesPerPath + kKeptCutBytesPerRay * kKeptCutRaysPerVertex * expected_vertices(scene)),
                          "solving", "fewer sensors, or solver.refine_edges off"});
     // The openings chosen again for their edges off the grid (solve/refinable_openings.h): at most

@@ -16,9 +16,6 @@ namespace {
 // Meters around a region: rays leave surfaces kRayEpsilon off them, and corners are rounded to
 // floats once in each frame.
 constexpr float kRegionMargin = 1e-3f;
-// Axes of two cutters closer than this (cosine short of 1) are one frame.
-constexpr float kSameAxis = 1e-6f;
-
 bool same_cutter(const Cutter& a, const Cutter& b) {
   return a.origin == b.origin && a.u_axis == b.u_axis && a.v_axis == b.v_axis && a.normal == b.normal &&
          a.width == b.width && a.height == b.height && a.depth_back == b.depth_back &&
@@ -26,9 +23,11 @@ bool same_cutter(const Cutter& a, const Cutter& b) {
          a.v1 == b.v1;
 }
 
+// Rectangles of one panel share their axes exactly; their origins may lie a rounding apart along
+// the normal, which the regions' depth takes in.
 bool same_frame(const Cutter& a, const Cutter& b) {
-  return a.u_axis.dot(b.u_axis) > 1.0f - kSameAxis && a.v_axis.dot(b.v_axis) > 1.0f - kSameAxis &&
-         a.normal.dot(b.normal) > 1.0f - kSameAxis && std::abs((b.origin - a.origin).dot(a.normal)) < kRegionMargin;
+  return a.u_axis == b.u_axis && a.v_axis == b.v_axis && a.normal == b.normal &&
+         std::abs((b.origin - a.origin).dot(a.normal)) < kRegionMargin;
 }
 
 ChangedRegion region_in(const Cutter& frame, float u0, float u1, float v0, float v1, float n0, float n1) {
@@ -52,7 +51,8 @@ void add_moved_sides(const Cutter& a, const Cutter& b, std::vector<ChangedRegion
   const Vec3 d = b.origin - a.origin;
   const float a_u[2] = {0.0f, a.width}, a_v[2] = {0.0f, a.height};
   const float b_u[2] = {d.dot(a.u_axis), d.dot(a.u_axis) + b.width}, b_v[2] = {d.dot(a.v_axis), d.dot(a.v_axis) + b.height};
-  const float n0 = -std::max(a.depth_back, b.depth_back), n1 = std::max(a.depth_front, b.depth_front);
+  const float off = std::abs(d.dot(a.normal));
+  const float n0 = -std::max(a.depth_back, b.depth_back) - off, n1 = std::max(a.depth_front, b.depth_front) + off;
   const float u_lo = std::min(a_u[0], b_u[0]), u_hi = std::max(a_u[1], b_u[1]);
   const float v_lo = std::min(a_v[0], b_v[0]), v_hi = std::max(a_v[1], b_v[1]);
   for (int k = 0; k < 2; ++k) {
@@ -137,7 +137,9 @@ SensorValues KeptCut::cut(const Scene& scene, const std::vector<OpeningInput>& o
   std::vector<std::vector<ChangedRegion>> regions(sensors.size());
   for (size_t i = 0; i < sensors.size(); ++i) {
     const auto found = sensors_.find(sensors[i]);
-    if (found == sensors_.end() || found->second.paths != paths || found->second.seed != seed) continue;
+    if (found == sensors_.end() || found->second.scene != &scene || found->second.paths != paths ||
+        found->second.seed != seed)
+      continue;
     std::optional<std::vector<ChangedRegion>> changed = changed_regions(*found->second.cutters, *cutters);
     if (!changed) continue;
     kept[i] = &found->second;
@@ -174,11 +176,12 @@ SensorValues KeptCut::cut(const Scene& scene, const std::vector<OpeningInput>& o
 
   for (size_t i = 0; i < sensors.size(); ++i) {
     SensorPaths& keep = sensors_[sensors[i]];
+    keep.tasks.assign(std::make_move_iterator(traced.begin() + static_cast<std::ptrdiff_t>(i * tasks_per_sensor)),
+                      std::make_move_iterator(traced.begin() + static_cast<std::ptrdiff_t>((i + 1) * tasks_per_sensor)));
+    keep.scene = &scene;
     keep.paths = paths;
     keep.seed = seed;
     keep.cutters = cutters;
-    keep.tasks.assign(std::make_move_iterator(traced.begin() + static_cast<std::ptrdiff_t>(i * tasks_per_sensor)),
-                      std::make_move_iterator(traced.begin() + static_cast<std::ptrdiff_t>((i + 1) * tasks_per_sensor)));
   }
   for (uint64_t n : traced_paths) traced_ += n;
   reused_ += static_cast<uint64_t>(sensors.size()) * static_cast<uint64_t>(paths);

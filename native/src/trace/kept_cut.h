@@ -6,7 +6,10 @@
 // the same random numbers, asks the same rays and meets the same surfaces (the geometry differs only
 // inside the regions, and cutters decide a hit by where it lies), so its kept value is its value:
 // the cut equals evaluate_openings_at's bit for bit, for a share of the rays. The searches with real
-// cutters in thick walls cut openings one side apart, again and again.
+// cutters in thick walls cut openings one side apart, again and again. Assumed of Embree: a ray
+// meets the same surface whatever else the tree holds. An opening's reveal on an element's grid line
+// and the wall's tube face there coincide; met at exactly one distance, the tree's order picks one,
+// of the same material (and normal, on walls along the axes: docs/solver.md, step 7).
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -58,6 +61,7 @@ class KeptCut {
     std::vector<RaySegment> segments;
   };
   struct SensorPaths {
+    const Scene* scene = nullptr;  // the scene they were traced in (kept paths answer for no other)
     int paths = 0;
     uint64_t seed = 0;
     std::shared_ptr<const CutterSet> cutters;
