@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
-#include <limits>
 #include <sstream>
 
 #include "annual/annual_contributions.h"
@@ -18,7 +17,6 @@
 #include "test_scenes.h"
 #include "trace/contributions.h"
 #include "trace/evaluate.h"
-#include "trace/kept_cut.h"
 
 namespace fenestra {
 namespace {
@@ -294,86 +292,6 @@ TEST(ThickWall, MergedOpeningsAreTheBoxAndTheJointAreaAboutTheCentroid) {
   EXPECT_NEAR(joint.width() / joint.height(), 1.0, 0.1);
   for (const double x : {joint.u0, joint.u1, joint.v0, joint.v1})
     EXPECT_NEAR(x / 0.0625, std::round(x / 0.0625), 1e-9) << x;
-}
-
-// A cut that keeps its paths (trace/kept_cut.h) against fresh cuts of the same openings, sensors,
-// paths and stream, through the changes the searches with real cutters make: a side moved by a few
-// centimetres, two at once, an opening slid by an element, removed, put back, a cut of some sensors
-// (the others keep paths of an older cut), another stream, another scene. Every value and standard
-// error is the fresh cut's, bit for bit, and a side moved by 3 cm traces again less than half the paths.
-TEST(ThickWall, KeptCutsEqualFreshCutsBitForBit) {
-  TempDir dir;
-  const Scene scene = room(dir, {0.3f, 0.25f, true, true}, 256, work_plane_sensors());
-  std::vector<size_t> all(scene.sensors.size()), half;
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  for (size_t i = 0; i < all.size(); i += 2) half.push_back(i);
-  KeptCut kept;
-  auto same_as_fresh = [&](const std::vector<PanelRectangle>& openings, const std::vector<size_t>& sensors,
-                           uint64_t stream, const std::string& what, const Scene* in_scene = nullptr) {
-    const Scene& traced = in_scene ? *in_scene : scene;
-    const std::vector<OpeningInput> in(openings.begin(), openings.end());
-    const SensorValues a = kept.cut(traced, in, sensors, nullptr, 256, stream);
-    const SensorValues b = evaluate_openings_at(traced, in, sensors, nullptr, 256, stream);
-    ASSERT_EQ(a.value.size(), b.value.size()) << what;
-    for (Eigen::Index i = 0; i < a.value.size(); ++i) {
-      EXPECT_EQ(a.value[i], b.value[i]) << what << ", sensor " << sensors[static_cast<size_t>(i)];
-      EXPECT_EQ(a.standard_error[i], b.standard_error[i]) << what << ", sensor " << sensors[static_cast<size_t>(i)];
-    }
-  };
-  std::vector<PanelRectangle> o = {{0, 0.5, 1.3, 0.8, 1.9}, {0, 1.8, 2.6, 0.9, 1.7}};
-  same_as_fresh(o, all, 2, "the first cut");
-  EXPECT_EQ(kept.paths_reused(), 0u);
-  const uint64_t traced = kept.paths_traced();
-  o[0].u1 += 0.03;
-  same_as_fresh(o, all, 2, "a jamb moved out by 3 cm");
-  EXPECT_GT(kept.paths_reused(), 0u);
-  EXPECT_LT(kept.paths_traced() - traced, traced / 2);
-  o[0].u1 -= 0.03, o[1].v0 -= 0.05;
-  same_as_fresh(o, all, 2, "the jamb back, another window's sill down by 5 cm");
-  o[0].v0 += 0.02, o[0].v1 += 0.04, o[1].u0 -= 0.01;
-  same_as_fresh(o, all, 2, "three sides of two windows");
-  o[1].u0 += 0.25, o[1].u1 += 0.25;
-  same_as_fresh(o, all, 2, "a window slid by an element");
-  same_as_fresh({o[0]}, all, 2, "a window removed");
-  same_as_fresh(o, all, 2, "and put back");
-  o[0].u0 -= 0.04;
-  same_as_fresh(o, half, 2, "a jamb moved, cut at every other sensor");
-  o[1].v1 += 0.03;
-  same_as_fresh(o, all, 2, "a head moved, every sensor (half of them kept from the cut before)");
-  same_as_fresh(o, all, 5, "another stream");
-  TempDir other_dir;  // the same room and random numbers under an overcast sky: nothing is kept for it
-  const Scene overcast = room(other_dir, {0.3f, 0.25f, true, false}, 256, work_plane_sensors());
-  same_as_fresh(o, all, 5, "another scene", &overcast);
-}
-
-// A region of change holds the segments that pass through it, from either end, and those that
-// start in it; it holds none that stop short of it or pass beside it.
-TEST(ThickWall, ChangedRegionsHoldTheRaysThatMeetThem) {
-  Cutter a;
-  a.origin = {1, 0, 1}, a.u_axis = {1, 0, 0}, a.v_axis = {0, 0, 1}, a.normal = {0, -1, 0};
-  a.width = 1, a.height = 1, a.depth_back = 0.001f, a.depth_front = 0.301f;
-  Cutter b = a;
-  b.width = 1.05f;  // the right jamb out by 5 cm
-  EXPECT_TRUE(changed_regions({a}, {a})->empty());
-  const std::vector<ChangedRegion> moved = *changed_regions({a, a}, {b, a});
-  ASSERT_EQ(moved.size(), 4u);  // the jamb's slab, and the planes of the other three sides
-  const float inf = std::numeric_limits<float>::infinity();
-  auto met = [&](const RaySegment& s) {
-    return std::any_of(moved.begin(), moved.end(), [&](const ChangedRegion& r) { return r.met_by(s); });
-  };
-  EXPECT_TRUE(met({{2.02f, 1, 1.5f}, {0, -1, 0}, 0, inf}));         // through the slab, never hitting
-  EXPECT_TRUE(met({{2.02f, -0.1f, 1.5f}, {0, 1, 0}, 0, 0.2f}));     // starts in it
-  EXPECT_FALSE(met({{2.02f, 1, 1.5f}, {0, -1, 0}, 0, 0.9f}));       // stops short of it
-  EXPECT_FALSE(met({{1.5f, 1, 1.5f}, {0, -1, 0}, 0, inf}));         // through the window beside it
-  EXPECT_FALSE(met({{2.02f, 1, 2.5f}, {0, -1, 0}, 0, inf}));        // above the window
-  EXPECT_TRUE(met({{0, -0.1f, 1.5f}, {1, 0, 0}, 0, inf}));          // along the wall, into the jamb
-  EXPECT_TRUE(met({{1.5f, 0.2f, 1.5f}, {0, -0.6f, 0.8f}, 0, 0.7f}));  // up to the head's face
-  EXPECT_FALSE(met({{1.5f, 0.2f, 1.5f}, {0, -0.6f, 0.8f}, 0, 0.5f}));  // stopping short of it
-  // A window slid to another plane changes its whole box, before and after.
-  Cutter c = a;
-  c.origin = {1, -1, 1};
-  EXPECT_EQ(changed_regions({a}, {c})->size(), 2u);
-  EXPECT_EQ(changed_regions({a}, {})->size(), 1u);
 }
 
 constexpr int kJointEdgeRunPaths = 256, kJointEdgeRunJudgePaths = 1024;

@@ -348,28 +348,6 @@ def test_solve_estimate_counts_the_search_over_whole_openings(tmp_path):
     assert e["memory"]["thick_wall_openings_values"] == 0 and e["seconds"]["thick_wall_openings"] == 0
 
 
-def test_solve_estimate_counts_the_kept_cuts(tmp_path):
-    """The thick-wall stages' cuts keep their paths (docs/solver.md, "Paths kept between cuts"):
-    memory in proportion to the sensors, none in a thin wall or with refine_edges off."""
-    path = write_room(tmp_path)
-    assert "kept_cuts" not in fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")["memory"]
-    d = json.loads(path.read_text())
-    d["opening_domain"]["thickness"] = 0.3
-    path.write_text(json.dumps(d))
-    scene = fenestra.load_scene(str(path))
-    kept = fenestra.estimate_cost(scene, "solve")["memory"]["kept_cuts"]
-    paths = min(4096, scene.render.paths_per_sensor)
-    judged = max(paths, min(4 * paths, scene.render.paths_per_sensor))
-    # At least the value and one ray (8 + 32 bytes) of every path of the four kinds of cuts kept.
-    assert kept >= scene.sensor_count * (2.5 * paths + judged) * 40
-    d["sensors"]["points"] = d["sensors"]["points"] * 2
-    path.write_text(json.dumps(d))
-    assert fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")["memory"]["kept_cuts"] == pytest.approx(2 * kept)
-    d["solver"] = {"refine_edges": False}
-    path.write_text(json.dumps(d))
-    assert "kept_cuts" not in fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")["memory"]
-
-
 def test_daylight_steps_cost_their_own_time(tmp_path):
     """Each step with the sun up creates its sky (about 2 ms, whatever the map's size): at 64 x 32 a
     year of 1-minute steps would take about 6 minutes and is refused; 5 years of 15-minute steps

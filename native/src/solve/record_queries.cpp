@@ -59,17 +59,12 @@ std::unique_ptr<RegionQueries> LocalRecordQueries::region_search(const std::vect
 }
 
 SensorValues LocalRecordQueries::cut(const std::vector<OpeningInput>& openings, int paths, uint64_t stream) {
-  std::vector<size_t> all(scene_.sensors.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  return cut_at(openings, paths, stream, all);
+  return evaluate_openings(scene_, openings, progress_, paths, {}, stream);
 }
 
 SensorValues LocalRecordQueries::cut_at(const std::vector<OpeningInput>& openings, int paths, uint64_t stream,
                                         const std::vector<size_t>& sensors) {
-  // The check's random numbers (stream 0: the verification, the trade-offs) cut few sets, with all
-  // the solver's paths: their paths are not worth their memory.
-  if (stream == 0) return evaluate_openings_at(scene_, openings, sensors, progress_, paths, stream);
-  return kept_cuts_[{paths, stream}].cut(scene_, openings, sensors, progress_, paths, stream);
+  return evaluate_openings_at(scene_, openings, sensors, progress_, paths, stream);
 }
 
 std::vector<size_t> LocalRecordQueries::sensors_reached(const std::vector<PanelRectangle>& before,

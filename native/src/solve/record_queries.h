@@ -6,7 +6,6 @@
 // sensors (fenestra.distributed). Every answer is per sensor, so the two agree bit for bit.
 #include <Eigen/Core>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -14,7 +13,6 @@
 #include "annual/annual_study.h"
 #include "annual/hourly_flip_model.h"
 #include "trace/evaluate.h"
-#include "trace/kept_cut.h"
 #include "solve/exact_values.h"
 #include "solve/flip_effects_cache.h"
 #include "solve/change_reach.h"
@@ -115,10 +113,6 @@ class LocalRecordQueries : public RecordQueries {
   const Contributions& c_;
   Progress* progress_;
   SensorRange sensors_;  // the scene's sensors the records hold (a shard's block)
-  // The last cut's paths, by paths per sensor and stream (trace/kept_cut.h): the searches with real
-  // cutters in thick walls cut openings a side apart, and a cut traces again only the paths that
-  // came near what changed.
-  std::map<std::pair<int, uint64_t>, KeptCut> kept_cuts_;
   ExactValues exact_;
   FlipEffectsCache flip_effects_;
   std::optional<ChangeReach> reach_;  // built when first asked

@@ -44,11 +44,6 @@ constexpr double kBytesPerEvent = 13.0, kBytesPerPath = 8.0;
 // several stored conditions, where the thin wall's light mostly names its one element) and
 // tracing 5.7x the zero-thickness wall's for the same paths.
 constexpr double kThickWallRecordFactor = 7.5, kThickWallTraceFactor = 6.0;
-// A kept cut's path: its value and where its rays end (8 bytes), and 32 bytes per ray it asked
-// (trace/kept_cut.h); rays per expected vertex measured on the solid off-grid two-room study (13.2
-// rays a path at 4.3 expected vertices: the path's, its sky samples' and the shadow rays' going on
-// through the wall's faces).
-constexpr double kKeptCutBytesPerPath = 8.0, kKeptCutBytesPerRay = 32.0, kKeptCutRaysPerVertex = 3.1;
 // Cuts the edge search in thick walls makes per opening (solve/thick_wall_edges.h), counting one
 // of half the paths as half a cut: 125 for a window in a 0.3 m wall with 0.25 m elements (99 and
 // 53 of half the paths), 123 per opening for the four of the solid off-grid two-room study; the
@@ -359,14 +354,6 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                            format_count(judge_paths) + ")",
                        joint_cut_paths * S * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
                        0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
-    // Each of those cuts keeps its paths for the next (trace/kept_cut.h): the edge search's cuts and
-    // their rough ones of half the paths, the joint steps' differences and their judged cuts; the
-    // largest, the judged cuts', twice while a cut's new paths replace the kept ones.
-    e->memory.push_back({"kept_cuts",
-                         "the paths the thick-wall stages' cuts keep (a value and the rays each path looked along)",
-                         S * (2.5 * paths + 2.0 * judge_paths) *
-                             (kKeptCutBytesPerPath + kKeptCutBytesPerRay * kKeptCutRaysPerVertex * expected_vertices(scene)),
-                         "solving", "fewer sensors, or solver.refine_edges off"});
     // The openings chosen again for their edges off the grid (solve/refinable_openings.h): at most
     // search_evaluations sets more, each kept twice (the records' exact values, and the search's
     // values) and evaluated as the search's are.

@@ -127,27 +127,18 @@ SensorValues evaluate_openings_at(const Scene& scene, const std::vector<OpeningI
   // Per task, its paths' sums by replicate group: stratified paths are not independent, the
   // groups are (replicates.h).
   std::vector<ReplicateSums> sums(sensors.size() * tasks_per_sensor);
-  const uint64_t seed = cut_seed(scene, stream);
+  // Streams apart by an odd multiplier: their seeds differ in many bits.
+  const uint64_t seed = scene.render.seed ^ kEvaluateStream ^ (stream * 0x9e3779b97f4a7c15ULL);
   if (progress) progress->start("tracing the scene with its openings", sums.size());
   parallel_path_tasks(sensors, paths, scene.render.threads, progress, [&](const PathTask& task) {
     task.for_each_path(scene.render, seed, [&](size_t p, Rng& rng, const PathSamples* samples) {
       sums[task.index].add(p, tracer.sensor_sample(task.sensor, samples, rng));
     });
   });
-  return cut_values(sums, sensors.size(), paths);
-}
-
-uint64_t cut_seed(const Scene& scene, uint64_t stream) {
-  // Streams apart by an odd multiplier: their seeds differ in many bits.
-  return scene.render.seed ^ kEvaluateStream ^ (stream * 0x9e3779b97f4a7c15ULL);
-}
-
-SensorValues cut_values(const std::vector<ReplicateSums>& sums, size_t sensors, int paths) {
-  const size_t tasks_per_sensor = path_tasks_per_sensor(paths);
   SensorValues out;
-  out.value.resize(static_cast<Eigen::Index>(sensors));
-  out.standard_error.resize(static_cast<Eigen::Index>(sensors));
-  for (size_t i = 0; i < sensors; ++i) {
+  out.value.resize(static_cast<Eigen::Index>(sensors.size()));
+  out.standard_error.resize(static_cast<Eigen::Index>(sensors.size()));
+  for (size_t i = 0; i < sensors.size(); ++i) {
     ReplicateSums total;
     for (size_t t = 0; t < tasks_per_sensor; ++t) total.merge(sums[i * tasks_per_sensor + t]);
     total.estimate(paths, &out.value[i], &out.standard_error[i]);

@@ -7,7 +7,6 @@
 #include "scene/scene.h"
 #include "trace/contributions.h"
 #include "trace/open_region.h"
-#include "trace/replicates.h"
 #include "util/progress.h"
 #include "trace/sensor_range.h"
 
@@ -52,11 +51,5 @@ SensorValues evaluate_openings(const Scene& scene, const std::vector<OpeningInpu
 SensorValues evaluate_openings_at(const Scene& scene, const std::vector<OpeningInput>& openings,
                                   const std::vector<size_t>& sensors, Progress* progress = nullptr,
                                   int paths_per_sensor = 0, uint64_t stream = 0);
-
-// The random numbers of a cut on `stream` (the seed its paths' own are drawn from).
-uint64_t cut_seed(const Scene& scene, uint64_t stream);
-// Each sensor's value and standard error from its tasks' sums (sensor i's tasks at
-// i * path_tasks_per_sensor(paths) on), as a cut gives them.
-SensorValues cut_values(const std::vector<ReplicateSums>& sums, size_t sensors, int paths);
 
 }  // namespace fenestra

@@ -94,10 +94,6 @@ uint64_t& thread_ray_count() {
   thread_local uint64_t count = 0;
   return count;
 }
-std::vector<RaySegment>*& thread_ray_log() {
-  thread_local std::vector<RaySegment>* log = nullptr;
-  return log;
-}
 uint64_t rays_traced() { return g_rays_traced.load(); }
 void add_rays_traced(uint64_t n) { g_rays_traced += n; }
 
@@ -155,7 +151,6 @@ Hit RayScene::intersect(const Vec3& org, const Vec3& dir, float tnear, float tfa
     hit.geometry = rh.hit.geomID;
     hit.primitive = rh.hit.primID;
   }
-  if (std::vector<RaySegment>* log = thread_ray_log()) log->push_back({org, dir, tnear, hit.valid() ? hit.t : tfar});
   return hit;
 }
 

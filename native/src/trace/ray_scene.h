@@ -19,17 +19,6 @@ uint64_t& thread_ray_count();
 uint64_t rays_traced();
 void add_rays_traced(uint64_t n);
 
-// The part of a ray a query looked along: org + t dir for t in [t0, t1] (t1 the hit's distance,
-// or the query's end when nothing was hit).
-struct RaySegment {
-  Vec3 org, dir;
-  float t0 = 0.0f, t1 = 0.0f;
-};
-
-// Where this thread's intersect calls append their segments (null: nowhere), for a cut that keeps
-// its paths (trace/kept_cut.h).
-std::vector<RaySegment>*& thread_ray_log();
-
 struct Hit {
   float t = 0.0f;
   uint32_t geometry = RTC_INVALID_GEOMETRY_ID;  // kSceneGeometry or kRevealGeometry
