@@ -30,8 +30,10 @@ class PathSamples {
     kVertexBsdf,
     kVertexLobe,
     kSensorPortal,  // the sensor's portal samples: which element (32 bits) and where on it
-    kVertexPortalPick,
+    kVertexPortalPick,  // an interior vertex's portal: an element (recording) or an opening (a cut)
     kVertexPortal,
+    kSensorOpeningPick,  // with openings cut: the sensor's sample of the sky through them
+    kSensorOpening,
   };
 
   // `seed` names the stream (the scene's seed, salted by the kind of pass).

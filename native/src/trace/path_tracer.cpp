@@ -20,6 +20,7 @@ struct PathTracer::PathState {
   float prev_pdf = 0.0f;      // BSDF pdf of the direction being followed, for MIS at sky hits
   bool prev_specular = false;
   bool portals = false;        // the vertex that chose this direction also sampled portals
+  bool sampled_openings = false;  // ... or, in closed mode, the sky through the openings
   bool from_sensor = false;    // ... and that vertex was the sensor
   Vec3 vertex;                 // that vertex
   Vec3 vertex_normal = Vec3(0, 0, 1);  // its shading normal (sky densities depend on it)
@@ -59,12 +60,14 @@ struct PathTracer::PathState {
   }
 };
 
-PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches)
+PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches,
+                       bool openings_as_portals)
     : scene_(scene),
       openings_(std::move(openings)),
+      opening_portals_(openings_as_portals ? OpeningPortals(openings_) : OpeningPortals()),
       hits_(scene, std::move(reveals)),
       portals_(scene.domain, scene.render),
-      lights_(scene, hits_, portals_, patches) {}
+      lights_(scene, hits_, portals_, opening_portals_, patches) {}
 
 template <typename BsdfOfDirection>
 void PathTracer::sample_portal(const PortalSampler::Aim& aim, const Vec3& x, const Vec3& n, const PathState& st, Rng& rng,
@@ -185,8 +188,11 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
       st.must_reach = 0.0f;
     }
     if (!h.valid()) {
-      sink.light(st.beta * sky.radiance(dir) * strategy_weight(st, st.sky_samples * sky.pdf_toward(dir, st.vertex_normal)), nullptr, 0,
-                 lights_.sky_source(dir));
+      const float sky_pdf = st.sky_samples * sky.pdf_toward(dir, st.vertex_normal);
+      const float w = st.sampled_openings && !st.prev_specular
+                          ? power_heuristic(st.prev_pdf, sky_pdf, lights_.opening_pdf(st.vertex, st.vertex_normal, dir))
+                          : strategy_weight(st, sky_pdf);
+      sink.light(st.beta * sky.radiance(dir) * w, nullptr, 0, lights_.sky_source(dir));
       return;
     }
     const Surface s = hits_.surface(h);
@@ -225,6 +231,8 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
       lights_.sample_sky(v, st.beta, cutters, sky_samples, samples, rng, sink);
       if (!scene_.suns.empty()) lights_.sample_sun(v, st.beta, cutters, sky_samples, samples, rng, sink);
       if (sink.recording() && !portals_.empty()) sample_interior_portal(v, st, samples, rng, sink);
+      if (lights_.samples_openings(sink))
+        lights_.sample_sky_through_openings(v, st.beta, cutters, sky_samples, samples, rng, sink);
     }
 
     BsdfSample bs;
@@ -235,6 +243,7 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
     st.beta *= bs.weight;
     if (!bs.straight) {  // thin-glass transmission keeps the direction, and with it the MIS state
       st.chosen_at(v.p, v.n, bs.pdf, bs.specular, sink.recording() && !v.material->is_glass());
+      st.sampled_openings = lights_.samples_openings(sink) && !v.material->is_glass();
       st.portal_pdf = 0.0f;
       st.sky_samples = v.material->is_glass() ? 1 : sky_samples;
     }
@@ -258,11 +267,13 @@ void PathTracer::trace_sensor(size_t i, size_t path, const PathSamples* samples,
 
   const bool portals = sink.recording() && !portals_.empty();
   lights_.sensor_sky(p, n, samples, rng, cutters, portals, sink);
+  if (lights_.samples_openings(sink)) lights_.sensor_sky_through_openings(p, n, samples, rng, cutters, sink);
   if (!scene_.suns.empty()) lights_.sensor_sun(p, n, samples, rng, cutters, sink);
   PathState st;
   st.beta = Rgb::Constant(kPi);
   st.portals = portals;
   st.from_sensor = true;
+  st.sampled_openings = lights_.samples_openings(sink);
   st.vertex = p;
   st.vertex_normal = n;
   if (portals) {

@@ -13,11 +13,14 @@
 //    toward a point on an element (at the sensor, path p aims at element p mod No, so each
 //    element gets the same number of samples), combined with the other two strategies by MIS;
 //  - closed: plain radiance estimates with the given cutters really cut (ground truth `evaluate`).
+//    The openings are portals of the sky (opening_portals.h): the sensor and every vertex also
+//    sample the sky through them, weighed by MIS against BSDF and sky sampling.
 #include <memory>
 
 #include "daylight/sky_patches.h"
 #include "scene/scene.h"
 #include "trace/light_sampling.h"
+#include "trace/opening_portals.h"
 #include "trace/path_record.h"
 #include "trace/path_samples.h"
 #include "trace/portal_sampler.h"
@@ -38,7 +41,11 @@ class PathTracer {
   // With `patches` (an annual pass: the scene's sky is unit and its suns are the sun clusters), every
   // recorded event names its source: the patch of the sky it came from, or the sun cluster
   // (AnnualSources; records must be `sourced`).
-  PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches = nullptr);
+  // `openings_as_portals` (closed mode): the sensor and every vertex also sample the sky through the
+  // openings; off, a path's random decisions do not depend on the openings at all, so two cuts on
+  // the same numbers differ only in paths that meet what changed (change_reach.h).
+  PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches = nullptr,
+             bool openings_as_portals = true);
 
   // `samples`, when given, are the path's stratified first decisions (path_samples.h); every
   // other decision comes from `rng`.
@@ -110,6 +117,7 @@ class PathTracer {
 
   const Scene& scene_;
   CutterSet openings_;
+  OpeningPortals opening_portals_;  // openings_ as portals of the sky (closed mode)
   SceneHits hits_;
   PortalSampler portals_;
   LightSampling lights_;
