@@ -3,7 +3,9 @@
 // integral of pdf() over every cell (Pearson's chi-square, chi2.h), and pdf()'s integral over the
 // sphere against 1 (every sample passes through a portal). Layouts: one window; a window, a
 // skylight and a window in the opposite wall; two windows one behind the other (a direction through
-// both has both densities); a window whose room lies on the other side (never a candidate).
+// both has both densities); a window whose room lies on the other side (never a candidate). The
+// same for the sky samples of a path with openings cut (sky_through_openings.h): a mixture of the
+// sky's own (cosine-weighted under a uniform sky) and the openings'.
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -12,6 +14,7 @@
 
 #include "chi2.h"
 #include "trace/opening_portals.h"
+#include "trace/sky_through_openings.h"
 
 namespace fenestra {
 namespace {
@@ -68,33 +71,38 @@ bool draw(const OpeningPortals& portals, const Layout& l, Rng& rng, Vec3* d) {
   return true;
 }
 
+// A (theta, phi) grid split where the densities jump, at the rectangles' edges: at their corners'
+// angles and at each edge's point nearest the layout's point, where its curve on the grid turns (a
+// thin sliver of a cell there could fall between the quadrature's points).
+SphereGrid grid_for(const Layout& l) {
+  SphereGrid grid;
+  grid.theta_res = 30;
+  grid.phi_res = 60;
+  auto split_at = [&](const Vec3& point) {
+    const Vec3 d = (point - l.from).normalized();
+    grid.theta_breaks.push_back(std::acos(std::clamp(double(d.z()), -1.0, 1.0)));
+    grid.phi_breaks.push_back(std::atan2(double(d.y()), double(d.x())));
+  };
+  for (const Cutter& c : l.openings) {
+    const Vec3 corners[4] = {c.origin, c.origin + c.width * c.u_axis, c.origin + c.width * c.u_axis + c.height * c.v_axis,
+                             c.origin + c.height * c.v_axis};
+    for (int e = 0; e < 4; ++e) {
+      const Vec3 &a = corners[e], &b = corners[(e + 1) % 4];
+      split_at(a);
+      const float along = std::clamp((l.from - a).dot(b - a) / (b - a).squaredNorm(), 0.0f, 1.0f);
+      split_at(a + along * (b - a));
+    }
+  }
+  return grid;
+}
+
 TEST(OpeningPortals, SampleFollowsPdfChi2) {
   const std::vector<Layout> all = layouts();
   const double alpha = fenestra_test::sidak_correction(kSignificance, static_cast<int>(all.size()));
   constexpr int kSamples = 300000;
   for (const Layout& l : all) {
     const OpeningPortals portals(l.openings);
-    SphereGrid grid;
-    grid.theta_res = 30;
-    grid.phi_res = 60;
-    // The pdf jumps at the rectangles' edges: integration splits at their corners' angles and at
-    // each edge's point nearest `from`, where its curve on the grid turns (a thin sliver of a cell
-    // there could fall between the quadrature's points).
-    auto split_at = [&](const Vec3& point) {
-      const Vec3 d = (point - l.from).normalized();
-      grid.theta_breaks.push_back(std::acos(std::clamp(double(d.z()), -1.0, 1.0)));
-      grid.phi_breaks.push_back(std::atan2(double(d.y()), double(d.x())));
-    };
-    for (const Cutter& c : l.openings) {
-      const Vec3 corners[4] = {c.origin, c.origin + c.width * c.u_axis,
-                               c.origin + c.width * c.u_axis + c.height * c.v_axis, c.origin + c.height * c.v_axis};
-      for (int e = 0; e < 4; ++e) {
-        const Vec3 &a = corners[e], &b = corners[(e + 1) % 4];
-        split_at(a);
-        const float along = std::clamp((l.from - a).dot(b - a) / (b - a).squaredNorm(), 0.0f, 1.0f);
-        split_at(a + along * (b - a));
-      }
-    }
+    const SphereGrid grid = grid_for(l);
     std::vector<double> observed =
         fenestra_test::histogram(grid, kSamples, 23, [&](Rng& rng, Vec3* d) { return draw(portals, l, rng, d); });
     std::vector<double> expected = fenestra_test::expected_counts(
@@ -138,6 +146,56 @@ TEST(OpeningPortals, OnlyPortalsOnTheRoomSideAndBeforeTheReachCount) {
   // On the far side of every portal (outdoors, north of the room) nothing is drawn.
   OpeningPortals::Sample s;
   EXPECT_FALSE(portals.sample(Vec3(2, 7, 1), Vec3(0, 0, 1), 0.5f, Vec2(0.5f, 0.5f), &s));
+}
+
+TEST(SkyThroughOpenings, SampleFollowsPdfChi2) {
+  const UniformSky sky(Rgb::Constant(1000.0f / kPi));
+  std::vector<Layout> all = layouts();
+  all.push_back({"no opening a candidate (outdoors)", {kSouthWindow}, Vec3(2.0f, -3.0f, 0.5f), Vec3(0, 0, 1)});
+  const double alpha = fenestra_test::sidak_correction(kSignificance, static_cast<int>(all.size()));
+  constexpr int kSamples = 300000;
+  for (const Layout& l : all) {
+    const OpeningPortals portals(l.openings);
+    const SkyThroughOpenings mixture(&sky, portals);
+    const SphereGrid grid = grid_for(l);
+    std::vector<double> observed = fenestra_test::histogram(grid, kSamples, 29, [&](Rng& rng, Vec3* d) {
+      const Vec2 u = next2(rng);
+      const float u_pick = rng.uniform();
+      float pdf = 0.0f;
+      return mixture.sample(l.from, l.normal, u, u_pick, d, &pdf);
+    });
+    std::vector<double> expected = fenestra_test::expected_counts(
+        grid, kSamples, [&](const Vec3& d) { return mixture.pdf(l.from, l.normal, d.normalized()); });
+    EXPECT_NEAR(fenestra_test::integrate_sphere([&](const Vec3& d) { return mixture.pdf(l.from, l.normal, d.normalized()); }),
+                1.0, 2e-3)
+        << l.name;
+    ASSERT_EQ(observed.back(), 0.0) << l.name << ": every sample is drawn";
+    observed.pop_back();
+    expected.pop_back();
+    Chi2Result r = fenestra_test::pearson_chi2(observed, expected, alpha);
+    if (!r.passed) r.message += "\n" + fenestra_test::format_histograms(grid, observed, expected);
+    EXPECT_TRUE(r.passed) << l.name << ": " << r.message;
+  }
+}
+
+TEST(SkyThroughOpenings, EachSampleCarriesItsOwnDensity) {
+  // What sample() returns with a direction is pdf() of that direction (the tracer divides by it).
+  const UniformSky sky(Rgb::Constant(1.0f));
+  const Layout l = layouts()[1];
+  const OpeningPortals portals(l.openings);
+  const SkyThroughOpenings mixture(&sky, portals);
+  Rng rng(11, 1);
+  int through = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec2 u = next2(rng);
+    const float u_pick = rng.uniform();
+    Vec3 d;
+    float pdf = 0.0f;
+    ASSERT_TRUE(mixture.sample(l.from, l.normal, u, u_pick, &d, &pdf));
+    EXPECT_EQ(pdf, mixture.pdf(l.from, l.normal, d));
+    through += u.x() >= SkyThroughOpenings::kSkyShare;
+  }
+  EXPECT_GT(through, 1000);
 }
 
 }  // namespace

@@ -1,7 +1,5 @@
 #include "trace/light_sampling.h"
 
-#include <limits>
-
 #include "daylight/annual_sources.h"
 #include "scene/bsdf.h"
 
@@ -9,17 +7,25 @@ namespace fenestra {
 
 void LightSampling::sample_sky(const Vertex& v, const Rgb& beta, const CutterSet* cutters, int count,
                                const PathSamples* samples, Rng& rng, RecordSink& sink) const {
+  const bool openings = samples_openings(sink);
   for (int i = 0; i < count; ++i) {
     const Vec2 u = samples && i == 0 ? samples->get2d(PathSamples::kVertexSky) : next2(rng);
-    sample_sky_once(v, beta, cutters, count, u, sink);
+    const float u_pick =
+        !openings ? 0.0f : samples && i == 0 ? samples->get1d(PathSamples::kVertexPortalPick) : rng.uniform();
+    sample_sky_once(v, beta, cutters, count, u, u_pick, sink);
   }
 }
 
 void LightSampling::sample_sky_once(const Vertex& v, const Rgb& beta, const CutterSet* cutters, int count,
-                                    const Vec2& u, RecordSink& sink) const {
+                                    const Vec2& u, float u_pick, RecordSink& sink) const {
   const Sky& sky = *scene_.sky;
   float light_pdf = 0.0f;
-  const Vec3 wl = sky.sample_toward(u, v.n, &light_pdf);
+  Vec3 wl;
+  if (samples_openings(sink)) {
+    if (!sky_through_openings_.sample(v.p, v.n, u, u_pick, &wl, &light_pdf)) return;
+  } else {
+    wl = sky.sample_toward(u, v.n, &light_pdf);
+  }
   if (!(light_pdf > 0.0f) || wl.dot(v.n) <= 0.0f) return;
   const Vec3 wl_local = v.frame.to_local(wl);
   const Rgb f = bsdf_eval(*v.material, v.wo, wl_local);
@@ -30,8 +36,7 @@ void LightSampling::sample_sky_once(const Vertex& v, const Rgb& beta, const Cutt
   if (!sh.visible) return;
   const float portal = sink.recording() && sh.first_is_element
                            ? portals_.pdf(sh.crossed[0].element, sh.crossed[0].point, v.p, sh.crossed_distance[0], wl)
-                       : samples_openings(sink) ? opening_pdf(v.p, v.n, wl)
-                                                : 0.0f;
+                           : 0.0f;
   const float w = power_heuristic(count * light_pdf, bsdf_pdf(*v.material, v.wo, wl_local), portal);
   sink.light(beta * f * sky.radiance(wl) * sh.attenuation * (w / (count * light_pdf)), sh.crossed.data(),
              sh.crossed_count, sky_source(wl));
@@ -62,63 +67,24 @@ void LightSampling::sensor_sky(const Vec3& p, const Vec3& n, const PathSamples* 
   // The sensor is a cosine receiver: its "BSDF times cosine" is cos(theta).
   const Sky& sky = *scene_.sky;
   float light_pdf = 0.0f;
-  const Vec3 wl = sky.sample_toward(samples ? samples->get2d(PathSamples::kSensorSky) : next2(rng), n, &light_pdf);
+  const Vec2 u = samples ? samples->get2d(PathSamples::kSensorSky) : next2(rng);
+  Vec3 wl;
+  if (samples_openings(sink)) {
+    const float u_pick = samples ? samples->get1d(PathSamples::kSensorOpeningPick) : rng.uniform();
+    if (!sky_through_openings_.sample(p, n, u, u_pick, &wl, &light_pdf)) return;
+  } else {
+    wl = sky.sample_toward(u, n, &light_pdf);
+  }
   const float cos_l = wl.dot(n);
   if (!(light_pdf > 0.0f && cos_l > 0.0f)) return;
   Shadow sh;
   hits_.shadow(p, wl, cutters, sink.recording(), &sh);
   if (sh.truncated) sink.count_truncated();
   if (sh.visible && !(portals && sh.first_is_element)) {  // through elements: portal samples
-    const float w = power_heuristic(light_pdf, cos_l * kInvPi, samples_openings(sink) ? opening_pdf(p, n, wl) : 0.0f);
+    const float w = power_heuristic(light_pdf, cos_l * kInvPi);
     sink.light(sky.radiance(wl) * sh.attenuation * (cos_l * w / light_pdf), sh.crossed.data(), sh.crossed_count,
                sky_source(wl));
   }
-}
-
-float LightSampling::opening_pdf(const Vec3& x, const Vec3& n, const Vec3& dir) const {
-  return openings_.pdf(x, n, dir, std::numeric_limits<float>::infinity());
-}
-
-void LightSampling::sample_sky_through_openings(const Vertex& v, const Rgb& beta, const CutterSet* cutters, int count,
-                                                const PathSamples* samples, Rng& rng, RecordSink& sink) const {
-  const float u_pick = samples ? samples->get1d(PathSamples::kVertexPortalPick) : rng.uniform();
-  const Vec2 uv = samples ? samples->get2d(PathSamples::kVertexPortal) : next2(rng);
-  OpeningPortals::Sample drawn;
-  if (!openings_.sample(v.p, v.n, u_pick, uv, &drawn)) return;
-  const Vec3& wl = drawn.direction;
-  if (wl.dot(v.n) <= 0.0f) return;
-  const Vec3 wl_local = v.frame.to_local(wl);
-  const Rgb f = bsdf_eval(*v.material, v.wo, wl_local);
-  if (!(f > 0.0f).any()) return;
-  const float pdf = opening_pdf(v.p, v.n, wl);
-  if (!(pdf > 0.0f)) return;  // an edge's rounding: the density does not see the portal it came through
-  Shadow sh;
-  hits_.shadow(offset_origin(v.p, v.ng, wl), wl, cutters, false, &sh);
-  if (sh.truncated) sink.count_truncated();
-  if (!sh.visible) return;
-  const Sky& sky = *scene_.sky;
-  const float w = power_heuristic(pdf, bsdf_pdf(*v.material, v.wo, wl_local), count * sky.pdf_toward(wl, v.n));
-  sink.light(beta * f * sky.radiance(wl) * sh.attenuation * (w / pdf), nullptr, 0, sky_source(wl));
-}
-
-void LightSampling::sensor_sky_through_openings(const Vec3& p, const Vec3& n, const PathSamples* samples, Rng& rng,
-                                                const CutterSet* cutters, RecordSink& sink) const {
-  const float u_pick = samples ? samples->get1d(PathSamples::kSensorOpeningPick) : rng.uniform();
-  const Vec2 uv = samples ? samples->get2d(PathSamples::kSensorOpening) : next2(rng);
-  OpeningPortals::Sample drawn;
-  if (!openings_.sample(p, n, u_pick, uv, &drawn)) return;
-  const Vec3& wl = drawn.direction;
-  const float cos_l = wl.dot(n);
-  if (!(cos_l > 0.0f)) return;
-  const float pdf = opening_pdf(p, n, wl);
-  if (!(pdf > 0.0f)) return;
-  Shadow sh;
-  hits_.shadow(p, wl, cutters, false, &sh);
-  if (sh.truncated) sink.count_truncated();
-  if (!sh.visible) return;
-  const Sky& sky = *scene_.sky;
-  const float w = power_heuristic(pdf, cos_l * kInvPi, sky.pdf_toward(wl, n));
-  sink.light(sky.radiance(wl) * sh.attenuation * (cos_l * w / pdf), nullptr, 0, sky_source(wl));
 }
 
 void LightSampling::sensor_sun(const Vec3& p, const Vec3& n, const PathSamples* samples, Rng& rng,

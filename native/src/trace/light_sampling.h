@@ -11,6 +11,7 @@
 #include "daylight/sky_patches.h"
 #include "scene/scene.h"
 #include "trace/opening_portals.h"
+#include "trace/sky_through_openings.h"
 #include "trace/path_samples.h"
 #include "trace/portal_sampler.h"
 #include "trace/record_sink.h"
@@ -34,11 +35,16 @@ inline Vec2 next2(Rng& rng) {
 class LightSampling {
  public:
   // `patches`: an annual pass (the scene's sky is unit and its suns are the sun clusters).
-  // `openings`: the openings cut (closed mode), through which every vertex of a path that is not
-  // recording also samples the sky (sample_sky_through_openings), weighed by MIS with the rest.
+  // `openings`: the openings cut (closed mode), through which a path that is not recording also
+  // samples the sky (samples_openings).
   LightSampling(const Scene& scene, const SceneHits& hits, const PortalSampler& portals,
                 const OpeningPortals& openings, const SkyPatches* patches)
-      : scene_(scene), hits_(hits), portals_(portals), openings_(openings), patches_(patches) {}
+      : scene_(scene),
+        hits_(hits),
+        portals_(portals),
+        openings_(openings),
+        sky_through_openings_(scene.sky.get(), openings),
+        patches_(patches) {}
 
   // From a vertex of a path whose throughput is `beta`: `count` samples of the sky, of the suns.
   // `samples` (the main path's first vertex): the first sample is stratified.
@@ -55,18 +61,15 @@ class LightSampling {
   void sensor_sun(const Vec3& p, const Vec3& n, const PathSamples* samples, Rng& rng, const CutterSet* cutters,
                   RecordSink& sink) const;
 
-  // With openings cut: one sample of the sky through them from vertex v (`count`: the vertex's sky
-  // samples, for the MIS weights), and the sensor's own (a cosine receiver at p, normal n).
-  void sample_sky_through_openings(const Vertex& v, const Rgb& beta, const CutterSet* cutters, int count,
-                                   const PathSamples* samples, Rng& rng, RecordSink& sink) const;
-  void sensor_sky_through_openings(const Vec3& p, const Vec3& n, const PathSamples* samples, Rng& rng,
-                                   const CutterSet* cutters, RecordSink& sink) const;
-  // Whether a path feeding `sink` samples the openings (closed mode with openings to sample), and
-  // the density with which it would have drawn `dir` through them from x (normal n) toward the sky.
+  // Whether a path feeding `sink` samples the sky through the openings (closed mode with openings
+  // as portals): its sky samples then come from sky_through_openings.h's mixture ...
   bool samples_openings(const RecordSink& sink) const {
     return !openings_.empty() && !sink.recording() && !sink.outside_element();
   }
-  float opening_pdf(const Vec3& x, const Vec3& n, const Vec3& dir) const;
+  // ... whose density toward `dir` from x (normal n), per sky sample, this is.
+  float sky_through_openings_pdf(const Vec3& x, const Vec3& n, const Vec3& dir) const {
+    return sky_through_openings_.pdf(x, n, dir);
+  }
 
   // The source of light from the sky along dir, and of sun `index` (0 outside an annual pass).
   uint16_t sky_source(const Vec3& dir) const {
@@ -76,12 +79,14 @@ class LightSampling {
 
  private:
   void sample_sky_once(const Vertex& v, const Rgb& beta, const CutterSet* cutters, int count, const Vec2& u,
-                       RecordSink& sink) const;
+                       float u_pick, RecordSink& sink) const;
+
 
   const Scene& scene_;
   const SceneHits& hits_;
   const PortalSampler& portals_;
   const OpeningPortals& openings_;
+  SkyThroughOpenings sky_through_openings_;
   const SkyPatches* patches_;
 };
 

@@ -51,6 +51,12 @@ float OpeningPortals::weight(const Portal& p, const Vec3& x, const Vec3& n) cons
   return solid_angle * (cosine + kCosineFloor);
 }
 
+bool OpeningPortals::candidates(const Vec3& x, const Vec3& n) const {
+  for (const Portal& p : portals_)
+    if (weight(p, x, n) > 0.0f) return true;
+  return false;
+}
+
 bool OpeningPortals::sample(const Vec3& x, const Vec3& n, float u_pick, const Vec2& uv, Sample* out) const {
   float total = 0.0f;
   for (const Portal& p : portals_) total += weight(p, x, n);
@@ -75,7 +81,7 @@ bool OpeningPortals::sample(const Vec3& x, const Vec3& n, float u_pick, const Ve
   return true;
 }
 
-float OpeningPortals::pdf(const Vec3& x, const Vec3& n, const Vec3& dir, float reach) const {
+float OpeningPortals::pdf(const Vec3& x, const Vec3& n, const Vec3& dir, float reach, bool* candidates) const {
   float total = 0.0f, density = 0.0f;
   for (const Portal& p : portals_) {
     const float w = weight(p, x, n);
@@ -91,6 +97,7 @@ float OpeningPortals::pdf(const Vec3& x, const Vec3& n, const Vec3& dir, float r
     const double solid_angle = rectangle_solid_angle(x, p.corner, p.u, p.v);
     if (solid_angle > 0.0) density += w / static_cast<float>(solid_angle);
   }
+  if (candidates) *candidates = total > 0.0f;
   return total > 0.0f ? density / total : 0.0f;
 }
 

@@ -32,12 +32,15 @@ class OpeningPortals {
     Vec3 direction;        // unit
     float distance = 0.0f;  // from x to the portal's point along `direction`
   };
+  // Whether any portal is a candidate from x (receiver normal n): sample() then draws a direction.
+  bool candidates(const Vec3& x, const Vec3& n) const;
   // A direction from x (receiver normal n) through a portal, from u_pick and uv uniform in [0, 1);
   // false when no portal is a candidate from x.
   bool sample(const Vec3& x, const Vec3& n, float u_pick, const Vec2& uv, Sample* out) const;
   // The solid-angle density with which sample(x, n, ...) yields `dir` through a portal nearer than
-  // `reach` (meters; infinity for a ray that reaches the sky).
-  float pdf(const Vec3& x, const Vec3& n, const Vec3& dir, float reach) const;
+  // `reach` (meters; infinity for a ray that reaches the sky). `candidates`, when given: whether
+  // any portal is a candidate from x (sample() then draws a direction).
+  float pdf(const Vec3& x, const Vec3& n, const Vec3& dir, float reach, bool* candidates = nullptr) const;
 
  private:
   struct Portal {

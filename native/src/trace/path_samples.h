@@ -32,8 +32,7 @@ class PathSamples {
     kSensorPortal,  // the sensor's portal samples: which element (32 bits) and where on it
     kVertexPortalPick,  // an interior vertex's portal: an element (recording) or an opening (a cut)
     kVertexPortal,
-    kSensorOpeningPick,  // with openings cut: the sensor's sample of the sky through them
-    kSensorOpening,
+    kSensorOpeningPick,  // with openings cut: which opening the sensor's sky sample goes through
   };
 
   // `seed` names the stream (the scene's seed, salted by the kind of pass).

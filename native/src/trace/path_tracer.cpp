@@ -188,10 +188,10 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
       st.must_reach = 0.0f;
     }
     if (!h.valid()) {
-      const float sky_pdf = st.sky_samples * sky.pdf_toward(dir, st.vertex_normal);
       const float w = st.sampled_openings && !st.prev_specular
-                          ? power_heuristic(st.prev_pdf, sky_pdf, lights_.opening_pdf(st.vertex, st.vertex_normal, dir))
-                          : strategy_weight(st, sky_pdf);
+                          ? power_heuristic(st.prev_pdf,
+                                            st.sky_samples * lights_.sky_through_openings_pdf(st.vertex, st.vertex_normal, dir))
+                          : strategy_weight(st, st.sky_samples * sky.pdf_toward(dir, st.vertex_normal));
       sink.light(st.beta * sky.radiance(dir) * w, nullptr, 0, lights_.sky_source(dir));
       return;
     }
@@ -231,8 +231,6 @@ void PathTracer::trace(Vec3 org, Vec3 dir, PathState st, const CutterSet* cutter
       lights_.sample_sky(v, st.beta, cutters, sky_samples, samples, rng, sink);
       if (!scene_.suns.empty()) lights_.sample_sun(v, st.beta, cutters, sky_samples, samples, rng, sink);
       if (sink.recording() && !portals_.empty()) sample_interior_portal(v, st, samples, rng, sink);
-      if (lights_.samples_openings(sink))
-        lights_.sample_sky_through_openings(v, st.beta, cutters, sky_samples, samples, rng, sink);
     }
 
     BsdfSample bs;
@@ -267,7 +265,6 @@ void PathTracer::trace_sensor(size_t i, size_t path, const PathSamples* samples,
 
   const bool portals = sink.recording() && !portals_.empty();
   lights_.sensor_sky(p, n, samples, rng, cutters, portals, sink);
-  if (lights_.samples_openings(sink)) lights_.sensor_sky_through_openings(p, n, samples, rng, cutters, sink);
   if (!scene_.suns.empty()) lights_.sensor_sun(p, n, samples, rng, cutters, sink);
   PathState st;
   st.beta = Rgb::Constant(kPi);
