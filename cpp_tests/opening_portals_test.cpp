@@ -66,8 +66,10 @@ std::vector<Layout> layouts() {
 bool draw(const OpeningPortals& portals, const Layout& l, Rng& rng, Vec3* d) {
   const float u_pick = rng.uniform();
   OpeningPortals::Sample s;
-  if (!portals.sample(l.from, l.normal, u_pick, next2(rng), &s)) return false;
+  const OpeningPortals::From from(portals, l.from, l.normal);
+  if (!from.sample(u_pick, next2(rng), &s)) return false;
   *d = s.direction;
+  EXPECT_EQ(s.pdf, from.pdf(s.direction, kSky)) << l.name << ": a sample carries its own density";
   return true;
 }
 
@@ -135,7 +137,7 @@ TEST(OpeningPortals, OnlyPortalsOnTheRoomSideAndBeforeTheReachCount) {
   for (int i = 0; i < 1000; ++i) {
     OpeningPortals::Sample s;
     const float u_pick = rng.uniform();
-    ASSERT_TRUE(portals.sample(x, Vec3(0, 0, 1), u_pick, next2(rng), &s));
+    ASSERT_TRUE(OpeningPortals::From(portals, x, Vec3(0, 0, 1)).sample(u_pick, next2(rng), &s));
     EXPECT_GT(s.direction.y(), 0.0f) << "drawn toward the north window only";
     EXPECT_NEAR((x + s.distance * s.direction).y(), 5.0f, 1e-4f);
   }
@@ -145,7 +147,9 @@ TEST(OpeningPortals, OnlyPortalsOnTheRoomSideAndBeforeTheReachCount) {
   EXPECT_EQ(portals.pdf(x, Vec3(0, 0, 1), toward_north, 1.9f), 0.0f);
   // On the far side of every portal (outdoors, north of the room) nothing is drawn.
   OpeningPortals::Sample s;
-  EXPECT_FALSE(portals.sample(Vec3(2, 7, 1), Vec3(0, 0, 1), 0.5f, Vec2(0.5f, 0.5f), &s));
+  const OpeningPortals::From outdoors(portals, Vec3(2, 7, 1), Vec3(0, 0, 1));
+  EXPECT_FALSE(outdoors.any());
+  EXPECT_FALSE(outdoors.sample(0.5f, Vec2(0.5f, 0.5f), &s));
 }
 
 TEST(SkyThroughOpenings, SampleFollowsPdfChi2) {

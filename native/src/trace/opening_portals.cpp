@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "math/constants.h"
 #include "sampling/spherical_rectangle.h"
@@ -38,67 +39,74 @@ OpeningPortals::OpeningPortals(const CutterSet& openings) {
   }
 }
 
-float OpeningPortals::weight(const Portal& p, const Vec3& x, const Vec3& n) const {
+float OpeningPortals::weight(const Portal& p, const Vec3& x, const Vec3& n) {
   const float depth = (x - p.corner).dot(p.outward);
   if (!(depth < -kMinDepth)) return 0.0f;
   const Vec3 to_centre = p.centre - x;
   const float distance2 = to_centre.squaredNorm();
-  const float distance = std::sqrt(distance2);
-  const float facing = -depth / distance;  // the portal's cosine toward x, from its centre
+  const float inverse_distance = 1.0f / std::sqrt(distance2);
+  const float facing = -depth * inverse_distance;  // the portal's cosine toward x, from its centre
   const float solid_angle = std::min(2.0f * kPi, p.area * std::max(facing, kCosineFloor) / distance2);
   if (!(solid_angle >= kMinSolidAngle)) return 0.0f;
-  const float cosine = std::max(0.0f, n.dot(to_centre) / distance);
+  const float cosine = std::max(0.0f, n.dot(to_centre) * inverse_distance);
   return solid_angle * (cosine + kCosineFloor);
 }
 
-bool OpeningPortals::candidates(const Vec3& x, const Vec3& n) const {
-  for (const Portal& p : portals_)
-    if (weight(p, x, n) > 0.0f) return true;
-  return false;
+OpeningPortals::From::From(const OpeningPortals& portals, const Vec3& x, const Vec3& n)
+    : portals_(portals), x_(x), n_(n) {
+  const size_t count = portals.portals_.size();
+  if (count > inline_.size()) spilled_.resize(count - inline_.size());
+  for (size_t k = 0; k < count; ++k) {
+    const float w = OpeningPortals::weight(portals.portals_[k], x, n);
+    (k < inline_.size() ? inline_[k] : spilled_[k - inline_.size()]) = w;
+    total_ += w;
+  }
 }
 
-bool OpeningPortals::sample(const Vec3& x, const Vec3& n, float u_pick, const Vec2& uv, Sample* out) const {
-  float total = 0.0f;
-  for (const Portal& p : portals_) total += weight(p, x, n);
-  if (!(total > 0.0f)) return false;
-  const float target = u_pick * total;
+float OpeningPortals::From::crossing_density(size_t k, const Vec3& dir, float reach) const {
+  const float w = weight(k);
+  if (!(w > 0.0f)) return 0.0f;
+  const Portal& p = portals_.portals_[k];
+  const float along = dir.dot(p.outward);
+  if (!(along > 0.0f)) return 0.0f;
+  const float t = -(x_ - p.corner).dot(p.outward) / along;
+  if (!(t < reach)) return 0.0f;
+  const Vec3 on = x_ + t * dir - p.corner;
+  const float a = on.dot(p.unit_u), b = on.dot(p.unit_v);
+  if (a < 0.0f || a > p.width || b < 0.0f || b > p.height) return 0.0f;
+  const double solid_angle = rectangle_solid_angle(x_, p.corner, p.u, p.v);
+  return solid_angle > 0.0 ? w / static_cast<float>(solid_angle) : 0.0f;
+}
+
+float OpeningPortals::From::pdf(const Vec3& dir, float reach) const {
+  if (!any()) return 0.0f;
+  float density = 0.0f;
+  for (size_t k = 0; k < portals_.portals_.size(); ++k) density += crossing_density(k, dir, reach);
+  return density / total_;
+}
+
+bool OpeningPortals::From::sample(float u_pick, const Vec2& uv, Sample* out) const {
+  if (!any()) return false;
+  const float target = u_pick * total_;
   float running = 0.0f;
-  const Portal* picked = nullptr;
-  for (const Portal& p : portals_) {
-    const float w = weight(p, x, n);
+  size_t picked = 0;
+  for (size_t k = 0; k < portals_.portals_.size(); ++k) {
+    const float w = weight(k);
     if (!(w > 0.0f)) continue;
-    picked = &p;
+    picked = k;
     running += w;
     if (target < running) break;
   }
-  const SphericalRectangle seen(x, picked->corner, picked->u, picked->v);
+  const Portal& p = portals_.portals_[picked];
+  const SphericalRectangle seen(x_, p.corner, p.u, p.v);
   if (!(seen.solid_angle() > 0.0)) return false;
-  const Vec3 to = seen.sample(uv) - x;
+  const Vec3 to = seen.sample(uv) - x_;
   const float distance = to.norm();
   if (!(distance > 0.0f)) return false;
   out->direction = to / distance;
   out->distance = distance;
-  return true;
-}
-
-float OpeningPortals::pdf(const Vec3& x, const Vec3& n, const Vec3& dir, float reach, bool* candidates) const {
-  float total = 0.0f, density = 0.0f;
-  for (const Portal& p : portals_) {
-    const float w = weight(p, x, n);
-    if (!(w > 0.0f)) continue;
-    total += w;
-    const float along = dir.dot(p.outward);
-    if (!(along > 0.0f)) continue;
-    const float t = -(x - p.corner).dot(p.outward) / along;
-    if (!(t < reach)) continue;
-    const Vec3 on = x + t * dir - p.corner;
-    const float a = on.dot(p.unit_u), b = on.dot(p.unit_v);
-    if (a < 0.0f || a > p.width || b < 0.0f || b > p.height) continue;
-    const double solid_angle = rectangle_solid_angle(x, p.corner, p.u, p.v);
-    if (solid_angle > 0.0) density += w / static_cast<float>(solid_angle);
-  }
-  if (candidates) *candidates = total > 0.0f;
-  return total > 0.0f ? density / total : 0.0f;
+  out->pdf = pdf(out->direction, std::numeric_limits<float>::infinity());
+  return out->pdf > 0.0f;  // false only where rounding puts the direction just off its portal's edge
 }
 
 }  // namespace fenestra

@@ -26,6 +26,8 @@ class SkyThroughOpenings {
   float pdf(const Vec3& x, const Vec3& n, const Vec3& dir) const;
 
  private:
+  static float mixture(const OpeningPortals::From& from, float sky_pdf, float through_pdf);
+
   const Sky* sky_;
   const OpeningPortals& openings_;
 };
