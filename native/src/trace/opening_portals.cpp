@@ -105,8 +105,13 @@ bool OpeningPortals::From::sample(float u_pick, const Vec2& uv, Sample* out) con
   if (!(distance > 0.0f)) return false;
   out->direction = to / distance;
   out->distance = distance;
-  out->pdf = pdf(out->direction, std::numeric_limits<float>::infinity());
-  return out->pdf > 0.0f;  // false only where rounding puts the direction just off its portal's edge
+  // The density: the drawn portal's from the solid angle just computed, any other's it crosses as
+  // pdf() finds them.
+  float density = weight(picked) / static_cast<float>(seen.solid_angle());
+  for (size_t k = 0; k < portals_.portals_.size(); ++k)
+    if (k != picked) density += crossing_density(k, out->direction, std::numeric_limits<float>::infinity());
+  out->pdf = density / total_;
+  return true;
 }
 
 }  // namespace fenestra

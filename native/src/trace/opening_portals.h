@@ -32,7 +32,7 @@ class OpeningPortals {
   struct Sample {
     Vec3 direction;         // unit
     float distance = 0.0f;  // from x to the portal's point along `direction`
-    float pdf = 0.0f;       // its solid-angle density (From::pdf toward the sky)
+    float pdf = 0.0f;       // its solid-angle density: From::pdf toward the sky, to rounding
   };
 
  private:
