@@ -11,11 +11,11 @@
 #include "daylight/sky_patches.h"
 #include "scene/scene.h"
 #include "trace/opening_portals.h"
-#include "trace/sky_through_openings.h"
 #include "trace/path_samples.h"
 #include "trace/portal_sampler.h"
 #include "trace/record_sink.h"
 #include "trace/scene_hits.h"
+#include "trace/sky_through_openings.h"
 #include "util/rng.h"
 
 namespace fenestra {
@@ -80,7 +80,6 @@ class LightSampling {
  private:
   void sample_sky_once(const Vertex& v, const Rgb& beta, const CutterSet* cutters, int count, const Vec2& u,
                        float u_pick, RecordSink& sink) const;
-
 
   const Scene& scene_;
   const SceneHits& hits_;
