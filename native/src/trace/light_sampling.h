@@ -42,7 +42,6 @@ class LightSampling {
       : scene_(scene),
         hits_(hits),
         portals_(portals),
-        openings_(openings),
         sky_through_openings_(scene.sky.get(), openings),
         patches_(patches) {}
 
@@ -64,7 +63,7 @@ class LightSampling {
   // Whether a path feeding `sink` samples the sky through the openings (closed mode with openings
   // as portals): its sky samples then come from sky_through_openings.h's mixture ...
   bool samples_openings(const RecordSink& sink) const {
-    return !openings_.empty() && !sink.recording() && !sink.outside_element();
+    return sky_through_openings_.has_openings() && !sink.recording() && !sink.outside_element();
   }
   // ... whose density toward `dir` from x (normal n), per sky sample, this is.
   float sky_through_openings_pdf(const Vec3& x, const Vec3& n, const Vec3& dir) const {
@@ -84,7 +83,6 @@ class LightSampling {
   const Scene& scene_;
   const SceneHits& hits_;
   const PortalSampler& portals_;
-  const OpeningPortals& openings_;
   SkyThroughOpenings sky_through_openings_;
   const SkyPatches* patches_;
 };

@@ -19,6 +19,9 @@ class SkyThroughOpenings {
   // `sky` may be null until a path asks (a scene whose sky is built later).
   SkyThroughOpenings(const Sky* sky, const OpeningPortals& openings) : sky_(sky), openings_(openings) {}
 
+  // Whether there are openings to sample at all.
+  bool has_openings() const { return !openings_.empty(); }
+
   // A direction from x (receiver normal n) from u and u_pick uniform in [0, 1) (u_pick chooses the
   // opening), with its density; false when none was drawn.
   bool sample(const Vec3& x, const Vec3& n, const Vec2& u, float u_pick, Vec3* dir, float* pdf) const;
