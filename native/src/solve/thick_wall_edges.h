@@ -19,7 +19,7 @@ bool within_thick_wall_edge_reach(const std::vector<GridRectangle>& from, const 
 
 // Paths per sensor of each cut of the edge search with real cutters (at most the solver's): the
 // candidates share their random numbers, so that they differ by the light their edges change.
-constexpr int kThickWallEdgeCutPaths = 4096;
+constexpr int kThickWallEdgeCutPaths = 1024;
 // Their random numbers are not the check's (RecordQueries::cut's stream 0): a check of the chosen
 // openings does not repeat the noise they were chosen by.
 constexpr uint64_t kThickWallEdgeCutStream = 1;

@@ -76,8 +76,13 @@ class MergeSearch {
       consider(alone_on_its_panel(now, i), index_alone(now, i), false, &best);
       for (size_t j = i + 1; j < now.size(); ++j)
         if (now[j].panel == panel)
-          for (const PanelRectangle& joint : merged_openings(now[i], now[j], unit))
-            consider(with_merged(now, i, j, joint), i, true, &best);
+          for (const PanelRectangle& joint : merged_openings(now[i], now[j], unit)) {
+            const std::vector<PanelRectangle> merged = with_merged(now, i, j, joint);
+            consider(merged, i, true, &best);
+            // The others on the panel may only make up for the two's misplaced light.
+            if (merged.size() > alone_on_its_panel(merged, i).size())
+              consider(alone_on_its_panel(merged, i), index_alone(merged, i), true, &best);
+          }
     }
     if (best.openings.empty() || !(best.error <= kThickWallMergeWorthSearching * before)) return false;
     keep(best.openings);

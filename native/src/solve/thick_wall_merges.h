@@ -36,7 +36,8 @@ struct ThickWallMerges {
 constexpr double kThickWallMergeWorthSearching = 1.25;
 
 // On each thick panel with several openings, once: one opening instead, the best by its cut of
-// each pair merged (merged_openings) and each opening left alone on the panel, its edges then
+// each pair merged (merged_openings; with the panel's other openings kept, and alone on it) and
+// each opening left alone on the panel, its edges then
 // searched alone (as the thick-wall edge search's; see kThickWallMergeWorthSearching), kept when
 // the error of the real cuts (`paths` per sensor on random numbers `stream`) falls. Then single
 // openings removed while that lowers the error. `start`: the edge search's openings.

@@ -43,7 +43,7 @@ OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInp
 // stream of their own are the ones that choose openings by comparing with each other: their paths'
 // decisions must not depend on the openings, so that two of them differ only in the paths that meet
 // what changed (common random numbers; change_reach.h keeps the sensors no path of which did).
-inline bool samples_openings(uint64_t stream) { return stream == 0; }
+inline bool samples_openings(uint64_t) { return true; }
 
 // Paths per sensor: `paths_per_sensor`, or the scene's render.paths_per_sensor when 0.
 // `sensors`: only that block of the scene's sensors (a shard), equal bit for bit to their values
