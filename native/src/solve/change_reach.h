@@ -1,8 +1,9 @@
 #pragma once
 // Which sensors a change of openings can change: those whose path records met an element near
 // it. Every path of a cut has random numbers of its own (seeded by its sensor and its index), so a
-// sensor whose paths never come near the change traces the same paths, bit for bit, whatever the
-// openings: a cut need trace only the sensors a change can reach and keep the others' values.
+// sensor whose paths never come near the change bounces along the same paths whatever the
+// openings, and finds the same light within the noise (its sky samples, aimed at every opening,
+// are drawn anew): a cut need trace only the sensors a change can reach and keep the others' values.
 // The records hold more paths per sensor than a cut and list every element a path met (from
 // either face, through any tube, or named by a condition), so a sensor none of whose records came
 // near a change seldom has a cut path that does.

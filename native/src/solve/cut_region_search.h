@@ -2,10 +2,11 @@
 // A region search whose values are real cuts: the scene path-traced with the openings cut
 // (RecordQueries::cut, reveals in thick walls), so that any rectangle is evaluated, whatever grid
 // the records were traced on. The same random numbers for every candidate (one seed), so that
-// nearby candidates differ by the light their change makes, not by noise of their own. A candidate
-// is traced at the sensors its change from the current rectangles can reach
-// (RecordQueries::sensors_reached); the others keep the current values, which their own paths,
-// never coming near the change, would give again bit for bit.
+// nearby candidates differ mostly by the light their change makes (their sky samples, aimed at
+// each candidate's openings, differ too). A candidate is traced at the sensors its change from the
+// current rectangles can reach (RecordQueries::sensors_reached); the others keep the current
+// values, whose light their paths, never coming near the change, would find again within the
+// noise; their difference is then 0, as a comparison of candidates wants.
 #include <optional>
 #include <cstdint>
 #include <vector>

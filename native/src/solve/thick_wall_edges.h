@@ -17,8 +17,13 @@ namespace fenestra {
 bool within_thick_wall_edge_reach(const std::vector<GridRectangle>& from, const std::vector<GridRectangle>& to,
                                   double element_size, double module);
 
-// Paths per sensor of each cut of the edge search with real cutters (at most the solver's): the
-// candidates share their random numbers, so that they differ by the light their edges change.
+// Paths per sensor of each cut of the edge search with real cutters (at most the solver's). The
+// candidates share their random numbers (each path's, by sensor and index), so that they differ
+// mostly by the light their edges change; their sky samples aim at each candidate's own openings
+// (as the check's), which gives the cuts of a thick wall about a third of the variance per path of
+// sampling the sky alone. Measured on the solid off-grid two-room study: at 1 024 paths the
+// thick-wall stages took 39 s and the answer checked at 0.86 %, against 281 s and 1.30 % at 4 096
+// paths with the sky sampled alone.
 constexpr int kThickWallEdgeCutPaths = 1024;
 // Their random numbers are not the check's (RecordQueries::cut's stream 0): a check of the chosen
 // openings does not repeat the noise they were chosen by.

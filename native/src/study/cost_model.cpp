@@ -44,6 +44,9 @@ constexpr double kBytesPerEvent = 13.0, kBytesPerPath = 8.0;
 // several stored conditions, where the thin wall's light mostly names its one element) and
 // tracing 5.7x the zero-thickness wall's for the same paths.
 constexpr double kThickWallRecordFactor = 7.5, kThickWallTraceFactor = 6.0;
+// A path of a cut (the openings really cut) also samples the sky through them: measured 1.53-1.72x
+// the time per path (docs/solver.md, "Paths with the openings really cut"), rounded up.
+constexpr double kOpeningSkySamplesTraceFactor = 1.75;
 // Cuts the edge search in thick walls makes per opening (solve/thick_wall_edges.h), counting one
 // of half the paths as half a cut: 125 for a window in a 0.3 m wall with 0.25 m elements (99 and
 // 53 of half the paths), 123 per opening for the four of the solid off-grid two-room study; the
@@ -323,11 +326,13 @@ void add_solver(const Scene& scene, CostEstimate* e) {
     const bool searched = uses_catalogue(scene.domain, s.constraints);
     const double cuts = searched ? kThickWallEdgeCutsPerOpening * openings : kThickWallPlacementCuts;
     const double paths = std::min<double>(kThickWallEdgeCutPaths, static_cast<double>(e->paths_per_sensor));
+    const double cut_seconds_per_path =
+        expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor * kOpeningSkySamplesTraceFactor;
     e->time.push_back({"thick_wall_edges",
                        std::string(searched ? "cutting the openings the edge search in thick walls tries"
                                             : "cutting the openings in thick walls where the records place their edges") +
                            " (about " + format_count(cuts) + " cuts of " + format_count(paths) + " paths per sensor)",
-                       cuts * S * paths * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
+                       cuts * S * paths * cut_seconds_per_path,
                        0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
     // Each thick panel that can hold several of those openings is tried with one.
     const double merged_panels = std::min<double>(thick_panels, std::floor(openings / 2.0));
@@ -337,7 +342,7 @@ void add_solver(const Scene& scene, CostEstimate* e) {
       e->time.push_back({"thick_wall_merges",
                          "cutting the openings the thick-wall merges try (about " + format_count(merge_cuts) +
                              " cuts of " + format_count(paths) + " paths per sensor)",
-                         merge_cuts * S * paths * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
+                         merge_cuts * S * paths * cut_seconds_per_path,
                          0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
     }
     // Every side moved at once: per step two cuts per side, and a judged cut of more paths per
@@ -352,7 +357,7 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                            " paths per sensor and " +
                            format_count(kJointEdgeStepsExpected * std::size(kJointEdgeDampings)) + " of " +
                            format_count(judge_paths) + ")",
-                       joint_cut_paths * S * expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor,
+                       joint_cut_paths * S * cut_seconds_per_path,
                        0.0, "fewer openings (solver.constraints.max_openings), or solver.refine_edges off"});
     // The openings chosen again for their edges off the grid (solve/refinable_openings.h): at most
     // search_evaluations sets more, each kept twice (the records' exact values, and the search's

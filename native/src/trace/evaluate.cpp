@@ -119,7 +119,7 @@ SensorValues evaluate_openings_at(const Scene& scene, const std::vector<OpeningI
       throw std::invalid_argument("sensor " + std::to_string(s) + " is not one of the scene's " +
                                   std::to_string(scene.sensors.size()));
   OpeningsGeometry g = build_openings(scene, openings);
-  const PathTracer tracer(scene, std::move(g.cutters), std::move(g.reveals), nullptr, samples_openings(stream));
+  const PathTracer tracer(scene, std::move(g.cutters), std::move(g.reveals), nullptr);
   for (size_t s : sensors) tracer.check_sensors({s, s + 1});
 
   const int paths = paths_per_sensor > 0 ? paths_per_sensor : scene.render.paths_per_sensor;

@@ -38,13 +38,6 @@ struct OpeningsGeometry {
 // opening) and builds their cutters and reveal faces.
 OpeningsGeometry build_openings(const Scene& scene, const std::vector<OpeningInput>& openings);
 
-// Whether a cut on `stream` samples the sky through its openings (opening_portals.h): the scene's
-// evaluation (stream 0: `evaluate`, every check of openings) does, far less noisy per path. Cuts on a
-// stream of their own are the ones that choose openings by comparing with each other: their paths'
-// decisions must not depend on the openings, so that two of them differ only in the paths that meet
-// what changed (common random numbers; change_reach.h keeps the sensors no path of which did).
-inline bool samples_openings(uint64_t) { return true; }
-
 // Paths per sensor: `paths_per_sensor`, or the scene's render.paths_per_sensor when 0.
 // `sensors`: only that block of the scene's sensors (a shard), equal bit for bit to their values
 // in the whole scene's run. `stream`: random numbers of their own (0: the scene's evaluation's), for

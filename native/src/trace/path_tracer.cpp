@@ -60,11 +60,10 @@ struct PathTracer::PathState {
   }
 };
 
-PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches,
-                       bool openings_as_portals)
+PathTracer::PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches)
     : scene_(scene),
       openings_(std::move(openings)),
-      opening_portals_(openings_as_portals ? OpeningPortals(openings_) : OpeningPortals()),
+      opening_portals_(openings_),
       hits_(scene, std::move(reveals)),
       portals_(scene.domain, scene.render),
       lights_(scene, hits_, portals_, opening_portals_, patches) {}

@@ -41,11 +41,9 @@ class PathTracer {
   // With `patches` (an annual pass: the scene's sky is unit and its suns are the sun clusters), every
   // recorded event names its source: the patch of the sky it came from, or the sun cluster
   // (AnnualSources; records must be `sourced`).
-  // `openings_as_portals` (closed mode): the sensor and every vertex also sample the sky through the
-  // openings; off, a path's random decisions do not depend on the openings at all, so two cuts on
-  // the same numbers differ only in paths that meet what changed (change_reach.h).
-  PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches = nullptr,
-             bool openings_as_portals = true);
+  // In closed mode the sensor and every vertex also sample the sky through the openings
+  // (sky_through_openings.h).
+  PathTracer(const Scene& scene, CutterSet openings, Mesh reveals, const SkyPatches* patches = nullptr);
 
   // `samples`, when given, are the path's stratified first decisions (path_samples.h); every
   // other decision comes from `rng`.
