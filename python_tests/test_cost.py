@@ -141,11 +141,16 @@ def test_max_memory_overrides_an_address_space_limit(tmp_path):
         found = re.search(r"([\d.]+) (MB|GB) left under", r.stderr)
         lefts.append(float(found.group(1)) * (1e6 if found.group(2) == "MB" else 1e9))
     left = max(lefts)
-    # A run whose estimate is well above it (more than one arena's worth): refused ...
+    # A run whose estimate is well above it (by two arenas at least: a run's own reading can be an
+    # arena above the most of those; the estimate is fixed bytes and bytes per path): refused ...
     scene = fenestra.load_scene(REFERENCE)
-    scene.render.paths_per_sensor = 1024
-    per_path = fenestra.estimate_cost(scene, "contributions")["total_bytes"] / 1024
-    paths = int(1.6 * left / per_path)
+    totals = []
+    for n in (1024, 2048):
+        scene.render.paths_per_sensor = n
+        totals.append(fenestra.estimate_cost(scene, "contributions")["total_bytes"])
+    per_path = (totals[1] - totals[0]) / 1024
+    fixed = totals[0] - 1024 * per_path
+    paths = int((max(1.6 * left, left + 2 * 64e6) - fixed) / per_path)
     r = run_limited(1000000, "contributions", REFERENCE, "-o", tmp_path / "out.npz", "--paths", paths, "--quiet")
     assert_refused(r, "left under the address-space limit", "%s paths per sensor" % format(paths, ",").replace(",", " "))
     # ... and with --max-memory the cost model lets it run (the model is conservative: it fits, or
