@@ -109,6 +109,23 @@ bool beyond_noise(const SensorValues& one, const SensorValues& two, Eigen::Index
   return !test::within_sigma(one.value[i], one.standard_error[i], two.value[i], two.standard_error[i]);
 }
 
+// A cluster's worker keeps a shard's records only (its E, E_stderr and A go to the client): its
+// records name the same sensors, or its cuts would trace others than one process's.
+TEST(ChangeReach, RecordsWithoutTheirMatricesNameTheSameSensors) {
+  TwoRooms rooms(true);
+  const std::vector<PanelRectangle> before = {{rooms.a, 1.0, 2.0, 0.75, 1.75}, {rooms.b, 1.0, 2.0, 0.75, 1.75}};
+  std::vector<PanelRectangle> after = before;
+  after[1].u1 = 2.1;  // room B's window only
+  const std::vector<size_t> whole = rooms.records.sensors_reached(before, after);
+  ASSERT_FALSE(whole.empty());
+  ASSERT_LT(whole.size(), 4u);
+  Contributions records_only = rooms.c;
+  for (Eigen::MatrixXd* m : {&records_only.E, &records_only.E_stderr, &records_only.A})
+    *m = Eigen::MatrixXd(0, m->cols());
+  LocalRecordQueries queries(rooms.scene, records_only, nullptr);
+  EXPECT_EQ(queries.sensors_reached(before, after), whole);
+}
+
 TEST(ChangeReach, SensorsAChangeDoesNotReachKeepTheirLightWithinTheNoise) {
   for (bool ground : {false, true}) {
     TwoRooms rooms(ground);

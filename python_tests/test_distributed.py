@@ -531,6 +531,45 @@ def test_a_thick_wall_solve_cuts_its_edge_search_on_the_shards(tmp_path, cluster
     assert without_timings(many) == without_timings(one)
 
 
+def write_two_closed_rooms(tmp_path):
+    """Two rooms 3 m apart in 0.3 m walls, room A (y 0..3) opening south and room B (y 6..9)
+    north, six sensors each: a change of one room's openings does not reach the other's sensors,
+    so the thick-wall stages' cuts keep their values (docs/solver.md, step 7)."""
+    a = box_obj((0, 0, 0), (3, 3, 2.5), lambda f: "facade" if f == "south" else "grey")
+    b = box_obj((0, 6, 0), (3, 9, 2.5), lambda f: "facade" if f == "north" else "grey")
+    shifted = "\n".join("f " + " ".join(str(int(i) + 24) for i in line.split()[1:]) if line.startswith("f ") else line
+                        for line in b.splitlines())
+    (tmp_path / "rooms.obj").write_text(a + shifted + "\n")
+    sensors = [[x, y, 0.8] for y in (1.0, 2.0) for x in (0.7, 1.5, 2.3)]
+    sensors += [[x, y, 0.8] for y in (7.0, 8.0) for x in (0.7, 1.5, 2.3)]
+    scene = {
+        "fenestra": 1, "geometry": "rooms.obj",
+        "materials": {"grey": {"reflectance": 0.5}, "facade": {"reflectance": 0.5}},
+        "opening_domain": {"materials": ["facade"], "element_size": 0.5, "thickness": 0.3},
+        "sensors": {"points": sensors, "normals": [0, 0, 1]},
+        "sky": {"type": "cie_overcast", "resolution": [64, 32]},
+        "render": {"paths_per_sensor": 256, "seed": 7},
+        "goals": {"units": "lux", "uniform": [{"sensors": "all", "level": 300.0}]},
+        "solver": {"generations": 30, "population": 16, "seed": 3, "verify_paths": 64,
+                   "constraints": {"min_width": 0.6, "min_height": 0.8, "sill_min": 0.6}},
+    }
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    return path
+
+
+def test_cuts_that_keep_the_values_a_change_cannot_reach_are_one_processs_on_a_cluster(tmp_path, cluster):
+    """A cut keeps its values at the sensors a change of openings cannot reach (their sky samples
+    would be drawn anew): the cluster's shards name those sensors from their records, so the
+    result is one process's, bit for bit, though the shards trace every cut whole."""
+    path = write_two_closed_rooms(tmp_path)
+    one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
+    shares = [one[k]["traced_share"] for k in ("thick_wall_merges", "thick_wall_joint_edges") if one[k]["run"]]
+    assert shares and min(shares) < 1.0, (one["thick_wall_merges"], one["thick_wall_joint_edges"])
+    many = quietly(distributed.solve, str(path), cluster, shards=2)
+    assert without_timings(many) == without_timings(one)
+
+
 def write_climate_room(tmp_path):
     """The climate goals' test room (sDA and ASE, least glazing) with a short search, trade-offs and
     the check with real cutters."""

@@ -518,6 +518,27 @@ class PythonRecordQueries : public RecordQueries {
     py::gil_scoped_acquire gil;
     return values_from(backend_.attr("cut")(text, paths, stream), sensors(), "values with real cutters");
   }
+  // A cut keeps its values at the sensors a change cannot reach, so the backend must name the same
+  // sensors as one process's records would (else every sensor, as the default).
+  std::vector<size_t> sensors_reached(const std::vector<PanelRectangle>& before,
+                                      const std::vector<PanelRectangle>& after) override {
+    std::vector<int64_t> reached;
+    {
+      py::gil_scoped_acquire gil;
+      if (!py::hasattr(backend_, "sensors_reached")) return RecordQueries::sensors_reached(before, after);
+      using Int64Array = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
+      reached = vector_of_array<int64_t>(
+          py::cast<Int64Array>(backend_.attr("sensors_reached")(rectangles_array(before), rectangles_array(after))),
+          "sensors reached");
+    }
+    std::vector<size_t> out;
+    for (const int64_t s : reached) {
+      if (s < 0 || s >= sensors() || (!out.empty() && static_cast<size_t>(s) <= out.back()))
+        throw std::runtime_error("sensors reached: expected ascending sensors of " + std::to_string(sensors()));
+      out.push_back(static_cast<size_t>(s));
+    }
+    return out;
+  }
   double record_bytes() const override {
     py::gil_scoped_acquire gil;
     return py::cast<double>(backend_.attr("record_bytes")());

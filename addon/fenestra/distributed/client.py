@@ -382,7 +382,8 @@ class _ShardedRecords:
     def _ask(self, op, *args):
         self.calls += 1
         changes = op not in (
-            "evaluate", "sampled", "flip_effects", "record_bytes", "try", "hourly_model", "annual_parts")
+            "evaluate", "sampled", "flip_effects", "record_bytes", "try", "hourly_model", "annual_parts",
+            "sensors_reached")
         parts = self._ask_shards(op, args)
         if changes:
             self._log.append((op, args))
@@ -501,6 +502,14 @@ class _ShardedRecords:
 
     def record_bytes(self):
         return float(sum(self._ask("record_bytes")))
+
+    def sensors_reached(self, before, after):
+        """The study's sensors (ascending) a change of openings from the rectangles `before` to
+        `after` can reach, from each shard's records: the sensors one process's cuts would trace
+        (the others keep their values)."""
+        parts = self._ask("sensors_reached", np.asarray(before, dtype=np.float64), np.asarray(after, dtype=np.float64))
+        return np.concatenate([np.asarray(p, dtype=np.int64) + s["begin"]
+                               for s, p in zip(self._study._shards, parts)] + [np.zeros(0, dtype=np.int64)])
 
     def hourly_model(self, about, rows, columns, flips):
         """Per shard, its rows' positions in `rows` and its part of the hourly model (the native

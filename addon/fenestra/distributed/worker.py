@@ -155,6 +155,8 @@ def _apply(state, op, args, sensors):
         return _sparse(queries.flip_effects(args[0]))
     if op == "record_bytes":
         return queries.record_bytes
+    if op == "sensors_reached":  # positions among the shard's sensors
+        return queries.sensors_reached(args[0], args[1])
     if op == "try":
         return searches[args[0]].try_region(args[1])
     state["applied"] += 1  # the others change the state

@@ -25,7 +25,8 @@ double covered(const Element& e, const std::vector<PanelRectangle>& rects) {
 
 ChangeReach::ChangeReach(const Contributions& c, const OpeningDomain& domain) {
   const size_t sensors = c.records.size(), elements = domain.element_count();
-  if (sensors == 0 || static_cast<Eigen::Index>(sensors) != c.E.rows()) return;
+  // A shard's worker keeps only the records (keep_records_only): E is then empty.
+  if (sensors == 0 || (c.E.rows() != 0 && static_cast<Eigen::Index>(sensors) != c.E.rows())) return;
   met_.assign(sensors, std::vector<uint8_t>(elements, 0));
   for_each_sensor(sensors, nullptr, [&](size_t i) {
     const SensorRecord& r = c.records[i];

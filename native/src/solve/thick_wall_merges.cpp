@@ -62,8 +62,8 @@ class MergeSearch {
     error_ = error_of(search_.values());
   }
 
-  // One opening on thick panel `panel` instead of its several: each pair merged (merged_openings)
-  // and each opening kept alone, the best by its cut then with its edges searched (when its cut
+  // One opening on thick panel `panel` instead of its several: each pair merged (merged_openings;
+  // with the panel's others kept, and alone) and each opening kept alone, the best by its cut then with its edges searched (when its cut
   // is within kThickWallMergeWorthSearching of the error); kept when that lowers the error.
   // Returns whether it was kept.
   bool one_opening_on(int panel, ThickWallMerges* out) {
