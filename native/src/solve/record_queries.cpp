@@ -70,7 +70,8 @@ SensorValues LocalRecordQueries::cut_at(const std::vector<OpeningInput>& opening
 std::vector<size_t> LocalRecordQueries::sensors_reached(const std::vector<PanelRectangle>& before,
                                                         const std::vector<PanelRectangle>& after) {
   if (!reach_) reach_.emplace(c_, scene_.domain);
-  const size_t sensors = c_.records.empty() ? static_cast<size_t>(c_.E.rows()) : c_.records.size();
+  // A shard's worker keeps only the records; records kept elsewhere: E's rows.
+  const size_t sensors = c_.records.empty() ? static_cast<size_t>(c_.E.rows()) : c_.sensor_count();
   return reach_->sensors(elements_near_change(scene_.domain, before, after), sensors);
 }
 

@@ -5,8 +5,8 @@
 // Its cuts also carry noise of the size of the error it minimises (2 % of the goals at 4096 paths
 // per sensor in the solid two-room study), so its last moves follow that noise. Here each side's
 // effect on every sensor is measured by central differences of cuts sharing their random numbers
-// (a Jacobian; their sky samples, aimed at each cut's own openings, differ a little), and Levenberg-Marquardt steps of all sides together are judged by cuts of more
-// paths.
+// (a Jacobian; their sky samples, aimed at each cut's own openings, differ a little), and
+// Levenberg-Marquardt steps of all sides together are judged by cuts of more paths.
 #include <cstdint>
 #include <vector>
 

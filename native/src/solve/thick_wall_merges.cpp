@@ -63,8 +63,9 @@ class MergeSearch {
   }
 
   // One opening on thick panel `panel` instead of its several: each pair merged (merged_openings;
-  // with the panel's others kept, and alone) and each opening kept alone, the best by its cut then with its edges searched (when its cut
-  // is within kThickWallMergeWorthSearching of the error); kept when that lowers the error.
+  // with the panel's others kept, and alone) and each opening kept alone, the best by its cut
+  // then with its edges searched (when its cut is within kThickWallMergeWorthSearching of the
+  // error); kept when that lowers the error.
   // Returns whether it was kept.
   bool one_opening_on(int panel, ThickWallMerges* out) {
     const std::vector<PanelRectangle> now = search_.rectangles();
@@ -80,8 +81,8 @@ class MergeSearch {
             const std::vector<PanelRectangle> merged = with_merged(now, i, j, joint);
             consider(merged, i, true, &best);
             // The others on the panel may only make up for the two's misplaced light.
-            if (merged.size() > alone_on_its_panel(merged, i).size())
-              consider(alone_on_its_panel(merged, i), index_alone(merged, i), true, &best);
+            std::vector<PanelRectangle> alone = alone_on_its_panel(merged, i);
+            if (alone.size() < merged.size()) consider(alone, index_alone(merged, i), true, &best);
           }
     }
     if (best.openings.empty() || !(best.error <= kThickWallMergeWorthSearching * before)) return false;
