@@ -442,6 +442,17 @@ TEST(ThickWall, JointEdgeStepsHoldAnOpeningTheyWouldMakeTooSmall) {
   EXPECT_NEAR(r.v1, goals_openings[0].v1, half_step);
 }
 
+TEST(ThickWall, CutPathsFollowTheSolvesPaths) {
+  // A sixteenth of the solve's paths, from 128 (or the solve's own when fewer) to 1 024.
+  EXPECT_EQ(thick_wall_cut_paths(16384), kThickWallEdgeCutPaths);
+  EXPECT_EQ(thick_wall_cut_paths(1 << 20), kThickWallEdgeCutPaths);
+  EXPECT_EQ(thick_wall_cut_paths(4096), 256);
+  EXPECT_EQ(thick_wall_cut_paths(2048), kThickWallEdgeCutPathsAtLeast);
+  EXPECT_EQ(thick_wall_cut_paths(1024), kThickWallEdgeCutPathsAtLeast);
+  EXPECT_EQ(thick_wall_cut_paths(100), 100);
+  EXPECT_EQ(thick_wall_cut_paths(1), 1);
+}
+
 TEST(ThickWall, LinesAheadCountsTheTubeSidesLeftInTheWall) {
   TempDir dir;
   const Scene scene = room(dir, {0.3f, 0.25f, false, false}, 16);

@@ -288,6 +288,23 @@ def test_solve_estimate_counts_the_thick_walls_edge_cuts(tmp_path):
     assert "thick_wall_edges" not in thin["seconds"]
 
 
+def test_thick_wall_cuts_follow_the_solves_paths(tmp_path):
+    """The thick-wall stages cut with a sixteenth of the solve's paths per sensor, from 128 to
+    1 024 (docs/solver.md, step 7): a preview's 2 048 paths cut with 128, a final solve's 16 384
+    and more with 1 024; the estimate follows, in proportion."""
+    path = write_room(tmp_path)
+    d = json.loads(path.read_text())
+    d["opening_domain"]["thickness"] = 0.3
+    seconds = {}
+    for paths in (2048, 16384, 65536):
+        d["solver"] = {"paths": paths, "constraints": {"max_openings": 1}}
+        path.write_text(json.dumps(d))
+        estimate = fenestra.estimate_cost(fenestra.load_scene(str(path)), "solve")
+        seconds[paths] = estimate["seconds"]["thick_wall_edges"]
+    assert seconds[2048] == pytest.approx(seconds[16384] / 8)
+    assert seconds[65536] == pytest.approx(seconds[16384])
+
+
 def test_solve_estimate_counts_the_edge_search_index(tmp_path):
     """The edge search indexes where the paths met the domain (docs/cost.md): 2 x the path
     records while solving, unless refine_edges is off; the contributions alone have none."""

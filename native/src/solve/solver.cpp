@@ -481,7 +481,7 @@ class OpeningSolve {
       // openings there); climate goals are not the design sky's, so they keep the linear model.
       const bool thick = std::any_of(final_rects_.begin(), final_rects_.end(),
                                      [&](const PanelRectangle& r) { return thick_panel(r.panel); });
-      const int cut_paths = thick && !climate_ ? std::min(kThickWallEdgeCutPaths, c_.paths_per_sensor) : 0;
+      const int cut_paths = thick && !climate_ ? thick_wall_cut_paths(c_.paths_per_sensor) : 0;
       const CatalogueSnap snap = snap_to_catalogue(scene_.domain, records_, objective_, constraints_, about_->E,
                                                    final_rects_, progress_, cut_paths);
       const double grid_error = chosen_error();
@@ -592,7 +592,7 @@ class OpeningSolve {
       if (!thick || edge_steps(scene_.domain.element_size(), constraints_.module, true).size() < 2)
         return stop_reason::kNoThickWallEdge;
       if (progress_) progress_->start("solving: edges in thick walls, with real cutters", 1);
-      const int paths = std::min(kThickWallEdgeCutPaths, c_.paths_per_sensor);
+      const int paths = thick_wall_cut_paths(c_.paths_per_sensor);
       // Free sizes: placed here, every side then moved at once (thick_wall_joint_edges); sizes
       // from a catalogue slide by pairs of edges instead, which the joint steps cannot.
       const bool slide = uses_catalogue(scene_.domain, constraints_);

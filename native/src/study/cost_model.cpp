@@ -317,7 +317,7 @@ void add_solver(const Scene& scene, CostEstimate* e) {
     e->memory.push_back({"change_reach", "the elements each sensor's records met (which sensors a cut must trace)",
                          S * N, "solving", "fewer sensors or " + std::string(kLargerElementSize)});
     // Edges in thick walls: openings really cut (solve/thick_wall_edges.h), each with at most
-    // kThickWallEdgeCutPaths paths per sensor through the wall; searched by pairs of edges only
+    // thick_wall_cut_paths paths per sensor through the wall; searched by pairs of edges only
     // with a catalogue, else placed.
     int thick_panels = 0;
     for (const Panel& p : scene.domain.panels()) thick_panels += p.thickness > 0.0f;
@@ -325,7 +325,7 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                                                            : kThickWallOpeningsPerPanel * thick_panels;
     const bool searched = uses_catalogue(scene.domain, s.constraints);
     const double cuts = searched ? kThickWallEdgeCutsPerOpening * openings : kThickWallPlacementCuts;
-    const double paths = std::min<double>(kThickWallEdgeCutPaths, static_cast<double>(e->paths_per_sensor));
+    const double paths = thick_wall_cut_paths(static_cast<int>(std::min<long long>(e->paths_per_sensor, 1 << 30)));
     const double cut_seconds_per_path =
         expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor * kOpeningSkySamplesTraceFactor;
     e->time.push_back({"thick_wall_edges",
