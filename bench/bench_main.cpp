@@ -42,6 +42,32 @@ void print_header(const Scene& scene, double load) {
               "  machine shows up in them); the ratios are the meaningful numbers.\n\n");
 }
 
+// The estimator's targets: the criterion on this scene in at most 25 M raw-Embree-equivalent rays
+// with at most 150 MB of path records; a 0.3 m wall at most 3x the thin wall's time to the same
+// accuracy and 3x its record memory; standard errors that say the error (the forward check's
+// target is printed by scripts/forward_check_bench.py).
+constexpr double kTargetRays = 25e6, kTargetRecordBytes = 150e6, kTargetThickRatio = 3.0;
+
+const char* met(bool ok) { return ok ? "met" : "NOT met"; }
+
+void print_targets(const TimeToAccuracy& tta, const RawThroughput& raw, const Rung& top, const json& thick) {
+  const double rays = tta.seconds * raw.all_threads;
+  const double time_ratio = thick["time_to_accuracy_ratio"].get<double>();
+  const double memory_ratio = thick["record_memory_ratio"].get<double>();
+  const double honesty = top.own_stderr / top.frobenius;
+  std::printf("Targets\n");
+  std::printf("  criterion in <= %.0f M raw-Embree-equivalent rays: %.1f M, %s%s\n", kTargetRays * 1e-6, rays * 1e-6,
+              met(rays <= kTargetRays), tta.measured ? "" : " (extrapolated)");
+  std::printf("  path records at the criterion <= %.0f MB: %.0f MB, %s\n", kTargetRecordBytes * 1e-6,
+              tta.memory_bytes * 1e-6, met(tta.memory_bytes <= kTargetRecordBytes));
+  std::printf("  0.3 m wall <= %.0f x the thin wall's time to the same accuracy: %.1f x, %s; and its record memory: "
+              "%.1f x, %s\n", kTargetThickRatio, time_ratio, met(time_ratio <= kTargetThickRatio), memory_ratio,
+              met(memory_ratio <= kTargetThickRatio));
+  std::printf("  standard errors say the error (own se_F / err E_F at the top rung, %d paths, in 0.7..1.4): %.2f, %s\n",
+              top.paths, honesty, met(honesty >= 0.7 && honesty <= 1.4));
+  std::printf("  (the forward check's target: scripts/forward_check_bench.py, after this bench)\n\n");
+}
+
 void print_summary(const TimeToAccuracy& tta, double one_pass_over_raw, const json& target, const json& matched,
                    double peak_rss) {
   const char* label = tta.measured ? "measured" : "EXTRAPOLATED";
@@ -141,6 +167,7 @@ int run(const std::string& json_path, bool estimators_only) {
   report["memory"] = memory_json(tta, peak_rss);
 
   report["thick_walls"] = thick_wall_comparison(kScenePath);
+  print_targets(tta, raw, ladder.back(), report["thick_walls"]);
 
   print_summary(tta, one_pass_rate / raw.all_threads, report["baseline_ratio_at_target"],
                 report["baseline_ratio_at_matched_accuracy"], peak_rss);
