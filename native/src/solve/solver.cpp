@@ -640,7 +640,7 @@ class OpeningSolve {
     thick_seconds_ += run_stage(&out_.stages, "thick-wall joint edges", [&] {
       if (progress_) progress_->start("solving: all edges in thick walls together, with real cutters", 1);
       const int paths = out_.thick_wall_edges.paths_per_cut;
-      const int judge_paths = std::max(paths, std::min(kJointEdgeJudgeFactor * paths, c_.paths_per_sensor));
+      const int judge_paths = joint_edge_judge_paths(paths, c_.paths_per_sensor);
       ThickWallJointEdges joint = joint_thick_wall_edges(scene_.domain, records_, objective_, constraints_,
                                                          final_rects_, paths, judge_paths, kThickWallJointEdgeStream,
                                                          progress_);

@@ -7,6 +7,7 @@
 // effect on every sensor is measured by central differences of cuts sharing their random numbers
 // (a Jacobian; their sky samples, aimed at each cut's own openings, differ a little), and
 // Levenberg-Marquardt steps of all sides together are judged by cuts of more paths.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +20,10 @@ namespace fenestra {
 // the solver's): differences share their random numbers and cancel most of their noise, a step's
 // error does not.
 constexpr int kJointEdgeJudgeFactor = 4;
+// Those judged cuts' paths per sensor, for cuts of `cut_paths` in a solve of `solver_paths`.
+inline int joint_edge_judge_paths(int cut_paths, int solver_paths) {
+  return std::max(cut_paths, std::min(kJointEdgeJudgeFactor * cut_paths, solver_paths));
+}
 // Their random numbers: neither the edge search's (kThickWallEdgeCutStream) nor the check's (0).
 constexpr uint64_t kThickWallJointEdgeStream = 2;
 // Steps at most; each costs about two difference cuts per side and kJointEdgeDampings judged cuts.

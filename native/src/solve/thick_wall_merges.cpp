@@ -81,7 +81,7 @@ class MergeSearch {
             const std::vector<PanelRectangle> merged = with_merged(now, i, j, joint);
             consider(merged, i, true, &best);
             // The others on the panel may only make up for the two's misplaced light.
-            std::vector<PanelRectangle> alone = alone_on_its_panel(merged, i);
+            const std::vector<PanelRectangle> alone = alone_on_its_panel(merged, i);
             if (alone.size() < merged.size()) consider(alone, index_alone(merged, i), true, &best);
           }
     }

@@ -325,7 +325,8 @@ void add_solver(const Scene& scene, CostEstimate* e) {
                                                            : kThickWallOpeningsPerPanel * thick_panels;
     const bool searched = uses_catalogue(scene.domain, s.constraints);
     const double cuts = searched ? kThickWallEdgeCutsPerOpening * openings : kThickWallPlacementCuts;
-    const double paths = thick_wall_cut_paths(static_cast<int>(std::min<long long>(e->paths_per_sensor, 1 << 30)));
+    const int solver_paths = static_cast<int>(std::min<long long>(e->paths_per_sensor, 1 << 30));
+    const double paths = thick_wall_cut_paths(solver_paths);
     const double cut_seconds_per_path =
         expected_vertices(scene) * kTraceSecondsPerVertex * kThickWallTraceFactor * kOpeningSkySamplesTraceFactor;
     e->time.push_back({"thick_wall_edges",
@@ -347,8 +348,7 @@ void add_solver(const Scene& scene, CostEstimate* e) {
     }
     // Every side moved at once: per step two cuts per side, and a judged cut of more paths per
     // damping tried.
-    const double judge_paths =
-        std::max(paths, std::min<double>(kJointEdgeJudgeFactor * paths, static_cast<double>(e->paths_per_sensor)));
+    const double judge_paths = joint_edge_judge_paths(thick_wall_cut_paths(solver_paths), solver_paths);
     const double joint_cut_paths =
         kJointEdgeStepsExpected * (8.0 * openings * paths + std::size(kJointEdgeDampings) * judge_paths);
     e->time.push_back({"thick_wall_joint_edges",
