@@ -42,11 +42,14 @@ ClimateObjective::ClimateObjective(const ClimateGoals& goals, const HourlyColumn
       throw std::invalid_argument("climate objective: sensor " + std::to_string(sensor) + " is not in the model");
     return row_of_sensor[sensor];
   };
+  model_rows_ = static_cast<int>(rows.size());
   for (const ClimateGoal& g : goals_.goals) {
     GoalRows gr;
-    for (int s : g.sensors) gr.rows.push_back(row_of(s));
+    gr.member.assign(rows.size(), 0);
+    for (int s : g.sensors) gr.rows.push_back(row_of(s)), gr.member[gr.rows.back()] = 1;
     goal_rows_.push_back(std::move(gr));
     needs_direct_ = needs_direct_ || g.metric == ClimateMetric::SunlightExposure;
+    needs_occupied_sum_ = needs_occupied_sum_ || g.metric == ClimateMetric::MeanIlluminance;
   }
   occupied_columns_ = columns_.occupied_columns();
   for (size_t c = 0; c < columns_.hour.size(); ++c)
@@ -65,77 +68,113 @@ ClimateObjective::ClimateObjective(const ClimateGoals& goals, const HourlyColumn
       target_[r] = linear->target[i], weight_[r] = linear->weight[i] / norm;
       lower_[r] = linear->lower[i], upper_[r] = linear->upper[i];
     }
+    needs_occupied_sum_ = true;
   }
   domain_area_ = std::accumulate(element_area_.begin(), element_area_.end(), 0.0);
 }
 
-Eigen::VectorXd ClimateObjective::occupied_mean(const HourlyMatrix& total) const {
-  Eigen::VectorXd mean(total.rows());
-  for (Eigen::Index r = 0; r < total.rows(); ++r) mean[r] = total.row(r).head(occupied_columns_).cast<double>().sum();
-  return mean / static_cast<double>(std::max(1, columns_.occupied_hours));
+ClimateTally ClimateObjective::empty_tally() const {
+  ClimateTally t;
+  const size_t goals = goals_.goals.size();
+  t.hours.resize(goals), t.above_target.resize(goals), t.above_minimum.resize(goals);
+  for (size_t g = 0; g < goals; ++g) switch (goals_.goals[g].metric) {
+      case ClimateMetric::SpatialDaylightAutonomy:
+      case ClimateMetric::SunlightExposure:
+      case ClimateMetric::UsefulDaylight: t.hours[g].assign(static_cast<size_t>(model_rows_), 0); break;
+      case ClimateMetric::En17037:
+        t.above_target[g].assign(daylight_columns_.size(), 0);
+        t.above_minimum[g].assign(daylight_columns_.size(), 0);
+        break;
+      case ClimateMetric::MeanIlluminance: break;
+    }
+  if (needs_occupied_sum_) t.occupied_sum.assign(static_cast<size_t>(model_rows_), 0.0);
+  return t;
 }
 
-ClimateFigure ClimateObjective::mean_figure(const ClimateGoal&, const std::vector<int>& rows,
-                                            const HourlyMatrix& total) const {
-  ClimateFigure f;
-  double sum = 0.0;
-  for (int r : rows) sum += total.row(r).head(occupied_columns_).cast<double>().sum();
-  f.achieved = f.smooth = sum / (static_cast<double>(rows.size()) * std::max(1, columns_.occupied_hours));
-  return f;
+ClimateTally ClimateObjective::tally(const HourlyMatrix& total, const HourlyMatrix& direct,
+                                     const std::vector<int>* model_rows) const {
+  if (model_rows && static_cast<Eigen::Index>(model_rows->size()) != total.rows())
+    throw std::invalid_argument("climate tally: " + std::to_string(total.rows()) + " rows of hours, " +
+                                std::to_string(model_rows->size()) + " model rows named");
+  ClimateTally t = empty_tally();
+  const int m = occupied_columns_;
+  for (Eigen::Index i = 0; i < total.rows(); ++i) {
+    const int r = model_rows ? (*model_rows)[static_cast<size_t>(i)] : static_cast<int>(i);
+    if (r < 0 || r >= model_rows_)
+      throw std::invalid_argument("climate tally: model row " + std::to_string(r) + " outside the model's " +
+                                  std::to_string(model_rows_));
+    const auto year = total.row(i).head(m).array();
+    if (needs_occupied_sum_) t.occupied_sum[r] = total.row(i).head(m).cast<double>().sum();
+    for (size_t g = 0; g < goals_.goals.size(); ++g) {
+      if (!goal_rows_[g].member[r]) continue;
+      const ClimateGoal& goal = goals_.goals[g];
+      switch (goal.metric) {
+        case ClimateMetric::SpatialDaylightAutonomy:
+          t.hours[g][r] = static_cast<int32_t>((year >= static_cast<float>(goal.illuminance_lux)).count());
+          break;
+        case ClimateMetric::SunlightExposure:
+          t.hours[g][r] = direct.size() ? static_cast<int32_t>((direct.row(i).head(m).array() >
+                                                                static_cast<float>(goal.illuminance_lux)).count())
+                                        : 0;
+          break;
+        case ClimateMetric::UsefulDaylight: {
+          const float lo = static_cast<float>(goal.lower_lux), hi = static_cast<float>(goal.upper_lux);
+          t.hours[g][r] = static_cast<int32_t>(((year >= lo) && (year <= hi)).count());
+          break;
+        }
+        case ClimateMetric::En17037: {
+          const En17037Illuminances e = en17037_illuminances(goal.level);
+          for (size_t j = 0; j < daylight_columns_.size(); ++j) {
+            const float lux = total(i, daylight_columns_[j]);
+            t.above_target[g][j] += lux >= e.target_lux;
+            t.above_minimum[g][j] += lux >= e.minimum_target_lux;
+          }
+          break;
+        }
+        case ClimateMetric::MeanIlluminance: break;
+      }
+    }
+  }
+  return t;
 }
 
-std::vector<ClimateFigure> ClimateObjective::figures(const HourlyMatrix& total, const HourlyMatrix& direct) const {
+std::vector<ClimateFigure> ClimateObjective::figures(const ClimateTally& t) const {
   std::vector<ClimateFigure> out;
   const double occupied = std::max(1, columns_.occupied_hours);
   const int dark_occupied = columns_.occupied_hours - occupied_columns_;
-  const int m = occupied_columns_;
   for (size_t g = 0; g < goals_.goals.size(); ++g) {
     const ClimateGoal& goal = goals_.goals[g];
     const std::vector<int>& rows = goal_rows_[g].rows;
     const double n = static_cast<double>(rows.size());
     ClimateFigure f;
     switch (goal.metric) {
-      case ClimateMetric::SpatialDaylightAutonomy: {
-        const float threshold = static_cast<float>(goal.illuminance_lux);
+      case ClimateMetric::SpatialDaylightAutonomy:
         for (int r : rows) {
-          const int hours = static_cast<int>((total.row(r).head(m).array() >= threshold).count());
-          const double da = hours / occupied;
+          const double da = t.hours[g][r] / occupied;
           f.achieved += da >= goal.time_fraction;
           f.smooth += ramp(da - goal.time_fraction, kDaRamp);
         }
         f.achieved /= n, f.smooth /= n;
         break;
-      }
-      case ClimateMetric::SunlightExposure: {
-        const float threshold = static_cast<float>(goal.illuminance_lux);
+      case ClimateMetric::SunlightExposure:
         for (int r : rows) {
-          const int hours = direct.size() ? static_cast<int>((direct.row(r).head(m).array() > threshold).count()) : 0;
+          const int hours = t.hours[g][r];
           f.achieved += hours > goal.hours;
           f.smooth += ramp(hours - goal.hours, kAseRampHours);
         }
         f.achieved /= n, f.smooth /= n;
         break;
-      }
       case ClimateMetric::UsefulDaylight: {
-        const float lo = static_cast<float>(goal.lower_lux), hi = static_cast<float>(goal.upper_lux);
         double in_band = goal.lower_lux <= 0.0 ? n * dark_occupied : 0.0;
-        for (int r : rows) {
-          const auto year = total.row(r).head(m).array();
-          in_band += static_cast<double>(((year >= lo) && (year <= hi)).count());
-        }
+        for (int r : rows) in_band += static_cast<double>(t.hours[g][r]);
         f.achieved = f.smooth = in_band / (n * occupied);
         break;
       }
       case ClimateMetric::En17037: {
-        const En17037Illuminances e = en17037_illuminances(goal.level);
         const double target_area = settings_.horizontal_openings ? kEnTargetAreaHorizontal : kEnTargetAreaVertical;
         double target_hours = 0.0, minimum_hours = 0.0, target_smooth = 0.0, minimum_smooth = 0.0;
-        for (int c : daylight_columns_) {
-          int above_target = 0, above_minimum = 0;
-          for (int r : rows) {
-            above_target += total(r, c) >= e.target_lux;
-            above_minimum += total(r, c) >= e.minimum_target_lux;
-          }
+        for (size_t j = 0; j < daylight_columns_.size(); ++j) {
+          const int above_target = t.above_target[g][j], above_minimum = t.above_minimum[g][j];
           target_hours += above_target / n >= target_area;
           minimum_hours += above_minimum / n >= kEnMinimumArea;
           target_smooth += ramp(above_target / n - target_area, kEnAreaRamp);
@@ -150,9 +189,12 @@ std::vector<ClimateFigure> ClimateObjective::figures(const HourlyMatrix& total, 
         }
         break;
       }
-      case ClimateMetric::MeanIlluminance:
-        f = mean_figure(goal, rows, total);
+      case ClimateMetric::MeanIlluminance: {
+        double sum = 0.0;
+        for (int r : rows) sum += t.occupied_sum[r];
+        f.achieved = f.smooth = sum / (n * std::max(1, columns_.occupied_hours));
         break;
+      }
     }
     out.push_back(f);
   }
@@ -178,17 +220,18 @@ double ClimateObjective::shortfall(const ClimateGoal& goal, const ClimateFigure&
   return 0.0;
 }
 
-double ClimateObjective::error(const HourlyMatrix& total, const HourlyMatrix& direct, double open_area) const {
-  const std::vector<ClimateFigure> f = figures(total, direct);
+double ClimateObjective::error(const ClimateTally& t, double open_area) const {
+  const std::vector<ClimateFigure> f = figures(t);
   double error = 0.0;
   for (size_t g = 0; g < goals_.goals.size(); ++g) error += goals_.goals[g].weight * shortfall(goals_.goals[g], f[g]);
   if (target_.size()) {
-    const Eigen::VectorXd mean = occupied_mean(total);
+    const double hours = static_cast<double>(std::max(1, columns_.occupied_hours));
     for (Eigen::Index r = 0; r < target_.size(); ++r) {
       if (!(weight_[r] > 0.0)) continue;
-      const double d = mean[r] - target_[r];
-      const double bounds = excess(lower_[r] - mean[r]) * excess(lower_[r] - mean[r]) +
-                            excess(mean[r] - upper_[r]) * excess(mean[r] - upper_[r]);
+      const double mean_r = t.occupied_sum[static_cast<size_t>(r)] / hours;
+      const double d = mean_r - target_[r];
+      const double bounds = excess(lower_[r] - mean_r) * excess(lower_[r] - mean_r) +
+                            excess(mean_r - upper_[r]) * excess(mean_r - upper_[r]);
       error += weight_[r] * (d * d + settings_.bound_weight * bounds);
     }
   }

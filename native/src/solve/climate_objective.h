@@ -8,6 +8,7 @@
 
 #include "annual/hourly_flip_model.h"
 #include "scene/climate_goals.h"
+#include "solve/climate_tally.h"
 #include "solve/goals.h"
 
 namespace fenestra {
@@ -41,25 +42,39 @@ class ClimateObjective {
   bool needs_direct() const { return needs_direct_; }
   const ClimateGoals& goals() const { return goals_; }
 
-  // rows x columns of lux: total, and direct sun (may be empty without an ASE goal).
-  std::vector<ClimateFigure> figures(const HourlyMatrix& total, const HourlyMatrix& direct) const;
-  // Per model row: the mean of the occupied hours, lux (dark occupied hours count as 0).
-  Eigen::VectorXd occupied_mean(const HourlyMatrix& total) const;
+  // The tally of some model rows (climate_tally.h): row i of `total` and `direct` (rows x columns of
+  // lux; direct may be empty without an ASE goal) is model row model_rows[i], or row i without
+  // `model_rows`. std::invalid_argument when a row is outside the model.
+  ClimateTally tally(const HourlyMatrix& total, const HourlyMatrix& direct,
+                     const std::vector<int>* model_rows = nullptr) const;
+  // The tally of no rows, to add the parts' tallies to.
+  ClimateTally empty_tally() const;
+  // The figures and the error of a whole model's tally (its parts' tallies added).
+  std::vector<ClimateFigure> figures(const ClimateTally& tally) const;
   // The error: goals' shortfalls (hard and smooth; a mean goal's relative squared error), the
   // per-sensor goals' relative squared error, and the glazing term for `open_area` m^2.
-  double error(const HourlyMatrix& total, const HourlyMatrix& direct, double open_area) const;
+  double error(const ClimateTally& tally, double open_area) const;
+  // The same from all the model's rows at once.
+  std::vector<ClimateFigure> figures(const HourlyMatrix& total, const HourlyMatrix& direct) const {
+    return figures(tally(total, direct));
+  }
+  double error(const HourlyMatrix& total, const HourlyMatrix& direct, double open_area) const {
+    return error(tally(total, direct), open_area);
+  }
   double element_area(int k) const { return element_area_[static_cast<size_t>(k)]; }
 
  private:
   struct GoalRows {
-    std::vector<int> rows;  // model rows of the goal's sensors
+    std::vector<int> rows;        // model rows of the goal's sensors
+    std::vector<uint8_t> member;  // per model row: in the goal
   };
   double shortfall(const ClimateGoal& goal, const ClimateFigure& f) const;
-  ClimateFigure mean_figure(const ClimateGoal& goal, const std::vector<int>& rows, const HourlyMatrix& total) const;
 
   ClimateGoals goals_;
   HourlyColumns columns_;
   std::vector<GoalRows> goal_rows_;
+  int model_rows_ = 0;
+  bool needs_occupied_sum_ = false;  // a mean goal or per-sensor goals
   int occupied_columns_ = 0;  // the first columns
   std::vector<int> daylight_columns_;
   // Per-sensor goals, per model row: target lux, weight / sum(w g^2), bounds; empty without any.
