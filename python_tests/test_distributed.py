@@ -248,9 +248,18 @@ def test_cli_usage_errors(tmp_path):
                           (["--workers", 2, "--shards", "-1"], "--shards expects an integer from 1")):
         r = cli("contributions", path, "-o", tmp_path / "out.npz", *args)
         assert r.returncode == 2 and message in r.stderr, r.stderr
-    for command in ("sky", "annual"):
-        r = cli(command, path, "-o", tmp_path / "out.json", "--workers", 2)
-        assert r.returncode == 2 and "does not run on a Dask cluster yet" in r.stderr, r.stderr
+    for args, message in ((["annual", path, "-o", tmp_path / "out", "--workers", 2], "annual needs --openings"),
+                          (["sky", path, "-o", tmp_path / "sky.exr", "--workers", 2, "--shards", 2],
+                           "--shards does not apply to sky"),
+                          (["sky", path, "-o", tmp_path / "sky.exr", "--workers", 2, "--paths", 8],
+                           "--paths does not apply to sky"),
+                          (["evaluate", path, "-o", tmp_path / "o.json", "--openings", path, "--workers", 2, "--cutters"],
+                           "--cutters belongs to the annual command"),
+                          (["annual", path, "-o", tmp_path / "o", "--openings", path, "--workers", 2, "--json", "s.json"],
+                           "--json belongs to the sky command")):
+        r = cli(*args)
+        assert r.returncode == 2 and message in r.stderr, r.stderr
+        assert not any(tmp_path.glob("o*")) and not (tmp_path / "sky.exr").exists()
     for args, message in ((["--workers", "two"], "--workers expects an integer"),):
         r = cli("contributions", path, "-o", tmp_path / "out.npz", *args)
         assert r.returncode == 2 and message in r.stderr, r.stderr
@@ -912,3 +921,109 @@ def test_the_python_example_of_the_docs_runs_as_written(tmp_path):
                        timeout=240)
     assert r.returncode == 0, r.stderr[-3000:]
     assert (tmp_path / "contributions.npz").exists() and (tmp_path / "contributions.json").exists()
+
+
+# ---- annual studies and skies -------------------------------------------------------------------
+
+
+def write_annual_room(tmp_path):
+    """The climate goals' test room with 128 paths per sensor, and an opening on its south wall."""
+    from test_climate_goals import SDA_ASE, climate_room
+
+    path, _ = climate_room(tmp_path, SDA_ASE, paths=128)
+    openings = tmp_path / "openings.json"
+    openings.write_text(json.dumps({"openings": [{"corners": [[0.5, 0, 0.9], [2.5, 0, 0.9], [2.5, 0, 2.1],
+                                                              [0.5, 0, 2.1]]}]}))
+    return path, openings
+
+
+def without_seconds(result):
+    out = dict(result)
+    out["summary"] = {k: v for k, v in result["summary"].items() if k != "seconds"}
+    return out
+
+
+def assert_same_annual(a, b):
+    assert a.keys() == b.keys()
+    for name in a:
+        if isinstance(a[name], np.ndarray):
+            assert a[name].dtype == b[name].dtype and np.array_equal(a[name], b[name]), name
+        else:
+            assert without_seconds(a)[name] == without_seconds(b)[name], name
+
+
+def test_annual_on_a_cluster_equals_one_process_bit_for_bit(tmp_path, cluster):
+    """The records' study and the study with real cutters, in 2 and 3 shards, against one process:
+    every hour of every sensor, the metrics and the files, but the study's seconds."""
+    path, openings = write_annual_room(tmp_path)
+    scene = fenestra.load_scene(str(path))
+    ops = fenestra.read_openings(str(openings))
+    one = fenestra.annual(scene, ops, output=str(tmp_path / "one"))
+    one_cut = fenestra.annual(scene, ops, cutters=True, paths=32)
+    assert one["illuminance"].max() > 1000 and one["summary"]["space"]["annual_sunlight_exposure"] >= 0
+    for shards in (2, 3):
+        many = distributed.annual(str(path), ops, cluster, shards=shards, output=str(tmp_path / "many"))
+        assert_same_annual(many, one)
+        assert_same_annual(distributed.annual(str(path), ops, cluster, shards=shards, cutters=True, paths=32), one_cut)
+    a, b = np.load(tmp_path / "one.npz"), np.load(tmp_path / "many.npz")
+    assert a.files == b.files and all(np.array_equal(a[n], b[n]) for n in a.files)
+    ja, jb = (json.loads((tmp_path / n).read_text()) for n in ("one.json", "many.json"))
+    assert {k for k in ja if ja[k] != jb[k]} <= {"seconds"}
+    # The real cutters see the opening the records see, within their noise.
+    assert not np.array_equal(one_cut["illuminance"], one["illuminance"])
+
+
+def test_annual_on_a_cluster_refuses_bad_arguments_before_any_work(tmp_path, cluster, monkeypatch):
+    path, openings = write_annual_room(tmp_path)
+    ops = fenestra.read_openings(str(openings))
+    from fenestra.distributed import annual_study as annual_module
+
+    def traced(*args, **kwargs):
+        raise AssertionError("work started")
+
+    monkeypatch.setattr(annual_module, "_contributions", traced)
+    off_wall = [{"corners": [[0.5, 1, 0.9], [2.5, 1, 0.9], [2.5, 1, 2.1], [0.5, 1, 2.1]]}]
+    for kwargs, message in (({"openings": off_wall}, "opening 0"),
+                            ({"paths": 16}, "paths belongs to annual\\(cutters=True\\)"),
+                            ({"paths": -1, "cutters": True}, "paths must be a whole number"),
+                            ({"cutters": "yes"}, "cutters"),
+                            ({"output": str(tmp_path)}, "directory")):
+        args = dict(openings=ops, **kwargs) if "openings" not in kwargs else kwargs
+        with pytest.raises((ValueError, TypeError), match=message):  # as fenestra.annual raises them
+            distributed.annual(str(path), cluster=cluster, **args)
+    floor = write_floor(tmp_path, sensors=4, paths=64)
+    with pytest.raises(ValueError, match="needs a scene whose sky is \"climate\""):
+        distributed.annual(str(floor), ops, cluster)
+
+
+def without_capture_date(exr):
+    """An OpenEXR file's bytes without the value of its capDate attribute (the time it was written)."""
+    data = (exr).read_bytes()
+    at = data.index(b"capDate\0string\0")
+    start = at + len(b"capDate\0string\0")
+    length = int.from_bytes(data[start:start + 4], "little")
+    assert 0 < length < 64
+    return data[:start + 4] + data[start + 4 + length:]
+
+
+def test_cli_annual_and_sky_on_a_local_cluster_write_what_one_process_writes(tmp_path):
+    path, openings = write_annual_room(tmp_path)
+    for name, extra in (("one", []), ("many", ["--workers", 2, "--threads", 1, "--shards", 3])):
+        for kind, more in (("", []), ("_cut", ["--cutters", "--paths", 32])):
+            r = cli("annual", path, "--openings", openings, "-o", tmp_path / (name + kind), "--quiet", *extra, *more)
+            assert r.returncode == 0, r.stderr
+            assert "wrote" in r.stdout
+        r = cli("sky", path, "-o", tmp_path / (name + ".exr"), "--json", tmp_path / (name + "_sky.json"), "--quiet",
+                *extra[:4])  # one worker builds the sky: no shards
+        assert r.returncode == 0, r.stderr
+        assert "horizontal illuminance" in r.stdout
+    for kind in ("", "_cut"):
+        a, b = np.load(tmp_path / ("one%s.npz" % kind)), np.load(tmp_path / ("many%s.npz" % kind))
+        assert a.files == b.files and all(np.array_equal(a[n], b[n]) for n in a.files), kind
+        ja, jb = (json.loads((tmp_path / (n + kind + ".json")).read_text()) for n in ("one", "many"))
+        assert {k for k in ja if ja[k] != jb[k]} <= {"seconds"}, kind
+    assert without_capture_date(tmp_path / "one.exr") == without_capture_date(tmp_path / "many.exr")
+    one, many = (json.loads((tmp_path / n).read_text()) for n in ("one_sky.json", "many_sky.json"))
+    # The worker reads the weather file by its absolute path; the time to build the map is its own.
+    assert {k for k in one if one[k] != many[k]} <= {"build_seconds", "description"}
+    assert one["horizontal_illuminance"] == many["horizontal_illuminance"] and one["suns"] == many["suns"]

@@ -82,6 +82,7 @@ class Contributions:
     def annual(self, open: npt.ArrayLike, progress: Optional[Progress] = None) -> dict: ...  # arrays (lux) and "summary"
     def annual_openings(self, scene: Scene, openings: npt.ArrayLike | str, progress: Optional[Progress] = None
                         ) -> dict: ...
+    def annual_parts(self, scene: Scene, openings: npt.ArrayLike | str) -> tuple: ...  # (sources, direct, mean, stderr)
     def save_annual(self, scene: Scene, openings: npt.ArrayLike | str, path: str) -> Tuple[str, str]: ...
     def save(self, scene: Scene, path: str) -> Tuple[str, str]: ...
 
@@ -140,6 +141,10 @@ def annual_with_cutters(scene: Scene, openings: npt.ArrayLike | str, paths: int 
 def annual_cut_coefficients(scene: Scene, openings: npt.ArrayLike | str, progress: Optional[Progress] = None,
                             sensors: Optional[Tuple[int, int]] = None, paths: int = 0
                             ) -> tuple: ...  # (sources, direct, mean, stderr, paths per sensor)
+def annual_from_shards(scene: Scene, parts: tuple, paths_per_sensor: int, cutters: bool, dropped_non_finite: int = 0,
+                       dropped_truncated_conditions: int = 0, warnings: list[str] = [], output: str = "",
+                       seconds: float = 0.0) -> dict: ...  # the annual study of a sharded study's stacked parts
+def check_openings(scene: Scene, openings: npt.ArrayLike | str) -> None: ...  # ValueError: an opening an annual study refuses
 def constraint_violations(scene: Scene, openings: npt.ArrayLike | str) -> list[str]: ...  # empty: every constraint met
 def write_image(path: str, image: npt.ArrayLike) -> None: ...
 def read_openings(path: str) -> npt.NDArray[np.float64] | list[dict]: ...  # a list when any opening is by parameter_rectangle
@@ -147,6 +152,9 @@ def goal_error(goals: npt.ArrayLike, values: npt.ArrayLike, weights: npt.ArrayLi
 def check_open_masks(masks: npt.ArrayLike, elements: int, batch: bool = False
                      ) -> npt.NDArray[np.uint8]: ...  # 0 and 1 only; ValueError naming the first other entry
 def sky_map(scene: Scene) -> npt.NDArray[np.float32]: ...  # (height, width, 3), cd/m^2, top row = zenith
+def check_image_path(path: str) -> None: ...  # ValueError unless an image can be written there
+def write_sky_outputs(scene: Scene, path: str, map: npt.ArrayLike, summary: str, json_path: str = ""
+                      ) -> str: ...  # as `fenestra sky` writes them; returns its lines about the sky
 def sky_warnings(scene: Scene) -> list[str]: ...  # a weather file's warnings, a place far from its station
 def sky_summary(scene: Scene) -> str: ...  # JSON: horizontal illuminances (lux), sun list
 def write_sky(scene: Scene, path: str) -> None: ...

@@ -1,4 +1,4 @@
-"""`fenestra solve|contributions|evaluate ... --workers N | --scheduler ADDRESS`: the command line's
+"""`fenestra solve|contributions|evaluate|annual|sky ... --workers N | --scheduler ADDRESS`: the command line's
 studies sharded over a Dask cluster (fenestra.distributed). The `fenestra` program hands such runs
 to this module (python3 -m fenestra.distributed_cli, the same arguments); outputs are the same
 files, written whole or not at all, after every shard has finished."""
@@ -14,15 +14,21 @@ USAGE = """usage:
   fenestra solve SCENE.json -o RESULT.json (--workers N | --scheduler ADDRESS) [options]
   fenestra contributions SCENE.json -o OUT[.npz] (--workers N | --scheduler ADDRESS) [options]
   fenestra evaluate SCENE.json --openings OPENINGS.json -o OUT.json (--workers N | --scheduler ADDRESS) [options]
+  fenestra annual SCENE.json --openings OPENINGS.json -o OUT[.npz] [--cutters] (--workers N | --scheduler ADDRESS)
+      [options]
+  fenestra sky SCENE.json -o SKY.exr [--json SUMMARY.json] (--workers N | --scheduler ADDRESS)
 
 cluster options (docs/distributed.md):
   --workers N          start a local Dask cluster of N worker processes (1 to 1024)
   --scheduler ADDRESS  use a running Dask scheduler, e.g. tcp://host:8786
-  --shards N           blocks of sensors (default: one per worker)
+  --shards N           blocks of sensors (default: one per worker; not for sky, which one worker builds)
   --threads N          threads per local worker (default: the cores shared out)
 other options as for a single process: --paths N, --seed N, --quiet, --strict, --max-memory SIZE
-(a local worker's memory limit)
+(a local worker's memory limit), --cutters (annual), --json PATH (sky)
 """
+
+
+COMMANDS = ("solve", "contributions", "evaluate", "annual", "sky")
 
 
 class UsageError(Exception):
@@ -38,10 +44,10 @@ def warn_if_dropped(dropped):
 
 
 def parse(argv):
-    a = {"positional": [], "quiet": False, "strict": False}
+    a = {"positional": [], "quiet": False, "strict": False, "cutters": False}
     flags = {"-o": "output", "--output": "output", "--openings": "openings", "--workers": "workers",
              "--scheduler": "scheduler", "--shards": "shards", "--threads": "threads", "--paths": "paths",
-             "--seed": "seed", "--max-memory": "max_memory"}
+             "--seed": "seed", "--max-memory": "max_memory", "--json": "summary"}
     integers = {"workers": (1, 1024), "shards": (1, 1 << 20), "threads": (0, 4096), "paths": (1, 1 << 30),
                 "seed": (0, 1 << 53)}
     i = 0
@@ -54,6 +60,8 @@ def parse(argv):
             a["quiet"] = True
         elif arg == "--strict":
             a["strict"] = True
+        elif arg == "--cutters":
+            a["cutters"] = True
         elif arg in flags:
             if i + 1 >= len(argv):
                 raise UsageError("%s needs a value" % arg)
@@ -71,16 +79,21 @@ def parse(argv):
         else:
             a["positional"].append(arg)
         i += 1
-    if a["positional"] and a["positional"][0] in ("annual", "sky"):
-        raise UsageError("%s does not run on a Dask cluster yet: solve, contributions and evaluate do; run %s on "
-                         "one machine (without --workers, --scheduler and --shards)" % ((a["positional"][0],) * 2))
-    if len(a["positional"]) != 2 or a["positional"][0] not in ("solve", "contributions", "evaluate"):
-        raise UsageError("expected 'solve', 'contributions' or 'evaluate' and one scene file")
+    if len(a["positional"]) != 2 or a["positional"][0] not in COMMANDS:
+        raise UsageError("expected 'solve', 'contributions', 'evaluate', 'annual' or 'sky' and one scene file")
     a["command"], a["scene"] = a["positional"]
     if "output" not in a:
         raise UsageError("%s needs -o OUT" % a["command"])
-    if a["command"] == "evaluate" and "openings" not in a:
-        raise UsageError("evaluate needs --openings OPENINGS.json")
+    if a["command"] in ("evaluate", "annual") and "openings" not in a:
+        raise UsageError("%s needs --openings OPENINGS.json" % a["command"])
+    if a["cutters"] and a["command"] != "annual":
+        raise UsageError("--cutters belongs to the annual command")
+    if "summary" in a and a["command"] != "sky":
+        raise UsageError("--json belongs to the sky command")
+    if a["command"] == "sky":
+        for flag, name in (("--shards", "shards"), ("--paths", "paths"), ("--seed", "seed"), ("--strict", "strict")):
+            if a.get(name):
+                raise UsageError("%s does not apply to sky: one worker builds the sky" % flag)
     if ("workers" in a) == ("scheduler" in a):
         raise UsageError("give --workers N (a local cluster) or --scheduler ADDRESS (a running one)")
     for flag, name in (("--threads", "threads"), ("--max-memory", "max_memory")):
@@ -90,10 +103,10 @@ def parse(argv):
 
 
 def output_paths(a):
-    if a["command"] == "contributions":
+    if a["command"] in ("contributions", "annual"):
         from fenestra import _core
         return list(_core.npz_json_pair(a["output"]))
-    return [a["output"]]
+    return [a["output"]] + ([a["summary"]] if "summary" in a else [])
 
 
 def run(a):
@@ -106,7 +119,10 @@ def run(a):
     _core.check_output_paths(output_paths(a), inputs)
     # The setup checks, as one process runs them (docs/outputs.md, "Setup warnings"): printed before
     # any work, or with --strict an error.
-    setup = fenestra.api.setup_messages(scene, a["command"], a["strict"])
+    if a["command"] == "sky":
+        return run_sky(a, scene)
+    stage = "evaluate" if a["command"] == "annual" else a["command"]  # as one process checks an annual study
+    setup = fenestra.api.setup_messages(scene, stage, a["strict"])
     for message in setup:
         print("fenestra: warning: %s" % message, file=sys.stderr)
     if a["command"] == "solve":
@@ -127,6 +143,8 @@ def run(a):
                       % (c.E.shape[0], c.E.shape[1], c.paths_per_sensor, len(c.shards), seconds))
                 print("wrote %s\nwrote %s" % tuple(written))
                 warn_if_dropped(c.dropped)
+        elif a["command"] == "annual":
+            return run_annual(a, scene, cluster, setup, start)
         else:
             openings = fenestra.read_openings(a["openings"])
             value, stderr = distributed.evaluate(scene, openings, cluster, shards=a.get("shards"), callback=progress)
@@ -134,6 +152,47 @@ def run(a):
             print("evaluate: %d sensors, %d shards, %.2f s\nwrote %s"
                   % (len(value), len(distributed.client._blocks(len(value), a.get("shards") or len(cluster.workers()))),
                      time.monotonic() - start, a["output"]))
+    return 0
+
+
+def run_annual(a, scene, cluster, setup, start):
+    """The annual study on the cluster: its files as `fenestra annual` writes them, and a summary."""
+    import fenestra
+    from fenestra import distributed
+
+    if not scene.has_climate:
+        raise ValueError("scene '%s': annual needs a sky of type \"climate\" (a weather file; docs/scene-format.md)"
+                         % a["scene"])
+    say, progress = reporters(a)
+    openings = fenestra.read_openings(a["openings"])
+    r = distributed.annual(scene, openings, cluster, shards=a.get("shards"), output=a["output"], callback=progress,
+                           cutters=a["cutters"], warnings=setup)
+    m = r["summary"]
+    space = m["space"]
+    print("annual%s: %d sensors x %d hours (%d occupied), %d paths per sensor, %d workers; %.2f s"
+          % (" (openings cut)" if a["cutters"] else "", m["sensors"], m["hours"], m["occupied_hours"],
+             m["paths_per_sensor"], len(cluster.workers()), time.monotonic() - start))
+    print("sDA %.1f %%, ASE %.1f %%, mean DA %.1f %%, mean illuminance %.0f lx"
+          % (100 * space["spatial_daylight_autonomy"], 100 * space["annual_sunlight_exposure"],
+             100 * space["daylight_autonomy"], space["mean_illuminance_lux"]))
+    from fenestra import _core
+    print("wrote %s\nwrote %s" % tuple(_core.npz_json_pair(a["output"])))
+    if not a["cutters"]:
+        warn_if_dropped(m.get("dropped"))
+    return 0
+
+
+def run_sky(a, scene):
+    """The sky built on a worker, its map (and summary) written as `fenestra sky` writes them."""
+    from fenestra import distributed
+
+    say, _ = reporters(a)
+    with cluster_of(a) as cluster:
+        say("cluster: %d workers at %s" % (len(cluster.workers()), cluster.address))
+        report = distributed.write_sky(a["scene"], a["output"], cluster, json_path=a.get("summary"))
+    print("%swrote %s" % (report, a["output"]))
+    if "summary" in a:
+        print("wrote %s" % a["summary"])
     return 0
 
 

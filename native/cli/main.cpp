@@ -77,11 +77,11 @@ options:
   --quiet       no progress on stderr
   -h, --help    this text
 
-on a Dask cluster (solve, contributions and evaluate; docs/distributed.md), sharded by sensors, with
-results equal bit for bit to a single process's:
+on a Dask cluster (solve, contributions, evaluate and annual sharded by sensors; sky built on a
+worker; docs/distributed.md), with results equal bit for bit to a single process's:
   --workers N          start a local cluster of N worker processes
   --scheduler ADDRESS  use a running Dask scheduler, e.g. tcp://host:8786
-  --shards N           blocks of sensors (default: one per worker)
+  --shards N           blocks of sensors (default: one per worker; not for sky)
 
 Values are luminance-weighted irradiance: lux when the sky is given in cd/m^2.
 Outputs are checked before the run (never an input, a symbolic link or a device) and written whole

@@ -633,6 +633,10 @@ void bind_solve_with_records(py::module_& m) {
 
 }  // namespace
 
+AnnualRegionParts annual_parts_of(const py::handle& parts, Eigen::Index sensors, const AnnualRecords& annual) {
+  return annual_parts_from(parts, sensors, annual);
+}
+
 void bind_record_queries(py::module_& m) {
   bind_shard_queries(m);
   bind_solve_with_records(m);

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -15,6 +16,7 @@
 
 #include "annual/annual_contributions.h"
 #include "annual/annual_cut_study.h"
+#include "annual/annual_records.h"
 #include "annual/annual_study.h"
 #include "format/atomic_file.h"
 #include "format/image_writer.h"
@@ -45,6 +47,10 @@ void bind_shards(py::module_& m);    // bind_shards.cpp
 void bind_record_queries(py::module_& m);  // bind_record_queries.cpp
 void bind_setup_checks(py::module_& m);    // bind_setup_checks.cpp
 py::tuple annual_parts_tuple(const fenestra::AnnualCoefficients& k, const fenestra::SensorValues& mean);  // bind_record_queries.cpp
+// A study's annual parts from its shards, stacked in sensor order (annual_parts_tuple's form), checked
+// against `annual`'s sources and sun hours.
+fenestra::AnnualRegionParts annual_parts_of(const py::handle& parts, Eigen::Index sensors,
+                                            const fenestra::AnnualRecords& annual);  // bind_record_queries.cpp
 
 namespace {
 
@@ -479,6 +485,21 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("scene"), py::arg("openings"), py::arg("progress") = nullptr,
           "The annual study of openings (as for evaluate_openings).")
+      .def(
+          "annual_parts",
+          [](const Contributions& c, const Scene& scene, const py::object& openings) {
+            const OpenRegion region = region_of_openings(scene, openings_from(openings, scene.site));
+            AnnualRegionParts parts;
+            {
+              py::gil_scoped_release release;
+              parts = while_doing("computing the annual coefficients", [&] { return annual_region_parts(c, region); });
+            }
+            return annual_parts_tuple(parts.coefficients, parts.occupied_mean);
+          },
+          py::arg("scene"), py::arg("openings"),
+          "What annual_openings is made of, for these contributions' sensors (a shard's on a cluster): (sources, "
+          "direct, mean, stderr), the daylight coefficients per sensor and source and per sun hour, and the occupied "
+          "hours' mean illuminance with its standard error (lux).")
       .def("save_annual",
            [](const Contributions& c, const Scene& scene, const py::object& openings, const std::string& out) {
              const OpenRegion region = region_of_openings(scene, openings_from(openings, scene.site));
@@ -553,6 +574,46 @@ PYBIND11_MODULE(_core, m) {
       "The annual study of openings (as for evaluate) from paths traced with them really cut, no records "
       "kept: the same dict as Contributions.annual_openings. `paths` per sensor, 0 for the scene's "
       "render.paths_per_sensor. With `output`, also writes OUTPUT.npz and OUTPUT.json.");
+  m.def(
+      "check_openings",
+      [](const Scene& scene, const py::object& openings) { region_of_openings(scene, openings_from(openings, scene.site)); },
+      py::arg("scene"), py::arg("openings"),
+      "Raises ValueError, naming the opening, unless every opening (as for evaluate) lies on the scene's domain as "
+      "an annual study needs it (on its elements; in thick walls on the element grid's lines).");
+  m.def(
+      "annual_from_shards",
+      [](const Scene& scene, const py::tuple& parts, int paths_per_sensor, bool cutters, uint64_t dropped_non_finite,
+         uint64_t dropped_truncated_conditions, const std::vector<std::string>& warnings, const std::string& output,
+         double seconds) {
+        const auto start = std::chrono::steady_clock::now();
+        if (!scene.climate)
+          throw std::invalid_argument("scene '" + scene.source + "': an annual study needs a sky of type \"climate\"");
+        std::shared_ptr<const AnnualRecords> annual = prepare_annual(scene);
+        AnnualRegionParts whole = annual_parts_of(parts, static_cast<Eigen::Index>(scene.sensors.size()), *annual);
+        AnnualStudy study;
+        {
+          py::gil_scoped_release release;
+          if (cutters) {  // as annual_study_with_cutters assembles its one pass
+            AnnualCutCoefficients k{std::move(whole.coefficients), std::move(whole.occupied_mean), paths_per_sensor, annual};
+            study = annual_cut_study_of(scene, std::move(k));
+          } else {  // as annual_study assembles the records' coefficients
+            study = annual_study_of(whole.coefficients, annual, whole.occupied_mean);
+            study.paths_per_sensor = paths_per_sensor;
+            study.dropped = {dropped_non_finite, dropped_truncated_conditions};
+          }
+          study.warnings = warnings;
+          study.seconds = seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          if (!output.empty()) write_annual(scene, study, output);
+        }
+        return annual_dict(study);
+      },
+      py::arg("scene"), py::arg("parts"), py::arg("paths_per_sensor"), py::arg("cutters"),
+      py::arg("dropped_non_finite") = 0, py::arg("dropped_truncated_conditions") = 0,
+      py::arg("warnings") = std::vector<std::string>(), py::arg("output") = "", py::arg("seconds") = 0.0,
+      "The annual study of a study sharded by sensors, from its shards' parts stacked in sensor order (as "
+      "Contributions.annual_parts or annual_cut_coefficients give them): the dict annual_openings returns. With "
+      "`output`, also writes OUTPUT.npz and OUTPUT.json (as `fenestra annual`). `seconds`: what the parts took, added "
+      "to the study's own seconds (its year's time).");
   m.def(
       "annual_cut_coefficients",
       [](const Scene& scene, const py::object& openings, std::shared_ptr<Progress> progress, const py::object& sensors,
@@ -634,6 +695,34 @@ PYBIND11_MODULE(_core, m) {
         write_sky_image(path, sky_image(*scene.sky, scene.daylight.get()));
       },
       py::arg("scene"), py::arg("path"), "Writes the scene's sky map (.exr or .hdr).");
+  m.def(
+      "check_image_path", [](const std::string& path) { encode_image(path, 1, 1, 3, {0.0f, 0.0f, 0.0f}); },
+      py::arg("path"), "Raises ValueError unless an image can be written to path in the format its extension names.");
+  m.def(
+      "write_sky_outputs",
+      [](const Scene& scene, const std::string& path, py::array_t<float, py::array::c_style | py::array::forcecast> map,
+         const std::string& summary_text, const std::string& json_path) {
+        if (map.ndim() != 3 || map.shape(2) != 3) throw std::invalid_argument("map must have shape (height, width, 3)");
+        const nlohmann::json summary = parse_json_text(summary_text, "the sky summary for", json_path);
+        const std::vector<float> flat(map.data(), map.data() + map.size());
+        std::string bytes;
+        {
+          py::gil_scoped_release release;
+          bytes = encode_image(path, static_cast<int>(map.shape(1)), static_cast<int>(map.shape(0)), 3, flat);
+          // The map and the summary appear together or not at all, as `fenestra sky` writes them.
+          std::vector<OutputFile> files = {
+              {path, [&](std::ostream& o) { o.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); }}};
+          if (!json_path.empty())
+            files.push_back({json_path, [&](std::ostream& o) {
+                               o << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+                             }});
+          write_files_atomically(files, scene.input_files);
+        }
+        return sky_report(summary);
+      },
+      py::arg("scene"), py::arg("path"), py::arg("map"), py::arg("summary"), py::arg("json_path") = "",
+      "Writes a sky map (sky_map's array) and, with json_path, its summary (sky_summary's JSON text) as `fenestra "
+      "sky` writes them, together or not at all; returns the lines it prints about the sky.");
   m.def(
       "sky_warnings",
       [](const Scene& scene) {

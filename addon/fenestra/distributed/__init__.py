@@ -1,4 +1,5 @@
-"""Studies past one machine: contributions and evaluation sharded by sensors over a Dask cluster.
+"""Studies past one machine: contributions, evaluation, solves and annual studies sharded by sensors
+over a Dask cluster, and the sky built on a worker.
 
 Each sensor's paths are independent and seeded by the sensor's index in the scene, so a study
 splits into blocks of consecutive sensors (shards). Every shard runs the native core on a Dask
@@ -19,13 +20,16 @@ docs/distributed.md explains running a cluster on several machines.
 The package's rooms: cluster (Cluster: the Dask client, its workers checked and watched), worker
 (what the workers run: the shards' contributions, evaluations and solve sessions, held in the
 worker's memory), client (the study's side: sharding, gathering, DistributedContributions,
-contributions, evaluate, solve) and identity (what client and workers must agree on).
+contributions, evaluate, solve), annual_study (annual studies), sky_map (the sky built on a worker) and
+identity (what client and workers must agree on).
 """
 
+from .annual_study import annual
 from .client import (DistributedContributions, check_client_fits, check_shards_fit, contributions, evaluate, solve,
                      worker_memory)
 from .cluster import Cluster, ClusterError
 from .identity import PROTOCOL
+from .sky_map import sky, write_sky
 
-__all__ = ["Cluster", "ClusterError", "DistributedContributions", "PROTOCOL", "check_client_fits", "check_shards_fit",
-           "contributions", "evaluate", "solve", "worker_memory"]
+__all__ = ["Cluster", "ClusterError", "DistributedContributions", "PROTOCOL", "annual", "check_client_fits",
+           "check_shards_fit", "contributions", "evaluate", "sky", "solve", "worker_memory", "write_sky"]

@@ -253,3 +253,20 @@ def _evaluate_cut_session(key, sensors, spec, openings, paths, stream=0):
 def _annual_cut_session(key, sensors, spec, openings, paths):
     """The shard's sensors' year path-traced with the openings cut (the climate goals' check)."""
     return _core.annual_cut_coefficients(_scene_of(spec), openings, None, sensors, paths)
+
+
+def _annual_parts_shard(key, sensors, spec, openings):
+    """The shard's daylight coefficients and occupied hours' mean with the openings open, from its records."""
+    return _held(key).annual_parts(_scene_of(spec), openings)
+
+
+def _annual_cut_shard(spec, key, openings, begin, end, paths):
+    """The shard's sensors' year path-traced with the openings cut, no records kept (annual --cutters)."""
+    scene = _scene_of(spec)
+    return _tracked(key, lambda progress: _core.annual_cut_coefficients(scene, openings, progress, (begin, end), paths))
+
+
+def _sky_of(spec):
+    """The scene's sky as `fenestra sky` writes it: the map and the summary's JSON text."""
+    scene = _scene_of(spec)
+    return _core.sky_map(scene), _core.sky_summary(scene)
