@@ -13,6 +13,7 @@
 #include "scene/scene.h"
 #include "solve/climate_design.h"
 #include "solve/climate_search.h"
+#include "solve/record_queries.h"
 #include "solve/element_grid.h"
 #include "solve/solver.h"
 #include "trace/contributions.h"
@@ -54,16 +55,16 @@ int main() {
               c.paths_per_sensor, contributions_s);
 
   t = std::chrono::steady_clock::now();
-  const HourlyFlipModel model =
-      hourly_flip_model(c, std::vector<uint8_t>(c.element_count(), 0), problem.rows, problem.columns);
+  LocalRecordQueries records(scene, c, nullptr);
+  const std::unique_ptr<ClimateModel> model = records.climate_model(problem, std::vector<uint8_t>(c.element_count(), 0), {});
   const double model_s = seconds_since(t);
-  std::printf("  hourly model: %.2f s, %.0f MB\n", model_s, static_cast<double>(model.memory_bytes()) / 1e6);
+  std::printf("  hourly model: %.2f s, %.0f MB\n", model_s, model->model_bytes() / 1e6);
 
   GeneticSettings ga;
   ga.generations = 500;
   t = std::chrono::steady_clock::now();
   const GeneticResult r =
-      run_climate_genetic(model, *problem.objective, grid, {std::vector<uint8_t>(c.element_count(), 0)}, ga);
+      run_climate_genetic(*model, *problem.objective, grid, {std::vector<uint8_t>(c.element_count(), 0)}, ga);
   const double ga_s = seconds_since(t);
   const double children = static_cast<double>(r.generations) * ga.population;
   std::printf("  genetic algorithm: %d generations x %d children in %.2f s (%.0f children/s; target: 500 "

@@ -14,6 +14,7 @@
 #include "solve/climate_design.h"
 #include "solve/climate_search.h"
 #include "solve/element_grid.h"
+#include "solve/record_queries.h"
 #include "solve/solver.h"
 #include "test_scenes.h"
 
@@ -159,11 +160,13 @@ TEST(ClimateGoals, GeneticFitnessEqualsFullRecomputationOfItsBest) {
   const ElementGrid grid = ElementGrid::from_domain(f.scene.domain);
   const HourlyFlipModel model = hourly_flip_model(f.c, std::vector<uint8_t>(f.c.element_count(), 0), f.problem.rows,
                                                   f.problem.columns);
+  LocalRecordQueries records(f.scene, f.c, nullptr);
+  const std::vector<uint8_t> closed(f.c.element_count(), 0);
+  const std::unique_ptr<ClimateModel> shards = records.climate_model(f.problem, closed, {});
   GeneticSettings ga;
   ga.population = 16;
   ga.generations = 30;
-  const GeneticResult r = run_climate_genetic(model, *f.problem.objective, grid,
-                                              {std::vector<uint8_t>(f.c.element_count(), 0)}, ga);
+  const GeneticResult r = run_climate_genetic(*shards, *f.problem.objective, grid, {closed}, ga);
   const ClimateResponse full = climate_response(model, *f.problem.objective, r.best);
   const double expected = f.problem.objective->error(full.total, full.direct, full.open_area) +
                           shape_penalty(ga.shape, shape_counts(grid, r.best));
@@ -172,9 +175,24 @@ TEST(ClimateGoals, GeneticFitnessEqualsFullRecomputationOfItsBest) {
   tbb::task_arena one(1);
   GeneticResult again;
   one.execute([&] {
-    again = run_climate_genetic(model, *f.problem.objective, grid, {std::vector<uint8_t>(f.c.element_count(), 0)}, ga);
+    again = run_climate_genetic(*shards, *f.problem.objective, grid, {closed}, ga);
   });
   EXPECT_EQ(again.best, r.best);
+  EXPECT_EQ(again.best_fitness, r.best_fitness);
+  // The model in three shards of the sensors (as a cluster holds it): the same search, bit for bit.
+  std::vector<std::unique_ptr<ClimateShard>> parts;
+  std::vector<Contributions> blocks;
+  for (SensorRange b : {SensorRange{0, 2}, SensorRange{2, 3}, SensorRange{3, 6}})
+    blocks.push_back(compute_contributions(f.scene, nullptr, false, b));
+  const std::vector<SensorRange> ranges = {{0, 2}, {2, 3}, {3, 6}};
+  for (size_t i = 0; i < blocks.size(); ++i)
+    parts.push_back(LocalRecordQueries(f.scene, blocks[i], nullptr, ranges[i]).climate_shard(f.problem, closed, {}));
+  LocalClimateModel sharded(*f.problem.objective, std::move(parts));
+  const GeneticResult split = run_climate_genetic(sharded, *f.problem.objective, grid, {closed}, ga);
+  EXPECT_EQ(split.best, r.best);
+  EXPECT_EQ(split.best_fitness, r.best_fitness);
+  ASSERT_EQ(split.history.size(), r.history.size());
+  for (size_t g = 0; g < r.history.size(); ++g) EXPECT_EQ(split.history[g].mean, r.history[g].mean) << g;
 }
 
 TEST(ClimateGoals, SolveMeetsReachableGoalsWithTheLeastGlazing) {

@@ -470,6 +470,8 @@ def without_timings(result):
     result["stages"] = [s for s in result["stages"] if s["name"] != "contributions"]
     for stage in result["stages"]:
         stage.pop("seconds")
+    if "climate" in result:  # the hourly model's bytes over its shards: each stores its own sensors'
+        assert result["climate"].pop("model_bytes") > 0
     return result
 
 
@@ -591,9 +593,10 @@ def write_climate_room(tmp_path):
 
 
 def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tmp_path, monkeypatch):
-    """Climate goals: the hourly models' rows and the years of openings (from the records, and
-    traced with real cutters) come from the shards; a worker killed while the first model is asked
-    for is recomputed, and the result is the same bit for bit."""
+    """Climate goals: the hourly model stays in the shards, which settle the search's states and
+    answer in tallies; the years of openings (from the records, and traced with real cutters) come
+    from the shards. A worker killed in the middle of the genetic search (its shards' states lost)
+    is recomputed and brought back to the search's state, and the result is the same bit for bit."""
     path = write_climate_room(tmp_path)
     one = quietly(fenestra.solve, fenestra.load_scene(str(path)))
     climate = one["climate"]
@@ -603,7 +606,8 @@ def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tm
 
     def ask(records, op, *args):
         seen["ops"].add(op)
-        if op == "hourly_model" and not seen["killed"]:
+        seen[op] = seen.get(op, 0) + 1
+        if op == "climate_settle" and seen[op] == 4 and not seen["killed"]:
             seen["killed"] += 1
             os.kill(worker_pids(cluster)[records._study.shards[0][2]], signal.SIGKILL)
         result = asked(records, op, *args)
@@ -614,7 +618,8 @@ def test_a_climate_solve_on_a_cluster_equals_one_process_with_a_worker_killed(tm
     # A cluster of its own: the killed worker's restart is not waited for (the shared one stays whole).
     with distributed.Cluster(workers=2, threads_per_worker=1, timeout=30) as cluster:
         many = quietly(distributed.solve, str(path), cluster, shards=3)
-    assert {"hourly_model", "annual_parts", "exact"} <= seen["ops"], seen
+    assert {"climate_model", "climate_settle", "climate_flip_tallies", "climate_tally", "annual_parts",
+            "exact"} <= seen["ops"], seen
     assert seen["killed"] == 1 and seen["recomputed"] >= 1
     assert without_timings(many) == without_timings(one)
 
@@ -742,9 +747,9 @@ def test_record_queries_refuse_bad_arguments_and_bad_answers(tmp_path):
 
 
 def test_record_queries_refuse_bad_climate_arguments_and_bad_answers(tmp_path):
-    """Climate goals' queries: rows and hours out of range, columns of the wrong form and records of
-    another sky are named; a records object whose hourly model has the wrong shape, or leaves a row
-    out, is named by the solver."""
+    """Climate goals' queries on a shard: states, slots, elements and goals of the wrong form, and
+    records of another sky, are named; a records object whose shards answer in tallies of another
+    model, or for another number of states, is named by the solver."""
     from fenestra import _core
     from test_climate_goals import SDA_ASE, climate_room
 
@@ -753,23 +758,39 @@ def test_record_queries_refuse_bad_climate_arguments_and_bad_answers(tmp_path):
     c = fenestra.contributions(scene)
     q = _core.RecordQueries(scene, c)
     n, sensors = scene.element_count, scene.sensor_count
-    about = np.zeros(n, dtype=np.uint8)
-    hours = np.arange(8, 18, dtype=np.int32)
-    columns = (hours, np.ones(10, np.uint8), np.zeros(10, np.uint8), 10, 0)
-    rows = np.array([2, 0], dtype=np.int32)
-    total, direct, elements, flips, changes = q.hourly_model(about, rows, columns, True)
-    assert total.shape == direct.shape == (2, 10) and flips.shape == (len(elements), 2, 10)
-    with pytest.raises(ValueError, match="row %d is not one of these records' %d sensors" % (sensors, sensors)):
-        q.hourly_model(about, np.array([sensors], np.int32), columns, False)
-    with pytest.raises(ValueError, match="hour 999999 is not one of the year's"):
-        q.hourly_model(about, rows, (np.array([999999], np.int32), np.ones(1, np.uint8), np.zeros(1, np.uint8), 1, 0),
-                       False)
-    with pytest.raises(ValueError, match="hourly columns: expected"):
-        q.hourly_model(about, rows, (hours,), False)
-    with pytest.raises(ValueError, match="hours and flags differ in length"):
-        q.hourly_model(about, rows, (hours, np.ones(3, np.uint8), np.zeros(10, np.uint8), 10, 0), False)
-    with pytest.raises(ValueError, match=r"open mask must have shape"):
-        q.hourly_model(np.zeros(n + 2, np.uint8), rows, columns, False)
+    about, excluded = np.zeros(n, dtype=np.uint8), np.zeros(n, dtype=np.uint8)
+    goals = np.concatenate([np.full(sensors, np.nan), np.zeros(sensors), np.full(sensors, -np.inf),
+                            np.full(sensors, np.inf)])
+    with pytest.raises(ValueError, match="none was built"):
+        q.climate_flip_tallies(0, np.zeros(1, np.int32))
+    assert q.climate_model(about, excluded, goals) > 0
+    width = (n + 7) // 8
+    states = np.zeros((2, width), np.uint8)
+    states[1, 0] = 0b101  # elements 0 and 2 open
+    tallies = q.climate_settle(np.array([0, 1], np.int32), np.array([-1, 0], np.int32), states)
+    assert len(tallies) == 2
+    hours, sums, above_target, above_minimum = tallies[0]
+    assert len(hours) == 2 and all(len(h) == sensors for h in hours)  # sDA and ASE, per goal sensor
+    assert not np.array_equal(tallies[0][0][0], tallies[1][0][0]) or not np.array_equal(tallies[0][0][1],
+                                                                                      tallies[1][0][1])
+    flipped = q.climate_flip_tallies(0, np.array([0, 2], np.int32))
+    assert len(flipped) == 2
+    for args, message in (((np.array([0], np.int32), np.array([-1], np.int32), np.zeros((1, width + 1), np.uint8)),
+                           "expected as many slots"),
+                          ((np.array([3], np.int32), np.array([7], np.int32), np.zeros((1, width), np.uint8)),
+                           "slot 7 holds no settled state"),
+                          ((np.array([1, 1], np.int32), np.array([-1, -1], np.int32), np.zeros((2, width), np.uint8)),
+                           "written twice")):
+        with pytest.raises(ValueError, match=message):
+            q.climate_settle(*args)
+    with pytest.raises(ValueError, match="element %d is not one of the %d" % (n, n)):
+        q.climate_flip_tallies(0, np.array([n], np.int32))
+    with pytest.raises(ValueError, match="expected the target, weight, lower and upper of %d sensors" % sensors):
+        q.climate_model(about, excluded, goals[:-1])
+    with pytest.raises(ValueError, match="climate model state: expected %d elements" % n):
+        q.climate_model(np.zeros(n + 2, np.uint8), excluded, goals)
+    with pytest.raises(ValueError, match="values must be 0 or 1"):
+        q.climate_tally(np.full(n, 2, np.uint8), goals)
     sources, sun, mean, stderr = q.annual_parts(np.zeros((0, 5)))
     assert sources.shape[0] == sun.shape[0] == len(mean) == len(stderr) == sensors
 
@@ -777,24 +798,44 @@ def test_record_queries_refuse_bad_climate_arguments_and_bad_answers(tmp_path):
     other_scene = fenestra.load_scene(str(write_solve_floor(tmp_path / "other")))
     other_scene.render.paths_per_sensor = 16
     with pytest.raises(ValueError, match="not a climate sky's"):
-        _core.RecordQueries(other_scene, fenestra.contributions(other_scene)).hourly_model(
-            np.zeros(other_scene.element_count, np.uint8), rows, columns, False)
+        _core.RecordQueries(other_scene, fenestra.contributions(other_scene)).climate_model(
+            np.zeros(other_scene.element_count, np.uint8), np.zeros(other_scene.element_count, np.uint8),
+            np.zeros(4 * other_scene.sensor_count))
 
-    class WrongShape:
-        def hourly_model(self, about, rows, columns, flips):
-            bad = np.zeros((1, 1), np.float32)
-            return [(np.arange(len(rows), dtype=np.int32), (bad, bad, np.zeros(0, np.int32), np.zeros((0, 1, 1)),
-                                                            (np.zeros(0, np.int32),) * 3 + (np.zeros(0, np.float32),)))]
+    class Model:
+        model_bytes = 1.0
 
-    with pytest.raises(RuntimeError, match="hourly model part: total is not"):
-        _core.solve_with_records(scene, c, WrongShape())
+        def __init__(self, settle):
+            self.settle = settle
 
-    class MissingRow:
-        def hourly_model(self, about, rows, columns, flips):
-            return [(np.arange(len(rows) - 1, dtype=np.int32), q.hourly_model(about, rows[:-1], columns, flips))]
+        def flip_tallies(self, slot, elements):
+            return [q.climate_flip_tallies(slot, elements)]
 
-    with pytest.raises(ValueError, match="do not cover every row"):
-        _core.solve_with_records(scene, c, MissingRow())
+        def close(self):
+            pass
+
+    class OtherModel:
+        def climate_model(self, about, excluded, goals):
+            q.climate_model(about, excluded, goals)
+            return Model(lambda slots, bases, states: [q.climate_settle(slots, bases, states)])
+
+        def climate_tally(self, open_mask, goals):
+            hours, sums, target, minimum = q.climate_tally(open_mask, goals)
+            return [(hours[:1], sums, target, minimum)]
+
+    with pytest.raises(ValueError, match="climate tally: hours of another model"):
+        _core.solve_with_records(scene, c, OtherModel())
+
+    class FewerStates(OtherModel):
+        def climate_model(self, about, excluded, goals):
+            q.climate_model(about, excluded, goals)
+            return Model(lambda slots, bases, states: [q.climate_settle(slots, bases, states)[:-1]])
+
+        def climate_tally(self, open_mask, goals):
+            return [q.climate_tally(open_mask, goals)]
+
+    with pytest.raises(ValueError, match="answered for"):
+        _core.solve_with_records(scene, c, FewerStates())
 
 
 def test_a_stopped_worker_is_named_within_the_timeout(cluster):

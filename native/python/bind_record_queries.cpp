@@ -3,8 +3,8 @@
 // (`ShardQueries`); the client's solver asks them of a Python object that maps them over the shards
 // (`solve_with_records`, fenestra.distributed). Rectangles travel as (n, 5) float64 arrays
 // [panel, u0, u1, v0, v1] (meters in the panel's parameter domain): exact, unlike text. Climate
-// goals' hourly models and annual coefficients travel as tuples of arrays (`hourly_parts`,
-// `annual_parts_tuple`), stacked by the client's side.
+// goals' model stays in the shards, which answer in tallies (bind_climate_shards.cpp); annual
+// coefficients travel as tuples of arrays (`annual_parts_tuple`), stacked by the client's side.
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -28,12 +28,20 @@
 #include "scene/scene.h"
 #include "solve/record_queries.h"
 #include "solve/region_search.h"
+#include "shard_queries.h"
 #include "solve/solver.h"
 #include "trace/contributions.h"
 #include "util/progress.h"
 
 namespace py = pybind11;
 using namespace fenestra;
+
+// bind_climate_shards.cpp: the climate model's shards across the boundary.
+void bind_shard_climate(py::class_<ShardQueries, std::shared_ptr<ShardQueries>>& queries);
+std::unique_ptr<ClimateModel> python_climate_model(const py::object& backend, const ClimateProblem& problem,
+                                                   const std::vector<uint8_t>& about, const std::vector<uint8_t>& excluded);
+ClimateTally python_climate_tally(const py::object& backend, const ClimateProblem& problem,
+                                  const std::vector<uint8_t>& open);
 
 // Annual coefficients and the occupied hours' mean of some sensors as (sources (sensors, sources)
 // float64, direct (sensors, sun hours) float32, mean, stderr): what a shard sends of an annual study.
@@ -115,100 +123,6 @@ std::vector<T> vector_of_array(const Array& a, const char* what) {
   return std::vector<T>(a.data(), a.data() + a.shape(0));
 }
 
-// The hours an hourly model keeps (HourlyColumns) as (hour, occupied, daylight, occupied_hours,
-// daylight_hours), and back.
-py::tuple columns_tuple(const HourlyColumns& c) {
-  return py::make_tuple(py::array_t<int32_t>(static_cast<py::ssize_t>(c.hour.size()), c.hour.data()),
-                        py::array_t<uint8_t>(static_cast<py::ssize_t>(c.occupied.size()), c.occupied.data()),
-                        py::array_t<uint8_t>(static_cast<py::ssize_t>(c.daylight.size()), c.daylight.data()),
-                        c.occupied_hours, c.daylight_hours);
-}
-
-HourlyColumns columns_from(const py::handle& h) {
-  const py::tuple t = py::cast<py::tuple>(h);
-  if (t.size() != 5) throw std::invalid_argument("hourly columns: expected (hour, occupied, daylight, occupied_hours, daylight_hours)");
-  HourlyColumns c;
-  c.hour = vector_of_array<int>(py::cast<IntArray>(t[0]), "hourly columns' hours");
-  c.occupied = vector_of_array<uint8_t>(py::cast<MaskArray>(t[1]), "hourly columns' occupied flags");
-  c.daylight = vector_of_array<uint8_t>(py::cast<MaskArray>(t[2]), "hourly columns' daylight flags");
-  c.occupied_hours = py::cast<int>(t[3]);
-  c.daylight_hours = py::cast<int>(t[4]);
-  if (c.occupied.size() != c.hour.size() || c.daylight.size() != c.hour.size())
-    throw std::invalid_argument("hourly columns: hours and flags differ in length");
-  return c;
-}
-
-// A rows x columns HourlyMatrix as a (rows, columns) float32 array (both row-major: one copy).
-py::array_t<float> hourly_array(const HourlyMatrix& m) {
-  py::array_t<float> a({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
-  if (m.size()) std::memcpy(a.mutable_data(), m.data(), sizeof(float) * static_cast<size_t>(m.size()));
-  return a;
-}
-
-HourlyMatrix hourly_matrix(const float* data, Eigen::Index rows, Eigen::Index columns) {
-  return Eigen::Map<const HourlyMatrix>(data, rows, columns);
-}
-
-// An hourly model (a shard's rows) as (total, direct, elements, flips, changes): total and direct
-// (rows, hours) lux; the elements whose flips it keeps and their changes (elements, rows, hours);
-// the direct sun's changes as (element, row, column, lux) arrays.
-py::tuple hourly_parts(const HourlyFlipModel& m) {
-  std::vector<int32_t> kept;
-  for (size_t k = 0; k < m.flip_total.size(); ++k)
-    if (m.flip_total[k].size() > 0) kept.push_back(static_cast<int32_t>(k));
-  const py::ssize_t rows = m.total.rows(), columns = m.total.cols();
-  py::array_t<float> flips({static_cast<py::ssize_t>(kept.size()), rows, columns});
-  for (size_t i = 0; i < kept.size(); ++i)
-    std::memcpy(flips.mutable_data() + i * rows * columns, m.flip_total[kept[i]].data(), sizeof(float) * rows * columns);
-  std::vector<int32_t> element, row, column;
-  std::vector<float> lux;
-  for (size_t k = 0; k < m.flip_direct.size(); ++k)
-    for (const DirectChange& d : m.flip_direct[k])
-      element.push_back(static_cast<int32_t>(k)), row.push_back(d.row), column.push_back(d.column), lux.push_back(d.lux);
-  auto array = [](const auto& v) { return py::array(static_cast<py::ssize_t>(v.size()), v.data()); };
-  return py::make_tuple(hourly_array(m.total), hourly_array(m.direct), array(kept), flips,
-                        py::make_tuple(array(element), array(row), array(column), array(lux)));
-}
-
-HourlyFlipModel hourly_part_from(const py::handle& h, Eigen::Index rows, const HourlyColumns& columns, size_t elements) {
-  const py::tuple t = py::cast<py::tuple>(h);
-  if (t.size() != 5) throw std::runtime_error("hourly model part: expected (total, direct, elements, flips, changes)");
-  const Eigen::Index n = static_cast<Eigen::Index>(columns.hour.size());
-  auto matrix = [&](const py::handle& x, const char* what) {
-    const FloatArray a = py::cast<FloatArray>(x);
-    if (a.ndim() != 2 || a.shape(0) != rows || a.shape(1) != n)
-      throw std::runtime_error(std::string("hourly model part: ") + what + " is not " + std::to_string(rows) + " x " +
-                               std::to_string(n));
-    return hourly_matrix(a.data(), rows, n);
-  };
-  HourlyFlipModel m;
-  m.total = matrix(t[0], "total");
-  m.direct = matrix(t[1], "direct");
-  m.flip_total.resize(elements);
-  m.flip_direct.resize(elements);
-  const std::vector<int32_t> kept = vector_of_array<int32_t>(py::cast<IntArray>(t[2]), "hourly model part's elements");
-  const FloatArray flips = py::cast<FloatArray>(t[3]);
-  if (flips.ndim() != 3 || flips.shape(0) != static_cast<py::ssize_t>(kept.size()) || flips.shape(1) != rows ||
-      flips.shape(2) != n)
-    throw std::runtime_error("hourly model part: flips do not match its elements, rows and hours");
-  for (size_t i = 0; i < kept.size(); ++i) {
-    if (kept[i] < 0 || static_cast<size_t>(kept[i]) >= elements) throw std::runtime_error("hourly model part: element out of range");
-    m.flip_total[kept[i]] = hourly_matrix(flips.data() + i * rows * n, rows, n);
-  }
-  const py::tuple changes = py::cast<py::tuple>(t[4]);
-  const auto element = vector_of_array<int32_t>(py::cast<IntArray>(changes[0]), "direct changes");
-  const auto row = vector_of_array<int32_t>(py::cast<IntArray>(changes[1]), "direct changes");
-  const auto column = vector_of_array<int32_t>(py::cast<IntArray>(changes[2]), "direct changes");
-  const auto lux = vector_of_array<float>(py::cast<FloatArray>(changes[3]), "direct changes");
-  if (row.size() != element.size() || column.size() != element.size() || lux.size() != element.size())
-    throw std::runtime_error("hourly model part: direct changes differ in length");
-  for (size_t i = 0; i < element.size(); ++i) {
-    if (element[i] < 0 || static_cast<size_t>(element[i]) >= elements) throw std::runtime_error("hourly model part: element out of range");
-    m.flip_direct[element[i]].push_back({row[i], column[i], lux[i]});
-  }
-  return m;
-}
-
 // An opening as openings files give it, in the scene's input coordinates (parse_openings reads it
 // back into the local frame; numbers round-trip exactly, the frame's origin being whole meters).
 nlohmann::json opening_json(const OpeningInput& o, const SiteFrame& site) {
@@ -264,14 +178,6 @@ std::string openings_text(const std::vector<OpeningInput>& openings, const SiteF
 // ---- a shard's side: its records' answers -------------------------------------------------------
 
 // LocalRecordQueries over one shard's contributions, kept alive with its scene.
-struct ShardQueries {
-  std::shared_ptr<const Scene> scene;
-  std::shared_ptr<const Contributions> contributions;
-  LocalRecordQueries queries;
-  ShardQueries(std::shared_ptr<const Scene> s, std::shared_ptr<const Contributions> c, SensorRange sensors)
-      : scene(std::move(s)), contributions(std::move(c)),
-        queries(*scene, *contributions, nullptr, sensors) {}
-};
 
 struct ShardRegionSearch {
   std::shared_ptr<ShardQueries> owner;  // the records it indexes
@@ -292,10 +198,12 @@ void bind_shard_queries(py::module_& m) {
           py::arg("rectangles"), "Values per sensor with these rectangles (n, 5) instead; remembered for accept().")
       .def("accept", [](ShardRegionSearch& s) { s.search->accept(); }, "Makes the last try the current region.");
 
-  py::class_<ShardQueries, std::shared_ptr<ShardQueries>>(
+  py::class_<ShardQueries, std::shared_ptr<ShardQueries>> queries(
       m, "RecordQueries",
       "What the solver asks of path records (exact values of element sets and regions, flip effects, region "
-      "searches), answered from these contributions' records: a shard's sensors when they are a shard's.")
+      "searches, climate goals' model shards), answered from these contributions' records: a shard's sensors when "
+      "they are a shard's.");
+  queries
       .def(py::init([](std::shared_ptr<const Scene> scene, std::shared_ptr<const Contributions> c,
                        const py::object& sensors) {
              if (c->element_count() != scene->domain.element_count())
@@ -384,33 +292,6 @@ void bind_shard_queries(py::module_& m) {
           "These records' sensors (positions, ascending) that a change of openings from the rectangles `before` to "
           "`after` (n, 5) can reach: those whose paths met an element near it.")
       .def(
-          "hourly_model",
-          [](ShardQueries& q, const MaskArray& about, const IntArray& rows, const py::tuple& columns, bool flips) {
-            const std::vector<uint8_t> mask = mask_of(about, q.contributions->element_count());
-            const std::vector<int> r = vector_of_array<int>(rows, "rows");
-            for (int i : r)
-              if (i < 0 || static_cast<size_t>(i) >= q.contributions->sensor_count())
-                throw std::invalid_argument("row " + std::to_string(i) + " is not one of these records' " +
-                                            std::to_string(q.contributions->sensor_count()) + " sensors");
-            const HourlyColumns c = columns_from(columns);
-            if (!q.contributions->annual)
-              throw std::invalid_argument("hourly_model: these contributions are not a climate sky's");
-            const size_t hours = q.contributions->annual->climate->sky->hours.size();
-            for (int h : c.hour)
-              if (h < 0 || static_cast<size_t>(h) >= hours)
-                throw std::invalid_argument("hourly columns: hour " + std::to_string(h) + " is not one of the year's " +
-                                            std::to_string(hours));
-            HourlyFlipModel m;
-            {
-              py::gil_scoped_release release;
-              m = q.queries.hourly_model(mask, r, c, flips);
-            }
-            return hourly_parts(m);
-          },
-          py::arg("about"), py::arg("rows"), py::arg("columns"), py::arg("flips"),
-          "The climate goals' year of `about` at these rows (sensors of these records) and columns, with every "
-          "element's flip when `flips`: (total, direct, elements, flips, changes).")
-      .def(
           "annual_parts",
           [](ShardQueries& q, const DoubleArray& rects) {
             const OpenRegion region(q.scene->domain, rectangles_of(rects, q.scene->domain));
@@ -424,6 +305,7 @@ void bind_shard_queries(py::module_& m) {
           py::arg("rectangles"),
           "The annual coefficients and occupied hours' mean of these rectangles (n, 5) open: (sources, direct, "
           "mean, stderr).");
+  bind_shard_climate(queries);
 }
 
 // ---- the client's side: a Python object answers for all shards ----------------------------------
@@ -544,26 +426,14 @@ class PythonRecordQueries : public RecordQueries {
     return py::cast<double>(backend_.attr("record_bytes")());
   }
   std::shared_ptr<const AnnualRecords> annual() const override { return annual_; }
-  // The backend answers with a (positions, part) per shard: its rows' positions in `rows`.
-  HourlyFlipModel hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
-                               const HourlyColumns& columns, bool flips) override {
+  std::unique_ptr<ClimateModel> climate_model(const ClimateProblem& problem, const std::vector<uint8_t>& about,
+                                              const std::vector<uint8_t>& excluded) override {
     require_annual();
-    std::vector<HourlyFlipModel> parts;
-    std::vector<std::vector<int>> positions;
-    {
-      py::gil_scoped_acquire gil;
-      py::array_t<uint8_t> mask(static_cast<py::ssize_t>(about.size()), about.data());
-      py::array_t<int32_t> r(static_cast<py::ssize_t>(rows.size()), rows.data());
-      const py::list answers = backend_.attr("hourly_model")(mask, r, columns_tuple(columns), flips);
-      for (const py::handle answer : answers) {
-        const py::tuple pair = py::cast<py::tuple>(answer);
-        if (pair.size() != 2) throw std::runtime_error("hourly model: expected (positions, part) per shard");
-        positions.push_back(vector_of_array<int>(py::cast<IntArray>(pair[0]), "hourly model positions"));
-        parts.push_back(hourly_part_from(pair[1], static_cast<Eigen::Index>(positions.back().size()), columns,
-                                         c_.element_count()));
-      }
-    }
-    return stack_hourly_models(about, rows, columns, std::move(parts), positions);
+    return python_climate_model(backend_, problem, about, excluded);
+  }
+  ClimateTally climate_tally(const ClimateProblem& problem, const std::vector<uint8_t>& open) override {
+    require_annual();
+    return python_climate_tally(backend_, problem, open);
   }
   AnnualStudy annual_study(const std::vector<PanelRectangle>& region) override {
     require_annual();
@@ -627,7 +497,9 @@ void bind_solve_with_records(py::module_& m) {
       py::arg("scene"), py::arg("contributions"), py::arg("records"), py::arg("progress") = nullptr,
       "The opening solver on contributions whose path records `records` holds: an object with exact(open), "
       "evaluate(rectangles), flip_effects(about), region_search(rectangles) (values, try_region, accept, close), "
-      "cut(openings_json, paths), record_bytes(), and for climate goals hourly_model(about, rows, columns, flips), "
+      "cut(openings_json, paths), record_bytes(), and for climate goals climate_model(about, excluded, goals) (an "
+      "object with settle(slots, bases, packed states), flip_tallies(slot, elements), model_bytes and close()), "
+      "climate_tally(open, goals), "
       "annual_parts(rectangles) and annual_cut(openings_json, paths) (fenestra.distributed). Returns the result as JSON text.");
 }
 

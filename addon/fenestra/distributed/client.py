@@ -382,8 +382,8 @@ class _ShardedRecords:
     def _ask(self, op, *args):
         self.calls += 1
         changes = op not in (
-            "evaluate", "sampled", "flip_effects", "record_bytes", "try", "hourly_model", "annual_parts",
-            "sensors_reached")
+            "evaluate", "sampled", "flip_effects", "record_bytes", "try", "annual_parts", "sensors_reached",
+            "climate_flip_tallies", "climate_tally")
         parts = self._ask_shards(op, args)
         if changes:
             self._log.append((op, args))
@@ -511,11 +511,17 @@ class _ShardedRecords:
         return np.concatenate([np.asarray(p, dtype=np.int64) + s["begin"]
                                for s, p in zip(self._study._shards, parts)] + [np.zeros(0, dtype=np.int64)])
 
-    def hourly_model(self, about, rows, columns, flips):
-        """Per shard, its rows' positions in `rows` and its part of the hourly model (the native
-        side stacks them)."""
-        return self._ask("hourly_model", np.asarray(about, dtype=np.uint8), np.asarray(rows, dtype=np.int32),
-                         columns, bool(flips))
+    def climate_model(self, about, excluded, goals):
+        """Each shard builds its part of the climate goals' hourly model from its records and keeps it
+        (with the search's states) on its worker; the native search asks it through the returned
+        object and adds the shards' tallies."""
+        parts = self._ask("climate_model", np.asarray(about, dtype=np.uint8), np.asarray(excluded, dtype=np.uint8),
+                          np.asarray(goals, dtype=np.float64))
+        return _ClimateModelOnShards(self, float(sum(parts)))
+
+    def climate_tally(self, open_mask, goals):
+        """Per shard, the tally of the exact year of `open_mask` at its goal sensors."""
+        return self._ask("climate_tally", np.asarray(open_mask, dtype=np.uint8), np.asarray(goals, dtype=np.float64))
 
     def annual_parts(self, rectangles):
         parts = self._ask("annual_parts", np.asarray(rectangles, dtype=np.float64))
@@ -532,6 +538,25 @@ class _ShardedRecords:
             self._study._cluster._run_on_heard(_end_session, self._session)
         except Exception:  # the cluster is gone: so is the state
             pass
+
+
+class _ClimateModelOnShards:
+    """The climate goals' hourly model held in the shards (solve/climate_model.h): the search's
+    batches of states go to every shard, and each answers with its sensors' tallies. Settling
+    changes the shards' state (their slots' years), so it is logged for a recomputed shard."""
+
+    def __init__(self, records, model_bytes):
+        self._records, self.model_bytes = records, model_bytes
+
+    def settle(self, slots, bases, states):
+        return self._records._ask("climate_settle", np.asarray(slots, dtype=np.int32),
+                                  np.asarray(bases, dtype=np.int32), np.asarray(states, dtype=np.uint8))
+
+    def flip_tallies(self, slot, elements):
+        return self._records._ask("climate_flip_tallies", int(slot), np.asarray(elements, dtype=np.int32))
+
+    def close(self):
+        self._records._ask("climate_close")
 
 
 class _ShardedSearch:

@@ -147,8 +147,10 @@ def _apply(state, op, args, sensors):
         return queries.evaluate(args[0])
     if op == "sampled":  # reads the references, leaves them
         return queries.sampled(args[0])
-    if op == "hourly_model":
-        return _hourly_model(queries, sensors, *args)
+    if op == "climate_tally":
+        return queries.climate_tally(*args)
+    if op == "climate_flip_tallies":
+        return queries.climate_flip_tallies(*args)
     if op == "annual_parts":
         return queries.annual_parts(args[0])
     if op == "flip_effects":
@@ -170,6 +172,12 @@ def _apply(state, op, args, sensors):
     if op == "close":
         searches.pop(args[0], None)
         return None
+    if op == "climate_model":
+        return queries.climate_model(*args)
+    if op == "climate_settle":
+        return queries.climate_settle(*args)
+    if op == "climate_close":
+        return queries.climate_close()
     raise ValueError("unknown record query %r" % (op,))
 
 
@@ -188,13 +196,6 @@ def _dense(parts):
         out[at + rows, columns] = values
         at += shape[0]
     return out
-
-
-def _hourly_model(queries, sensors, about, rows, columns, flips):
-    """The shard's rows of the climate goals' hourly model: (their positions in `rows`, its part)."""
-    begin, end = sensors
-    positions = np.flatnonzero((rows >= begin) & (rows < end)).astype(np.int32)
-    return positions, queries.hourly_model(about, (rows[positions] - begin).astype(np.int32), columns, flips)
 
 
 def _session_call(key, sensors, spec, session, applied, op, args):

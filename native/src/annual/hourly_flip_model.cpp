@@ -259,68 +259,6 @@ HourlyFlipModel hourly_flip_model(const Contributions& c, const std::vector<uint
   return build_model(c, about, rows, columns, true, progress);
 }
 
-HourlyFlipModel stack_hourly_models(const std::vector<uint8_t>& about, const std::vector<int>& rows,
-                                    const HourlyColumns& columns, std::vector<HourlyFlipModel> parts,
-                                    const std::vector<std::vector<int>>& positions) {
-  const size_t elements = about.size();
-  const Eigen::Index n_columns = static_cast<Eigen::Index>(columns.hour.size());
-  if (parts.size() != positions.size()) throw std::invalid_argument("hourly model parts: as many position lists as parts");
-  std::vector<uint8_t> seen(rows.size(), 0), stored(elements, 0);
-  for (size_t i = 0; i < parts.size(); ++i) {
-    const HourlyFlipModel& part = parts[i];
-    if (part.total.rows() != static_cast<Eigen::Index>(positions[i].size()) || part.total.cols() != n_columns ||
-        part.direct.rows() != part.total.rows() || part.direct.cols() != n_columns ||
-        part.flip_total.size() != elements || part.flip_direct.size() != elements)
-      throw std::invalid_argument("hourly model part " + std::to_string(i) + " has other sizes than its rows and hours");
-    for (int at : positions[i]) {
-      if (at < 0 || static_cast<size_t>(at) >= rows.size() || seen[at])
-        throw std::invalid_argument("hourly model part " + std::to_string(i) + ": row position " + std::to_string(at) +
-                                    " is not one of the " + std::to_string(rows.size()) + " rows, or is repeated");
-      seen[at] = 1;
-    }
-    for (size_t k = 0; k < elements; ++k) stored[k] |= part.flip_total[k].size() > 0;
-  }
-  if (std::count(seen.begin(), seen.end(), 1) != static_cast<std::ptrdiff_t>(rows.size()))
-    throw std::invalid_argument("hourly model parts do not cover every row");
-  check_model_fits(rows.size(), columns.hour.size(), static_cast<size_t>(std::count(stored.begin(), stored.end(), 1)));
-
-  HourlyFlipModel m;
-  m.about = about;
-  m.rows = rows;
-  m.columns = columns;
-  const Eigen::Index n_rows = static_cast<Eigen::Index>(rows.size());
-  m.total.setZero(n_rows, n_columns);
-  m.direct.setZero(n_rows, n_columns);
-  m.flip_total.resize(elements);
-  m.flip_direct.resize(elements);
-  for (size_t k = 0; k < elements; ++k)
-    if (stored[k]) m.flip_total[k].setZero(n_rows, n_columns);
-  for (size_t i = 0; i < parts.size(); ++i) {
-    HourlyFlipModel& part = parts[i];
-    const std::vector<int>& at = positions[i];
-    for (size_t r = 0; r < at.size(); ++r) {
-      m.total.row(at[r]) = part.total.row(static_cast<Eigen::Index>(r));
-      m.direct.row(at[r]) = part.direct.row(static_cast<Eigen::Index>(r));
-    }
-    for (size_t k = 0; k < elements; ++k) {
-      if (part.flip_total[k].size() > 0)
-        for (size_t r = 0; r < at.size(); ++r) m.flip_total[k].row(at[r]) = part.flip_total[k].row(static_cast<Eigen::Index>(r));
-      for (DirectChange d : part.flip_direct[k]) {
-        if (d.row < 0 || static_cast<size_t>(d.row) >= at.size() || d.column < 0 || d.column >= n_columns)
-          throw std::invalid_argument("hourly model part " + std::to_string(i) + ": a direct change is off its rows or hours");
-        d.row = at[d.row];
-        m.flip_direct[k].push_back(d);
-      }
-    }
-    part = HourlyFlipModel();  // each part freed once stacked
-  }
-  for (auto& list : m.flip_direct)  // ordered as one process orders them
-    std::sort(list.begin(), list.end(), [](const DirectChange& a, const DirectChange& b) {
-      return a.row != b.row ? a.row < b.row : a.column < b.column;
-    });
-  return m;
-}
-
 HourlyFlipModel hourly_state(const Contributions& c, const std::vector<uint8_t>& open, const std::vector<int>& rows,
                              const HourlyColumns& columns, const Progress* progress) {
   return build_model(c, open, rows, columns, false, progress);

@@ -59,12 +59,6 @@ double hourly_flip_model_bytes(size_t rows, size_t columns, size_t elements);
 HourlyFlipModel hourly_flip_model(const Contributions& c, const std::vector<uint8_t>& about,
                                   const std::vector<int>& rows, const HourlyColumns& columns,
                                   const Progress* progress = nullptr);
-// The model of all `rows` from models of parts of them (shards of the sensors): part i's row r is
-// rows[positions[i][r]]. The same bit for bit as the model of all rows from one process's records.
-// Throws CostError as hourly_flip_model does, std::invalid_argument when the parts do not fit.
-HourlyFlipModel stack_hourly_models(const std::vector<uint8_t>& about, const std::vector<int>& rows,
-                                    const HourlyColumns& columns, std::vector<HourlyFlipModel> parts,
-                                    const std::vector<std::vector<int>>& positions);
 // The same without the flips: the exact hourly illuminance of `open` alone (total and direct).
 HourlyFlipModel hourly_state(const Contributions& c, const std::vector<uint8_t>& open, const std::vector<int>& rows,
                              const HourlyColumns& columns, const Progress* progress = nullptr);

@@ -82,41 +82,13 @@ std::vector<Ranked> rank_exactly(RecordQueries& records, const ClimateProblem& p
 
 }  // namespace
 
-ClimateProblem climate_problem(const Scene& scene, const Contributions& c, const SolverGoals& linear) {
-  return climate_problem(scene, c.annual.get(), linear);
-}
-
-ClimateProblem climate_problem(const Scene& scene, const AnnualRecords* annual, const SolverGoals& linear) {
-  if (!annual) throw std::invalid_argument("scene '" + scene.source + "': climate goals need a climate sky's contributions");
-  const ClimateGoals& goals = scene.sensors.climate_goals;
-  ClimateProblem p;
-  std::set<int> rows;
-  bool en17037 = false;
-  for (const ClimateGoal& g : goals.goals) {
-    rows.insert(g.sensors.begin(), g.sensors.end());
-    en17037 = en17037 || g.metric == ClimateMetric::En17037;
-  }
-  for (Eigen::Index i = 0; i < linear.weight.size(); ++i)
-    if (linear.weight[i] > 0.0) rows.insert(static_cast<int>(i));
-  p.rows.assign(rows.begin(), rows.end());
-  p.columns = hourly_columns(*annual, en17037);
-  std::vector<double> area;
-  for (const Element& e : scene.domain.elements()) area.push_back(static_cast<double>(e.width()) * e.height());
-  ClimateObjectiveSettings settings;
-  settings.glazing_weight = goals.least_glazing ? 0.05 : 0.0;
-  settings.bound_weight = scene.solver.bound_weight;
-  settings.horizontal_openings = annual->metric_settings.en17037_openings == DaylightOpenings::Horizontal;
-  p.objective = std::make_unique<ClimateObjective>(goals, p.columns, p.rows, &linear, std::move(area), settings);
-  return p;
-}
-
 ClimateYear climate_year(RecordQueries& records, const ClimateProblem& p, const std::vector<uint8_t>& open) {
   ClimateYear out;
-  out.year = records.hourly_model(open, p.rows, p.columns, false);
+  out.tally = records.climate_tally(p, open);
   double area = 0.0;
   for (size_t k = 0; k < open.size(); ++k)
     if (open[k]) area += p.objective->element_area(static_cast<int>(k));
-  out.error = p.objective->error(out.year.total, out.year.direct, area);
+  out.error = p.objective->error(out.tally, area);
   return out;
 }
 
@@ -135,11 +107,7 @@ std::vector<ClimateFigure> climate_figures(const ClimateProblem& p, const Eigen:
 ClimateDesign design_for_climate(RecordQueries& records, const ClimateProblem& p, const ElementGrid& grid,
                                  const GeneticSettings& ga, const std::vector<std::vector<uint8_t>>& seeds,
                                  const std::vector<uint8_t>& excluded, Progress* progress) {
-  // Excluded elements change nothing in the model (their flips are dropped) and leave every state.
-  auto exclude = [&](HourlyFlipModel* m) {
-    for (size_t k = 0; k < excluded.size(); ++k)
-      if (excluded[k]) m->flip_total[k].resize(0, 0), m->flip_direct[k].clear();
-  };
+  // Excluded elements change nothing in the model (its shards drop their flips) and leave every state.
   auto within = [&](std::vector<std::vector<uint8_t>> states) {
     for (auto& s : states)
       for (size_t k = 0; k < excluded.size(); ++k)
@@ -152,11 +120,9 @@ ClimateDesign design_for_climate(RecordQueries& records, const ClimateProblem& p
   auto t = Clock::now();
   if (progress) progress->start("solving: the year's hourly model", 1);
   const std::vector<uint8_t> closed(n, 0), all_open(n, 1);
-  HourlyFlipModel model = records.hourly_model(closed, p.rows, p.columns, true);
-  exclude(&model);
-  out.model_bytes = static_cast<double>(model.memory_bytes());
-  const HourlyFlipModel everything = records.hourly_model(within({all_open})[0], p.rows, p.columns, false);
-  out.all_open_figures = p.objective->figures(everything.total, everything.direct);
+  std::unique_ptr<ClimateModel> model = records.climate_model(p, closed, excluded);
+  out.model_bytes = model->model_bytes();
+  out.all_open_figures = p.objective->figures(records.climate_tally(p, within({all_open})[0]));
   out.seconds_model += since(t);
   out.stages.push_back({"climate model", out.seconds_model, stop_reason::kDone});
 
@@ -169,7 +135,7 @@ ClimateDesign design_for_climate(RecordQueries& records, const ClimateProblem& p
   starts = within(std::move(starts));
 
   t = Clock::now();
-  const GeneticResult first = run_climate_genetic(model, *p.objective, grid, starts, ga, progress);
+  const GeneticResult first = run_climate_genetic(*model, *p.objective, grid, starts, ga, progress);
   out.history = first.history;
   out.generations = first.generations;
   std::vector<std::vector<uint8_t>> pool = within(first.elite);
@@ -184,16 +150,16 @@ ClimateDesign design_for_climate(RecordQueries& records, const ClimateProblem& p
   for (int round = 0; round < kLinearisationRounds && ga.generations > 0; ++round) {
     t = Clock::now();
     if (progress) progress->start("solving: the hourly model about the best state", 1);
-    model = records.hourly_model(ranked.front().open, p.rows, p.columns, true);
-    exclude(&model);
-    out.model_bytes = std::max(out.model_bytes, static_cast<double>(model.memory_bytes()));
+    model.reset();  // one model at a time in the shards
+    model = records.climate_model(p, ranked.front().open, excluded);
+    out.model_bytes = std::max(out.model_bytes, model->model_bytes());
     out.seconds_model += since(t);
     t = Clock::now();
     GeneticSettings local = ga;
     local.generations = std::max(1, ga.generations / 4);
     local.time_budget_s = ga.time_budget_s / 4.0;
     local.seed = ga.seed + 1 + round;
-    const GeneticResult refined = run_climate_genetic(model, *p.objective, grid, {ranked.front().open}, local, progress);
+    const GeneticResult refined = run_climate_genetic(*model, *p.objective, grid, {ranked.front().open}, local, progress);
     out.generations += refined.generations;
     std::vector<std::vector<uint8_t>> again = within(refined.elite);
     for (const Ranked& r : ranked) again.push_back(r.open);
@@ -211,8 +177,8 @@ ClimateDesign design_for_climate(RecordQueries& records, const ClimateProblem& p
   out.open = ranked.front().open;
   out.error = ranked.front().error;
   for (const Ranked& r : ranked) out.candidates.push_back(r.open);
-  const HourlyFlipModel exact = records.hourly_model(out.open, p.rows, p.columns, false);
-  out.figures = p.objective->figures(exact.total, exact.direct);
+  model.reset();
+  out.figures = p.objective->figures(records.climate_tally(p, out.open));
   return out;
 }
 

@@ -10,6 +10,7 @@
 
 #include "annual/hourly_flip_model.h"
 #include "solve/climate_objective.h"
+#include "solve/climate_problem.h"
 #include "solve/element_grid.h"
 #include "solve/genetic.h"
 #include "solve/goals.h"
@@ -22,22 +23,10 @@ class Progress;
 class RecordQueries;  // solve/record_queries.h
 struct Scene;
 
-// What the climate goals look at: the sensors (goal groups and per-sensor goals), the hours, the
-// objective.
-struct ClimateProblem {
-  std::vector<int> rows;
-  HourlyColumns columns;
-  std::unique_ptr<ClimateObjective> objective;
-};
-// `linear`: the scene's per-sensor goals (may have none); `annual`: the climate sky's sources and
-// hours (RecordQueries::annual), std::invalid_argument when null.
-ClimateProblem climate_problem(const Scene& scene, const AnnualRecords* annual, const SolverGoals& linear);
-ClimateProblem climate_problem(const Scene& scene, const Contributions& c, const SolverGoals& linear);
-
 // The year of a set of open elements, exact from the path records at the problem's sensors and
 // hours, and the climate objective's error of it (shape excluded).
 struct ClimateYear {
-  HourlyFlipModel year;
+  ClimateTally tally;  // of every shard's sensors
   double error = 0.0;
 };
 ClimateYear climate_year(RecordQueries& records, const ClimateProblem& problem, const std::vector<uint8_t>& open);
@@ -51,7 +40,7 @@ struct ClimateDesign {
   std::vector<GenerationRecord> history;         // the first genetic run
   int generations = 0;
   int linearisations = 0;                        // rounds about a best state that improved it
-  double model_bytes = 0.0;                      // the largest hourly model held
+  double model_bytes = 0.0;                      // the largest hourly model held, over all its shards
   double seconds_model = 0.0, seconds_search = 0.0;
   // "climate model", "climate search" and "climate linearisation", with why each stopped.
   std::vector<SolveStage> stages;

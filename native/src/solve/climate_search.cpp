@@ -5,37 +5,54 @@
 namespace fenestra {
 namespace {
 
-// The error model of the genetic engine (solve/genetic_search.h) for climate goals.
+// The error model of the genetic engine (solve/genetic_search.h) for climate goals: batched, each
+// individual's year kept in a slot of the model's shards.
 class ClimateError {
  public:
-  using Response = ClimateResponse;
-  // A trial flip copies the year of every goal sensor: pairs would cost elements^2 copies.
+  struct Response {
+    int slot = 0;
+    int base = ClimateRecipe::kModelState;
+    double error = 0.0;
+  };
+  static constexpr bool kBatched = true;
+  // A trial flip costs a year of every goal sensor: pairs would cost elements^2 of them.
   static constexpr bool kPairPolish = false;
 
-  ClimateError(const HourlyFlipModel& model, const ClimateObjective& objective) : model_(model), objective_(objective) {}
+  ClimateError(ClimateModel& model, const ClimateObjective& objective) : model_(&model), objective_(objective) {}
 
-  Response response(const std::vector<uint8_t>& open) const { return climate_response(model_, objective_, open); }
-  void flip(Response* r, const std::vector<uint8_t>& open, int j) const {
-    flip_climate_response(model_, objective_, open, j, r);
-  }
-  double operator()(const Response& r) const { return objective_.error(r.total, r.direct, r.open_area); }
-  double flip_change(const Response& r, const std::vector<uint8_t>& open, int j) const {
-    Response after = r;
-    flip(&after, open, j);
-    return (*this)(after) - (*this)(r);
-  }
-  double pair_change(const Response& r, const std::vector<uint8_t>& open, int j, int k) const {
-    Response after = r;
-    flip(&after, open, j);
-    std::vector<uint8_t> between = open;
-    between[j] ^= 1;
-    flip(&after, between, k);
-    return (*this)(after) - (*this)(r);
-  }
+  Response response(const std::vector<uint8_t>&) const { return {}; }
+  void flip(Response*, const std::vector<uint8_t>&, int) const {}  // the state itself says what to settle
+  double operator()(const Response& r) const { return r.error; }
   double scale() const { return 1.0; }  // errors are fractions of the goals
 
+  void settle(const std::vector<Response*>& responses, const std::vector<const std::vector<uint8_t>*>& states) const {
+    std::vector<ClimateRecipe> batch(responses.size());
+    for (size_t i = 0; i < batch.size(); ++i) batch[i] = {responses[i]->slot, responses[i]->base, *states[i]};
+    const std::vector<ClimateTally> tallies = model_->settle(batch);
+    for (size_t i = 0; i < batch.size(); ++i) responses[i]->error = objective_.error(tallies[i], open_area(*states[i]));
+  }
+
+  std::vector<double> flip_errors(const Response& r, const std::vector<uint8_t>& open,
+                                  const std::vector<int>& elements) const {
+    const std::vector<ClimateTally> tallies = model_->flip_tallies(r.slot, elements);
+    const double area = open_area(open);
+    std::vector<double> out(elements.size());
+    for (size_t i = 0; i < elements.size(); ++i) {
+      const int k = elements[i];
+      out[i] = objective_.error(tallies[i], area + (open[k] ? -1.0 : 1.0) * objective_.element_area(k));
+    }
+    return out;
+  }
+
  private:
-  const HourlyFlipModel& model_;
+  double open_area(const std::vector<uint8_t>& open) const {
+    double area = 0.0;
+    for (size_t k = 0; k < open.size(); ++k)
+      if (open[k]) area += objective_.element_area(static_cast<int>(k));
+    return area;
+  }
+
+  ClimateModel* model_;
   const ClimateObjective& objective_;
 };
 
@@ -73,12 +90,9 @@ void flip_climate_response(const HourlyFlipModel& model, const ClimateObjective&
     for (const DirectChange& d : model.flip_direct[j]) r->direct(d.row, d.column) += sign * d.lux;
 }
 
-GeneticResult run_climate_genetic(const HourlyFlipModel& model, const ClimateObjective& objective,
-                                  const ElementGrid& grid, const std::vector<std::vector<uint8_t>>& seeds,
-                                  const GeneticSettings& settings, Progress* progress) {
-  if (static_cast<size_t>(grid.size()) != model.about.size())
-    throw std::invalid_argument("climate genetic: the model has " + std::to_string(model.about.size()) +
-                                " elements, the grid " + std::to_string(grid.size()));
+GeneticResult run_climate_genetic(ClimateModel& model, const ClimateObjective& objective, const ElementGrid& grid,
+                                  const std::vector<std::vector<uint8_t>>& seeds, const GeneticSettings& settings,
+                                  Progress* progress) {
   return genetic_search::run_search(ClimateError(model, objective), grid, seeds, settings, progress);
 }
 

@@ -1,11 +1,13 @@
 #pragma once
-// The genetic algorithm on climate goals: each individual carries its goal sensors' hourly
-// illuminance, and a flip adds or takes away that element's hourly change (HourlyFlipModel), so
-// a child costs a few vector additions and one pass over its year, not a simulation.
+// The genetic algorithm on climate goals: each individual's year of its goal sensors' hours is kept
+// where the model's shards are (ClimateModel), derived from its parent's by the flips between
+// them; the search sends each generation's states in one batch and scores them from the tallies
+// that come back, so a child costs a few vector additions in the shards and no hourly row moves.
 #include <cstdint>
 #include <vector>
 
 #include "annual/hourly_flip_model.h"
+#include "solve/climate_model.h"
 #include "solve/climate_objective.h"
 #include "solve/element_grid.h"
 #include "solve/genetic.h"
@@ -26,9 +28,11 @@ ClimateResponse climate_response(const HourlyFlipModel& model, const ClimateObje
 void flip_climate_response(const HourlyFlipModel& model, const ClimateObjective& objective,
                            const std::vector<uint8_t>& open, int j, ClimateResponse* response);
 
-// Same settings and seed, same result, whatever the thread count (genetic.h).
-GeneticResult run_climate_genetic(const HourlyFlipModel& model, const ClimateObjective& objective,
-                                  const ElementGrid& grid, const std::vector<std::vector<uint8_t>>& seeds,
-                                  const GeneticSettings& settings, Progress* progress = nullptr);
+// Same settings and seed, same result, whatever the thread count and however the model is
+// sharded (genetic.h; the tallies add exactly). The model's slots are the search's own: it uses
+// 0 .. 2 * population.
+GeneticResult run_climate_genetic(ClimateModel& model, const ClimateObjective& objective, const ElementGrid& grid,
+                                  const std::vector<std::vector<uint8_t>>& seeds, const GeneticSettings& settings,
+                                  Progress* progress = nullptr);
 
 }  // namespace fenestra

@@ -76,7 +76,7 @@ ClimateScore climate_score(RecordQueries& records, const ClimateProblem& problem
   const ClimateYear year = climate_year(records, problem, open);
   ClimateScore score;
   score.error = year.error;
-  const std::vector<ClimateFigure> figures = problem.objective->figures(year.year.total, year.year.direct);
+  const std::vector<ClimateFigure> figures = problem.objective->figures(year.tally);
   score.all_met = true;
   for (size_t g = 0; g < figures.size(); ++g)
     score.all_met = score.all_met && figure_meets(problem.objective->goals().goals[g], figures[g].achieved);

@@ -40,6 +40,7 @@ class ResidualError {
  public:
   using Response = VectorXd;  // r = E o - target
   static constexpr bool kPairPolish = true;
+  static constexpr bool kBatched = false;
 
   explicit ResidualError(const LinearObjective& objective)
       : E_(objective.E), target_(objective.target), weight_(objective.weight), bound_weight_(objective.bound_weight) {

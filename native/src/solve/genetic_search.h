@@ -9,6 +9,15 @@
 //   double flip_change(const Response&, const State&, int j) const;
 //   double pair_change(const Response&, const State&, int j, int k) const;
 //   double scale() const;                        the size of errors (rounding tolerance)
+//   static constexpr bool kBatched;              whether responses are scored in batches:
+// A batched model (climate goals held in shards, where each question is a round trip) scores no
+// response when it is made or flipped. Its Response carries `slot` (where its state's year is
+// kept), `base` (the slot it was derived from) and `error`; the engine gives every individual a
+// slot of its own and asks:
+//   void settle(const std::vector<Response*>&, const std::vector<const State*>&) const;
+//       scores a batch of responses (each derived from its base, which is settled) in one go
+//   std::vector<double> flip_errors(const Response&, const State&, const std::vector<int>& js) const;
+//       the error after each of js flips alone
 // Internal to the solver: included by genetic.cpp and climate_search.cpp only.
 #include <algorithm>
 #include <chrono>
@@ -51,6 +60,7 @@ constexpr double kCrossoverRate = 0.9;
 constexpr int kMaxMutations = 2;
 constexpr int kMaxSeedMutations = 8;     // per mutated copy of a seed in the first population
 constexpr int kMaxPolishSweeps = 100;
+constexpr int kPolishChunk = 64;  // single flips a batched model scores in one batch while polishing
 constexpr int kPollElements = 256;  // elements of a polishing sweep between two polls of cancellation
 constexpr uint64_t kFirstPopulation = ~uint64_t{0};  // generation index of the seeds' copies
 
@@ -217,8 +227,18 @@ class Search {
       if (x.open[k]) x.key ^= keys_[k];
     x.response = error_.response(x.open);
     x.counts = shape_counts(grid_, x.open);
-    rescore(&x);
+    if constexpr (!Error::kBatched) rescore(&x);  // else once settled
     return x;
+  }
+
+  // Scores a batched model's individuals in one batch (each derived from a settled base).
+  template <typename Individuals>
+  void settle(Individuals& xs) const {
+    std::vector<typename Error::Response*> responses;
+    std::vector<const State*> states;
+    for (Individual* x : xs) responses.push_back(&x->response), states.push_back(&x->open);
+    error_.settle(responses, states);
+    tbb::parallel_for(size_t(0), xs.size(), [&](size_t i) { rescore(xs[i]); });
   }
 
   // Flips element j: residual, key, isolated and boundary counts follow; regions and the
@@ -250,14 +270,14 @@ class Search {
     }
     const int mutations = 1 + uniform_int(rng, kMaxMutations);
     for (int m = 0; m < mutations; ++m) mutate(child, rng);
-    rescore(child);
+    if constexpr (!Error::kBatched) rescore(child);  // else once settled
   }
 
   Individual mutated_copy(const Individual& seed, Rng& rng) const {
     Individual x = seed;
     const int mutations = 1 + uniform_int(rng, kMaxSeedMutations);
     for (int m = 0; m < mutations; ++m) mutate(&x, rng);
-    rescore(&x);
+    if constexpr (!Error::kBatched) rescore(&x);  // else once settled
     return x;
   }
 
@@ -265,6 +285,12 @@ class Search {
   // (an element moved to the next cell, a pair added or removed), each taken as soon as it
   // lowers the fitness, until a sweep finds none.
   void polish(Individual* x, const Progress* progress) const {
+    if constexpr (Error::kBatched) polish_in_chunks(x, progress);
+    else polish_one_at_a_time(x, progress);
+  }
+
+ private:
+  void polish_one_at_a_time(Individual* x, const Progress* progress) const {
     std::vector<int> labels;
     rescore(x, &labels);
     for (int sweep = 0; sweep < kMaxPolishSweeps; ++sweep) {
@@ -289,7 +315,36 @@ class Search {
     }
   }
 
- private:
+  // The single-flip sweeps of polish() for a batched model: the flips of a chunk of elements are
+  // scored in one batch against the current state and walked in order; the first that lowers the
+  // fitness is taken and the walk starts again after it. The same flips as one at a time.
+  void polish_in_chunks(Individual* x, const Progress* progress) const {
+    std::vector<int> labels, chunk;
+    rescore(x, &labels);
+    for (int sweep = 0; sweep < kMaxPolishSweeps; ++sweep) {
+      bool improved = false;
+      for (int j = 0; j < grid_.size();) {
+        if (progress) progress->throw_if_cancelled();
+        chunk.clear();
+        for (int k = j; k < std::min(grid_.size(), j + kPolishChunk); ++k) chunk.push_back(k);
+        const std::vector<double> after = error_.flip_errors(x->response, x->open, chunk);
+        j = chunk.back() + 1;
+        for (size_t i = 0; i < chunk.size(); ++i) {
+          if (!(shape_change(*x, labels, chunk[i], after[i] - x->error) < -tolerance(*x))) continue;
+          flip(x, chunk[i]);
+          x->response.base = x->response.slot;  // changed in place
+          std::vector<Individual*> one = {x};
+          settle(one);
+          rescore(x, &labels);
+          improved = true;
+          j = chunk[i] + 1;
+          break;
+        }
+      }
+      if (!improved) break;
+    }
+  }
+
   // An element whose state differs from one of its N-8 neighbours'.
   bool on_edge(const State& open, int j) const {
     for (int n : grid_.neighbours(j))
@@ -350,7 +405,11 @@ class Search {
   // Change of the fitness if j flipped, without flipping it (except to count regions when
   // the ring around j cannot tell and the rest of the change is promising).
   double flip_change(Individual& x, const std::vector<int>& labels, int j) const {
-    double change = error_.flip_change(x.response, x.open, j);
+    return shape_change(x, labels, j, error_.flip_change(x.response, x.open, j));
+  }
+
+  // The fitness change of flipping j, given the error's change.
+  double shape_change(Individual& x, const std::vector<int>& labels, int j, double change) const {
     change += shape_.boundary * boundary_change(grid_, x.open, j);
     const int isolated_before = isolated_around(grid_, x.open, j);
     x.open[j] ^= 1;
@@ -594,10 +653,25 @@ GeneticResult run_search(const Error& error, const ElementGrid& grid, const std:
   const int seeded = std::min<int>(size, static_cast<int>(seeds.size()));
   std::vector<Individual> population(size);
   for (int i = 0; i < seeded; ++i) population[i] = search.from_state(seeds[i]);
+  if constexpr (Error::kBatched)
+    for (int i = 0; i < seeded; ++i) population[i].response.slot = i;  // from the model's state
   tbb::parallel_for(seeded, size, [&](int i) {
     Rng rng = child_rng(settings.seed, kFirstPopulation, static_cast<uint64_t>(i));
     population[i] = search.mutated_copy(population[i % seeded], rng);
   });
+  // A batched model's slots: the population's, then the children's (each keeps its own as the
+  // survivors move between the two), and the polished individual's.
+  [[maybe_unused]] auto derive = [](Individual* x, [[maybe_unused]] int slot) {
+    if constexpr (Error::kBatched) x->response.base = x->response.slot, x->response.slot = slot;
+  };
+  if constexpr (Error::kBatched) {
+    std::vector<Individual*> all;
+    for (int i = 0; i < size; ++i) {
+      if (i >= seeded) derive(&population[i], i);  // from its seed's slot, settled before it
+      all.push_back(&population[i]);
+    }
+    search.settle(all);
+  }
   sort_by_fitness(&population);
   DistinctBest best(settings.elite);
   for (const Individual& x : population) best.offer(x);
@@ -606,6 +680,8 @@ GeneticResult run_search(const Error& error, const ElementGrid& grid, const std:
   int history_stride = 1;
   if (progress) progress->start("genetic algorithm", static_cast<uint64_t>(settings.generations));
   std::vector<Individual> children(size);
+  if constexpr (Error::kBatched)
+    for (int i = 0; i < size; ++i) children[i].response.slot = size + i;
   for (int g = 0; g < settings.generations; ++g) {
     if (progress) progress->throw_if_cancelled();
     if (settings.time_budget_s > 0.0 && seconds() >= settings.time_budget_s) {
@@ -617,9 +693,17 @@ GeneticResult run_search(const Error& error, const ElementGrid& grid, const std:
         Rng rng = child_rng(settings.seed, static_cast<uint64_t>(g), static_cast<uint64_t>(i));
         const Individual& a = population[tournament(size, rng)];
         const Individual& b = population[tournament(size, rng)];
+        int slot = 0;
+        if constexpr (Error::kBatched) slot = children[i].response.slot;
         search.breed(a, b, rng, &children[i]);
+        derive(&children[i], slot);  // from the parent it copied
       }
     });
+    if constexpr (Error::kBatched) {
+      std::vector<Individual*> bred;
+      for (Individual& x : children) bred.push_back(&x);
+      search.settle(bred);
+    }
     population = survivors(std::move(population), &children, size);
     for (const Individual& x : population) best.offer(x);
     if (g % history_stride == 0 || g + 1 == settings.generations) {
@@ -632,6 +716,11 @@ GeneticResult run_search(const Error& error, const ElementGrid& grid, const std:
 
   if (settings.polish) {
     Individual polished = population.front();
+    derive(&polished, 2 * size);  // its own slot: the population's best stays as it is
+    if constexpr (Error::kBatched) {
+      std::vector<Individual*> one = {&polished};
+      search.settle(one);
+    }
     search.polish(&polished, progress);
     best.offer(polished);
   }

@@ -81,9 +81,42 @@ double LocalRecordQueries::record_bytes() const {
   return bytes;
 }
 
-HourlyFlipModel LocalRecordQueries::hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
-                                                 const HourlyColumns& columns, bool flips) {
-  return flips ? hourly_flip_model(c_, about, rows, columns, progress_) : hourly_state(c_, about, rows, columns, progress_);
+void LocalRecordQueries::climate_rows(const ClimateProblem& problem, std::vector<int>* local,
+                                      std::vector<int>* model_rows) const {
+  const size_t begin = sensors_.begin, end = begin + c_.sensor_count();
+  for (size_t r = 0; r < problem.rows.size(); ++r) {
+    const size_t sensor = static_cast<size_t>(problem.rows[r]);
+    if (sensor < begin || sensor >= end) continue;
+    local->push_back(static_cast<int>(sensor - begin));
+    model_rows->push_back(static_cast<int>(r));
+  }
+}
+
+std::unique_ptr<ClimateShard> LocalRecordQueries::climate_shard(const ClimateProblem& problem,
+                                                                const std::vector<uint8_t>& about,
+                                                                const std::vector<uint8_t>& excluded) {
+  std::vector<int> local, model_rows;
+  climate_rows(problem, &local, &model_rows);
+  HourlyFlipModel part = hourly_flip_model(c_, about, local, problem.columns, progress_);
+  // Excluded elements change nothing in the model (their flips are dropped).
+  for (size_t k = 0; k < excluded.size() && k < part.flip_total.size(); ++k)
+    if (excluded[k]) part.flip_total[k].resize(0, 0), part.flip_direct[k].clear();
+  return std::make_unique<ClimateShard>(std::move(part), std::move(model_rows), *problem.objective);
+}
+
+std::unique_ptr<ClimateModel> LocalRecordQueries::climate_model(const ClimateProblem& problem,
+                                                                const std::vector<uint8_t>& about,
+                                                                const std::vector<uint8_t>& excluded) {
+  std::vector<std::unique_ptr<ClimateShard>> shards;
+  shards.push_back(climate_shard(problem, about, excluded));
+  return std::make_unique<LocalClimateModel>(*problem.objective, std::move(shards));
+}
+
+ClimateTally LocalRecordQueries::climate_tally(const ClimateProblem& problem, const std::vector<uint8_t>& open) {
+  std::vector<int> local, model_rows;
+  climate_rows(problem, &local, &model_rows);
+  const HourlyFlipModel year = hourly_state(c_, open, local, problem.columns, progress_);
+  return problem.objective->tally(year.total, year.direct, &model_rows);
 }
 
 AnnualStudy LocalRecordQueries::annual_study(const std::vector<PanelRectangle>& region) {

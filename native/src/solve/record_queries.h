@@ -12,6 +12,8 @@
 
 #include "annual/annual_study.h"
 #include "annual/hourly_flip_model.h"
+#include "solve/climate_model.h"
+#include "solve/climate_problem.h"
 #include "trace/evaluate.h"
 #include "solve/exact_values.h"
 #include "solve/flip_effects_cache.h"
@@ -74,10 +76,13 @@ class RecordQueries {
   // Climate goals (a climate sky's records; std::invalid_argument without one).
   // Its sources and hours (no per-sensor records): nullptr for another sky.
   virtual std::shared_ptr<const AnnualRecords> annual() const = 0;
-  // The year of `about` at the sensors `rows` (scene indices) and the hours `columns`, with each
-  // element's flip when `flips` (hourly_flip_model), or alone (hourly_state).
-  virtual HourlyFlipModel hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
-                                       const HourlyColumns& columns, bool flips) = 0;
+  // The problem's hourly flip model about `about` (hourly_flip_model; the `excluded` elements'
+  // flips dropped), held where the records are: one shard per block of sensors (climate_model.h).
+  virtual std::unique_ptr<ClimateModel> climate_model(const ClimateProblem& problem, const std::vector<uint8_t>& about,
+                                                      const std::vector<uint8_t>& excluded) = 0;
+  // The tally of the exact year of `open` at the problem's sensors and hours (hourly_state), added
+  // over the shards.
+  virtual ClimateTally climate_tally(const ClimateProblem& problem, const std::vector<uint8_t>& open) = 0;
   // The annual study of an open region from the records (annual_study).
   virtual AnnualStudy annual_study(const std::vector<PanelRectangle>& region) = 0;
   // The annual study of openings really cut, from paths of their own (annual_study_with_cutters).
@@ -103,8 +108,12 @@ class LocalRecordQueries : public RecordQueries {
                                       const std::vector<PanelRectangle>& after) override;
   double record_bytes() const override;
   std::shared_ptr<const AnnualRecords> annual() const override { return c_.annual; }
-  HourlyFlipModel hourly_model(const std::vector<uint8_t>& about, const std::vector<int>& rows,
-                               const HourlyColumns& columns, bool flips) override;
+  std::unique_ptr<ClimateModel> climate_model(const ClimateProblem& problem, const std::vector<uint8_t>& about,
+                                              const std::vector<uint8_t>& excluded) override;
+  ClimateTally climate_tally(const ClimateProblem& problem, const std::vector<uint8_t>& open) override;
+  // This process's shard of climate_model: the problem's sensors among these records'.
+  std::unique_ptr<ClimateShard> climate_shard(const ClimateProblem& problem, const std::vector<uint8_t>& about,
+                                              const std::vector<uint8_t>& excluded);
   AnnualStudy annual_study(const std::vector<PanelRectangle>& region) override;
   AnnualStudy annual_cut(const std::vector<OpeningInput>& openings, int paths) override;
 
@@ -116,6 +125,8 @@ class LocalRecordQueries : public RecordQueries {
   ExactValues exact_;
   FlipEffectsCache flip_effects_;
   std::optional<ChangeReach> reach_;  // built when first asked
+  // The problem's rows among these records' sensors: their local indices and rows in the problem.
+  void climate_rows(const ClimateProblem& problem, std::vector<int>* local, std::vector<int>* model_rows) const;
 };
 
 }  // namespace fenestra
