@@ -99,6 +99,43 @@ def test_cli_solves_for_sda_and_ase_with_the_least_glazing(tmp_path):
     assert climate["space"]["spatial_daylight_autonomy"] == pytest.approx(sda["achieved"])
 
 
+def test_goals_per_room_report_each_rooms_figures_and_the_floors(tmp_path):
+    """Sensor groups as rooms, goals per room: the result gives each room's figures of the final
+    openings' year (as `fenestra annual` gives a space's), and `space` the whole floor's, as LEED
+    counts sDA and ASE over every sensor; the command line prints one line per room."""
+    goals = {"climate": [{"metric": "sda", "sensors": "front", "min_area_fraction": 0.5},
+                         {"metric": "sda", "sensors": "back", "min_area_fraction": 0.5},
+                         {"metric": "ase", "sensors": "front", "hours": 40, "max_area_fraction": 0.5},
+                         {"metric": "udi", "sensors": [0, 1], "min_area_fraction": 0.1}],
+             "least_glazing": True}
+    path, scene = climate_room(tmp_path, goals, paths=256, groups={"front": [0, 3], "back": [1, 2, 4, 5]})
+    scene["solver"].update(generations=10, population=10, verify=False)
+    path.write_text(json.dumps(scene))
+    out = tmp_path / "result.json"
+    run = subprocess.run([CLI, "solve", str(path), "-o", str(out), "--quiet"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    climate = json.loads(out.read_text())["climate"]
+    rooms = climate["rooms"]
+    assert [r["name"] for r in rooms] == ["front", "back"]  # a list of sensors is no room
+    assert [r["sensors"] for r in rooms] == [[0, 3], [1, 2, 4, 5]]
+    per = climate["per_sensor"]
+    da, ase_hours = np.asarray(per["daylight_autonomy"]), np.asarray(per["ase_hours"])
+    for room in rooms:
+        at = room["sensors"]
+        assert room["space"]["spatial_daylight_autonomy"] == pytest.approx(np.mean(da[at] >= 0.5))
+        assert room["space"]["annual_sunlight_exposure"] == pytest.approx(np.mean(ase_hours[at] > 250))
+        assert room["space"]["daylight_autonomy"] == pytest.approx(np.mean(da[at]))
+        line = "room %s (%d sensors): sDA %.1f %%, ASE %.1f %%" % (room["name"], len(at),
+                                                                  100 * room["space"]["spatial_daylight_autonomy"],
+                                                                  100 * room["space"]["annual_sunlight_exposure"])
+        assert line in run.stdout, run.stdout
+    # Each room's sDA is its goal's figure; the floor's is over every sensor.
+    assert rooms[0]["space"]["spatial_daylight_autonomy"] == pytest.approx(climate["goals"][0]["achieved"])
+    assert rooms[1]["space"]["spatial_daylight_autonomy"] == pytest.approx(climate["goals"][1]["achieved"])
+    assert climate["space"]["spatial_daylight_autonomy"] == pytest.approx(np.mean(da >= 0.5))
+    assert climate["space"]["annual_sunlight_exposure"] == pytest.approx(np.mean(ase_hours > 250))
+
+
 def test_least_glazing_in_a_thick_wall_answers_with_the_least_passing_glass_and_shows_the_cutters_year(tmp_path):
     """A 0.3 m wall: no trade-off beside the answer meets the goals with less glass, and the figures
     shown are the real cutters' wherever the two years disagree beyond the noise, with a warning."""

@@ -243,6 +243,11 @@ def print_climate_summary(climate):
             line += "; real cutters %s %s" % (text(goal, goal["verified"]), "met" if goal["verified_met"] else "NOT met")
         print(line)
     print("glazing %.2f m2 of %.2f m2 of opening domain" % (climate["glazing_area_m2"], climate["domain_area_m2"]))
+    for room in climate.get("rooms", []):  # as one process prints them
+        m = room["space"]
+        print("room %s (%d sensors): sDA %.1f %%, ASE %.1f %%, mean illuminance %.0f lx"
+              % (room["name"], len(room["sensors"]), 100 * m["spatial_daylight_autonomy"],
+                 100 * m["annual_sunlight_exposure"], m["mean_illuminance_lux"]))
 
 
 def run_solve(a, scene, setup=()):

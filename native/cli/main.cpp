@@ -265,6 +265,17 @@ void print_climate_summary(const fenestra::Scene& scene, const fenestra::SolveRe
   std::printf("glazing %.2f m2 of %.2f m2 of opening domain\n", c.glazing_area_m2, c.domain_area_m2);
 }
 
+// Each room's (sensor group's) figures of the final openings' year, and the floor's.
+void print_rooms(const nlohmann::json& rooms) {
+  for (const nlohmann::json& room : rooms) {
+    const nlohmann::json& m = room["space"];
+    std::printf("room %s (%zu sensors): sDA %.1f %%, ASE %.1f %%, mean illuminance %.0f lx\n",
+                room["name"].get<std::string>().c_str(), room["sensors"].size(),
+                100.0 * m["spatial_daylight_autonomy"].get<double>(), 100.0 * m["annual_sunlight_exposure"].get<double>(),
+                m["mean_illuminance_lux"].get<double>());
+  }
+}
+
 // What the tracer dropped (non-finite light, conditions past their limit): a warning when anything.
 void warn_if_dropped(const fenestra::DropCounts& dropped) {
   const std::string w = fenestra::dropped_warning(dropped);
@@ -375,7 +386,8 @@ int run(const Args& a) {
     SolveResult r = with_progress(progress, a.quiet, [&] { return solve_openings(scene, &progress); });
     const std::vector<std::string> own = r.warnings;  // the solver's (the setup's are printed above)
     r.warnings.insert(r.warnings.begin(), setup.begin(), setup.end());
-    write_json(a.output, solve_result_json(scene, r));
+    const nlohmann::json result = solve_result_json(scene, r);
+    write_json(a.output, result);
     double total = 0.0;
     for (const auto& t : r.timings) total = t.stage == "total" ? t.seconds : total;
     if (r.climate.active)  // its per-sensor errors measure how the openings follow the element answer's light
@@ -391,6 +403,7 @@ int run(const Args& a) {
       std::printf("checked with real cutters: relative RMS error %.2f%%, worst sensor %.1f%%\n",
                   100 * r.verified_error.relative_rms, 100 * r.verified_error.max_relative);
     print_climate_summary(scene, r);
+    if (r.climate.active) print_rooms(result["climate"]["rooms"]);
     for (const std::string& w : own) std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());  // with any drop
     return 0;
   }

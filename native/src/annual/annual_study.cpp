@@ -61,6 +61,24 @@ AnnualStudy annual_study_of(const AnnualCoefficients& coefficients, std::shared_
   return s;
 }
 
+AnnualMetrics annual_metrics_of(const AnnualStudy& study, const std::vector<int>& sensors) {
+  const Eigen::Index n = study.illuminance.total.rows();
+  if (sensors.empty()) throw std::invalid_argument("annual metrics of no sensor");
+  Eigen::MatrixXf total(static_cast<Eigen::Index>(sensors.size()), study.illuminance.total.cols());
+  Eigen::MatrixXf direct(total.rows(), study.illuminance.direct.cols());  // sensors x hours, as total
+  for (size_t i = 0; i < sensors.size(); ++i) {
+    if (sensors[i] < 0 || sensors[i] >= n)
+      throw std::invalid_argument("annual metrics: sensor " + std::to_string(sensors[i]) + " is not one of the study's " +
+                                  std::to_string(n));
+    total.row(static_cast<Eigen::Index>(i)) = study.illuminance.total.row(sensors[i]);
+    direct.row(static_cast<Eigen::Index>(i)) = study.illuminance.direct.row(sensors[i]);
+  }
+  AnnualMetricInputs inputs;
+  inputs.hours = study.hours;
+  inputs.external_horizontal_illuminance = study.annual->climate->sky->diffuse_horizontal_lux;  // as the study's
+  return annual_metrics(total, inputs, study.settings, &direct);
+}
+
 AnnualStudy annual_study(const Scene& scene, const Contributions& c, const OpenRegion& region,
                          const Progress* progress) {
   check_contributions_match(scene, c, "an annual study");

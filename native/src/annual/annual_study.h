@@ -53,6 +53,11 @@ struct AnnualRegionParts {
 AnnualRegionParts annual_region_parts(const Contributions& c, const OpenRegion& region,
                                       const Progress* progress = nullptr);
 
+// The metrics of some of the study's sensors (a room's, by their indices in the study), as the
+// study's own are computed over all of them. std::invalid_argument for an index out of range or
+// no sensor.
+AnnualMetrics annual_metrics_of(const AnnualStudy& study, const std::vector<int>& sensors);
+
 // The study of given daylight coefficients: the hourly illuminance, the occupied hours and the
 // metrics; `mean` is the occupied hours' mean per sensor with its standard error (lux).
 AnnualStudy annual_study_of(const AnnualCoefficients& coefficients, std::shared_ptr<const AnnualRecords> annual,

@@ -1,5 +1,7 @@
 #include "io/climate_result.h"
 
+#include <algorithm>
+
 #include "daylight/sky_matrix.h"
 #include "io/annual_result.h"
 
@@ -67,6 +69,18 @@ json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
                   {"ase_hours", ase}};
     space = annual_space_json(m);
   }
+  // Each sensor group the goals name (a room, as the add-on makes one per room): its figures of the
+  // shown year. `space` is the whole floor's, all sensors with equal areas, as LEED counts sDA and ASE.
+  json rooms = json::array();
+  std::vector<std::string> named;
+  for (const ClimateGoal& goal : goals.goals) {
+    if (!shown || goal.sensors_given == "all" || goal.sensors_given == "list") continue;
+    if (std::find(named.begin(), named.end(), goal.sensors_given) != named.end()) continue;
+    named.push_back(goal.sensors_given);
+    rooms.push_back({{"name", goal.sensors_given},
+                     {"sensors", goal.sensors},
+                     {"space", annual_space_json(annual_metrics_of(*shown, goal.sensors))}});
+  }
   if (c.verified_study) verified_space = annual_space_json(c.verified_study->metrics);
   if (c.study) records_space = annual_space_json(c.study->metrics);
   json year = nullptr;  // what the year is, as `fenestra annual` names it
@@ -91,6 +105,7 @@ json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
           {"domain_area_m2", c.domain_area_m2},
           {"per_sensor", per_sensor},
           {"space", space},
+          {"rooms", rooms},
           {"verified_space", verified_space},
           {"records_space", records_space},
           {"year", year},
