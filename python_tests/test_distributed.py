@@ -320,6 +320,31 @@ def test_a_shard_too_large_for_its_worker_is_refused_before_any_work(tmp_path):
     distributed.check_shards_fit(estimate, distributed.client._blocks(24, shards), {"tcp://b:2": need / 3})
 
 
+def test_a_climate_solves_shard_counts_its_part_of_the_hourly_model_before_any_work(tmp_path):
+    """A solve with climate goals: each shard's worker also holds its goal sensors' part of the hourly
+    model and of the search's years, so a worker limit that holds the records but not that is
+    refused before any work, naming the shards that fit; the client holds none of it."""
+    from test_climate_goals import SDA_ASE, climate_room
+
+    path, _ = climate_room(tmp_path, SDA_ASE, paths=64)
+    scene = fenestra.load_scene(str(path))
+    estimate = fenestra.estimate_cost(scene, "contributions")
+    climate = distributed.climate_share(scene)
+    per_row, goal = climate
+    assert list(goal) == list(range(6)) and per_row > 0
+    blocks = distributed.client._blocks(6, 2)
+    records = distributed.check_shards_fit(estimate, blocks, {})
+    need = distributed.check_shards_fit(estimate, blocks, {}, climate)
+    assert need == pytest.approx(records + 3 * per_row)
+    with pytest.raises(distributed.ClusterError, match=r"a shard of 3 sensors \(3 of them climate goal sensors\) "
+                                                       r"needs about .*hourly model.* use at least \d+ shards"):
+        distributed.check_shards_fit(estimate, blocks, {"tcp://a:1": (records + need) / 2}, climate)
+    memory = distributed.solve_memory(scene, 2)
+    assert memory["worker"] == pytest.approx(need)
+    solve = fenestra.estimate_cost(scene, "solve")["memory"]
+    assert memory["client"] < memory["one_process"] - solve["climate_model"] - solve["climate_population"] + 1
+
+
 def test_cli_refuses_shards_larger_than_a_workers_memory(tmp_path):
     path = write_floor(tmp_path, sensors=24, paths=1 << 18)
     r = cli("contributions", path, "-o", tmp_path / "out.npz", "--workers", 2, "--max-memory", "600M", "--quiet",

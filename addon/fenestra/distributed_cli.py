@@ -250,6 +250,21 @@ def print_climate_summary(climate):
                  100 * m["annual_sunlight_exposure"], m["mean_illuminance_lux"]))
 
 
+def memory_line(scene, a, workers):
+    """The solve's memory on the cluster by the cost model, as one process prints its estimate."""
+    from fenestra import distributed
+
+    local = scene
+    if "paths" in a:
+        local.render.paths_per_sensor = a["paths"]
+    elif scene.solver_paths > 0:  # as the solve traces its contributions
+        local.render.paths_per_sensor = scene.solver_paths
+    m = distributed.solve_memory(local, workers, a.get("shards"))
+    mib = distributed.client._mib
+    return ("estimated memory: about %s per worker, %s in this process (one process would hold %s)"
+            % (mib(m["worker"]), mib(m["client"]), mib(m["one_process"])))
+
+
 def run_solve(a, scene, setup=()):
     from fenestra import _core, distributed
 
@@ -257,6 +272,7 @@ def run_solve(a, scene, setup=()):
     source, base_dir = solve_scene(a, scene)
     with cluster_of(a) as cluster:
         say("cluster: %d workers at %s" % (len(cluster.workers()), cluster.address))
+        say(memory_line(scene, a, len(cluster.workers())))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)  # the result's warnings: printed below
             r = distributed.solve(source, cluster, shards=a.get("shards"), base_dir=base_dir, callback=progress)

@@ -331,6 +331,16 @@ PYBIND11_MODULE(_core, m) {
           [](Scene& s, const RenderSettings& r) { s.render = r; }, py::return_value_policy::reference_internal)
       .def_property_readonly("has_climate_goals", [](const Scene& s) { return !s.sensors.climate_goals.empty(); },
                              "Whether the scene has goals.climate (sDA, ASE, EN 17037, UDI, annual mean).")
+      .def_property_readonly(
+          "climate_goal_sensors",
+          [](const Scene& s) {
+            std::vector<int> out;
+            for (const ClimateGoal& g : s.sensors.climate_goals.goals) out.insert(out.end(), g.sensors.begin(), g.sensors.end());
+            std::sort(out.begin(), out.end());
+            out.erase(std::unique(out.begin(), out.end()), out.end());
+            return out;
+          },
+          "The sensors any climate goal looks at (ascending indices): the climate goals' hourly model's rows.")
       .def_property_readonly("has_climate", [](const Scene& s) { return s.climate != nullptr; },
                              "Whether the sky is \"climate\" (a weather file): annual studies need it.")
       .def_property_readonly("solver_paths", [](const Scene& s) { return s.solver.paths_per_sensor; },

@@ -25,11 +25,12 @@ identity (what client and workers must agree on).
 """
 
 from .annual_study import annual
-from .client import (DistributedContributions, check_client_fits, check_shards_fit, contributions, evaluate, solve,
-                     worker_memory)
+from .client import (DistributedContributions, check_client_fits, check_shards_fit, climate_share, contributions,
+                     evaluate, shard_needs, solve, solve_memory, worker_memory)
 from .cluster import Cluster, ClusterError
 from .identity import PROTOCOL
 from .sky_map import sky, write_sky
 
 __all__ = ["Cluster", "ClusterError", "DistributedContributions", "PROTOCOL", "annual", "check_client_fits",
-           "check_shards_fit", "contributions", "evaluate", "sky", "solve", "worker_memory", "write_sky"]
+           "check_shards_fit", "climate_share", "contributions", "evaluate", "shard_needs", "sky", "solve",
+           "solve_memory", "worker_memory", "write_sky"]

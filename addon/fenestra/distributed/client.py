@@ -130,28 +130,75 @@ def _mib(n):
     return "%.0f MiB" % (n / 2**20) if n < 2**30 else "%.1f GiB" % (n / 2**30)
 
 
-def check_shards_fit(estimate, blocks, worker_limits):
-    """Raises ClusterError when the largest shard would not fit in the smallest worker's memory
-    limit (bytes; 0 or None: no limit): its records while they are assembled, its rows of E,
-    E_stderr and A, and the ray-tracing scene and tables every shard builds (docs/distributed.md).
-    `estimate`: fenestra.estimate_cost(scene, "contributions") of the whole study."""
+def climate_share(scene):
+    """For a solve with climate goals, what each of its goal sensors adds to the worker holding it:
+    (bytes, the goal sensors): its part of the hourly model and of the search's years, the cost
+    model's figures (docs/cost.md) shared out by goal sensor. None without climate goals."""
+    sensors = np.asarray(scene.climate_goal_sensors if scene.has_climate else [], dtype=np.int64)
+    if not len(sensors):
+        return None
+    memory = api.estimate_cost(scene, "solve")["memory"]
+    return (memory.get("climate_model", 0.0) + memory.get("climate_population", 0.0)) / len(sensors), sensors
+
+
+def shard_needs(estimate, blocks, climate=None):
+    """Bytes each shard's worker holds for it: its path records while they are assembled, its rows of
+    E, E_stderr and A, the ray-tracing scene and tables every shard builds, and with `climate`
+    (climate_share) its goal sensors' part of the hourly model and of the search's years."""
     memory, sensors = estimate["memory"], estimate["sensors"]
     per_sensor = (memory["path_records"] + memory["path_records_assembly"] + memory["portal_selection"]
                   + memory["E"] + memory["E_stderr"] + memory["A"]) / sensors
     fixed = memory["ray_scene"] + memory["analysis"]
-    largest = max(e - b for b, e in blocks)
-    need = fixed + per_sensor * largest
+    needs = []
+    for begin, end in blocks:
+        need = fixed + per_sensor * (end - begin)
+        if climate is not None:
+            per_row, goal = climate
+            need += per_row * int(np.count_nonzero((goal >= begin) & (goal < end)))
+        needs.append(need)
+    return needs
+
+
+def solve_memory(scene, workers, shards=None):
+    """What a solve of `scene` (a fenestra.Scene, its solver's paths per sensor applied) holds on a
+    cluster of `workers` workers in `shards` shards (default one per worker), by the cost model, in
+    bytes: "worker", the most a worker holds (its shards' records and, with climate goals, their
+    part of the hourly model and of the search's years); "client", what this process holds
+    (check_client_fits); "one_process", what the solve would hold in one process."""
+    blocks = _blocks(scene.sensor_count, shards if shards is not None else workers)
+    largest = max(shard_needs(api.estimate_cost(scene, "contributions"), blocks, climate_share(scene)))
+    whole = api.estimate_cost(scene, "solve")
+    client = sum(whole["memory"].get(name, 0.0) for name in _CLIENT_PARTS)
+    client += 8.0 * scene.sensor_count * scene.element_count  # the flip effects the shards' answers make
+    return {"worker": -(-len(blocks) // workers) * largest, "client": client, "one_process": whole["total_bytes"]}
+
+
+def check_shards_fit(estimate, blocks, worker_limits, climate=None):
+    """Raises ClusterError, before any work, when the largest shard would not fit in the smallest
+    worker's memory limit (bytes; 0 or None: no limit), naming the shards that would
+    (docs/distributed.md). `estimate`: fenestra.estimate_cost(scene, "contributions") of the whole
+    study; `climate`: climate_share(scene) for a solve with climate goals. Returns the largest
+    shard's bytes."""
+    needs = shard_needs(estimate, blocks, climate)
+    need = max(needs)
+    largest = blocks[needs.index(need)]
     limits = {w: m for w, m in worker_limits.items() if m}
     if limits and need > min(limits.values()):
         worker = min(limits, key=limits.get)
-        most = int((limits[worker] - fixed) // per_sensor)  # sensors a shard may hold there
-        what = ("a shard of %d sensors needs about %s (path records while they are assembled, its rows of E, E_stderr "
-                "and A), more than worker %s's memory limit of %s" % (largest, _mib(need), worker, _mib(limits[worker])))
-        if most < 1:
-            raise ClusterError(what + ": even one sensor per shard does not fit; use fewer paths or workers with more "
-                               "memory")
-        raise ClusterError(what + ": use at least %d shards (shards=, --shards), more workers, or fewer paths"
-                           % -(-sensors // most))
+        sensors = estimate["sensors"]
+        goal = 0 if climate is None else int(np.count_nonzero((climate[1] >= largest[0]) & (climate[1] < largest[1])))
+        what = ("a shard of %d sensors%s needs about %s (path records while they are assembled, its rows of E, "
+                "E_stderr and A%s), more than worker %s's memory limit of %s"
+                % (largest[1] - largest[0], " (%d of them climate goal sensors)" % goal if climate is not None else "",
+                   _mib(need), "; its part of the climate goals' hourly model and of the search's years"
+                   if climate is not None else "", worker, _mib(limits[worker])))
+        fits = next((count for count in range(len(blocks) + 1, sensors + 1)
+                     if max(shard_needs(estimate, _blocks(sensors, count), climate)) <= limits[worker]), None)
+        if fits is None:
+            raise ClusterError(what + ": even one sensor per shard does not fit; use fewer paths, %sor workers with "
+                               "more memory" % ("a larger element_size, fewer sensors in the climate goals, "
+                                                if climate is not None else ""))
+        raise ClusterError(what + ": use at least %d shards (shards=, --shards), more workers, or fewer paths" % fits)
     return need
 
 
@@ -167,12 +214,12 @@ def contributions(scene, cluster, shards=None, base_dir=".", callback=None):
     return _contributions(spec, local, cluster, shards, callback)
 
 
-def _contributions(spec, local, cluster, shards, callback):
+def _contributions(spec, local, cluster, shards, callback, climate=None):
     api._warn_if_dark(local)
     blocks = _blocks(local.sensor_count, shards if shards is not None else len(cluster.workers()))
     workers = cluster._scheduler_workers()
     check_shards_fit(api.estimate_cost(local, "contributions"), blocks,
-                     {w: info.get("memory_limit", 0) for w, info in workers.items()})
+                     {w: info.get("memory_limit", 0) for w, info in workers.items()}, climate)
     keys = _shard_keys("contributions", spec, len(blocks))
     futures = [cluster.client.submit(_compute_shard, spec, key, b, e, pure=False, key=key)
                for key, (b, e) in zip(keys, blocks)]
@@ -599,7 +646,7 @@ def solve(scene, cluster, shards=None, base_dir=".", callback=None, max_memory=N
             for name in spec["render"]:
                 setattr(local.render, name, getattr(scene.render, name))
         _set_render(spec, local, paths_per_sensor=local.solver_paths)
-    with _contributions(spec, local, cluster, shards, callback) as study:
+    with _contributions(spec, local, cluster, shards, callback, climate_share(local)) as study:
         result = study.solve(callback=callback)
         # As fenestra.solve lists the tracing it did first.
         result["stages"].insert(0, {"name": "contributions", "seconds": study.seconds, "stopped_because": "done"})
