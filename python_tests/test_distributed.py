@@ -692,6 +692,11 @@ def test_cli_solves_climate_goals_on_a_local_cluster_as_one_process(tmp_path):
     assert one["climate"]["goals"][0]["achieved"] is not None
     assert without_timings(many) == without_timings(one)
     assert "climate goal sDA300/50% >= 50 %:" in runs["many"].stdout, runs["many"].stdout
+    r = cli("solve", path, "-o", tmp_path / "said.json", "--workers", 2, "--threads", 1)
+    assert r.returncode == 0, r.stderr
+    said = re.search(r"estimated memory: about ([\d.]+) (MiB|GiB) per worker, [\d.]+ (MiB|GiB) in this process \(one "
+                     r"process would hold [\d.]+ (MiB|GiB)\)", r.stderr)
+    assert said, r.stderr
     # The summary is the one process's, but its seconds and the output's name.
     summary = lambda out: [line.split("; ")[0] if line.startswith("solve:") else line
                            for line in out.replace("many.json", "one.json").splitlines()]

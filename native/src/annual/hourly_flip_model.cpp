@@ -135,9 +135,14 @@ int HourlyColumns::occupied_columns() const {
   return static_cast<int>(std::count(occupied.begin(), occupied.end(), 1));
 }
 
+int FlipChange::position(int32_t row) const {
+  const auto at = std::lower_bound(rows.begin(), rows.end(), row);
+  return at != rows.end() && *at == row ? static_cast<int>(at - rows.begin()) : -1;
+}
+
 size_t HourlyFlipModel::memory_bytes() const {
   size_t bytes = sizeof(float) * (total.size() + direct.size());
-  for (const auto& m : flip_total) bytes += sizeof(float) * m.size();
+  for (const auto& m : flip_total) bytes += sizeof(float) * m.values.size() + sizeof(int32_t) * m.rows.size();
   for (const auto& d : flip_direct) bytes += sizeof(DirectChange) * d.capacity();
   return bytes;
 }
@@ -148,14 +153,14 @@ double hourly_flip_model_bytes(size_t rows, size_t columns, size_t elements) {
 
 namespace {
 
-// `stored`: the elements whose flips the model keeps.
-void check_model_fits(size_t rows, size_t columns, size_t stored) {
-  const double bytes = hourly_flip_model_bytes(rows, columns, stored);
+// `reached`: the (element, row) pairs whose changes the model keeps.
+void check_model_fits(size_t rows, size_t columns, size_t reached) {
+  const double bytes = 4.0 * static_cast<double>(columns) * static_cast<double>(reached + 2 * rows);
   const MemoryLimit limit = memory_limit();
   if (bytes > 0.8 * static_cast<double>(limit.bytes))
     throw CostError(memory_refusal("the climate goals' hourly model (" + std::to_string(rows) + " sensors x " +
-                                       std::to_string(columns) + " hours x " + std::to_string(stored) +
-                                       " elements, 4 bytes each)",
+                                       std::to_string(columns) + " hours, and " + std::to_string(reached) +
+                                       " changes of a sensor's year by an element's flip, 4 bytes an hour)",
                                    bytes, bytes, limit,
                                    "use a larger element_size, fewer sensors in the climate goals, or a shorter "
                                    "occupied period"));
@@ -183,25 +188,27 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
   });
   if (progress) progress->throw_if_cancelled();
 
-  std::vector<uint8_t> touched(c.element_count(), 0);
-  for (const SensorCoefficients& s : coefficients)
-    for (int32_t k : s.elements) touched[k] = 1;
+  // The rows each element reaches: the sensors whose paths meet it, and those whose sun rays cross it.
+  m.flip_total.resize(c.element_count());
+  m.flip_direct.resize(c.element_count());
   std::vector<int32_t> crossed;
-  for (int sensor : rows) {
-    if (!with_flips) break;  // the elements the sun's rays cross
-    for (size_t j = 0; j < annual.direct[sensor].path_count(); ++j) {
-      path_elements(annual.direct[sensor], j, &crossed);
-      for (int32_t k : crossed) touched[k] = 1;
+  size_t reached = 0;
+  for (size_t r = 0; r < rows.size() && with_flips; ++r) {
+    std::vector<int32_t> elements = coefficients[r].elements;
+    for (size_t j = 0; j < annual.direct[rows[r]].path_count(); ++j) {
+      path_elements(annual.direct[rows[r]], j, &crossed);
+      elements.insert(elements.end(), crossed.begin(), crossed.end());
     }
+    std::sort(elements.begin(), elements.end());
+    elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
+    for (int32_t k : elements) m.flip_total[k].rows.push_back(static_cast<int32_t>(r));  // ascending
+    reached += elements.size();
   }
-  check_model_fits(rows.size(), columns.hour.size(), static_cast<size_t>(std::count(touched.begin(), touched.end(), 1)));
+  check_model_fits(rows.size(), columns.hour.size(), reached);
 
   m.total.setZero(n_rows, n_columns);
   m.direct.setZero(n_rows, n_columns);
-  m.flip_total.resize(c.element_count());
-  m.flip_direct.resize(c.element_count());
-  for (size_t k = 0; k < touched.size(); ++k)
-    if (touched[k]) m.flip_total[k].setZero(n_rows, n_columns);
+  for (FlipChange& f : m.flip_total) f.values.setZero(static_cast<Eigen::Index>(f.rows.size()), n_columns);
 
   std::vector<int> column_of_hour(annual.climate->sky->hours.size(), -1);
   for (Eigen::Index j = 0; j < n_columns; ++j) column_of_hour[columns.hour[j]] = static_cast<int>(j);
@@ -213,7 +220,10 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
     const Eigen::Index row = static_cast<Eigen::Index>(r);
     m.total.row(row) = sky.lux(s.base.transpose());
     const Eigen::MatrixXf flips = sky.lux(s.flips);
-    for (size_t t = 0; t < s.elements.size(); ++t) m.flip_total[s.elements[t]].row(row) = flips.row(t);
+    for (size_t t = 0; t < s.elements.size(); ++t) {
+      FlipChange& f = m.flip_total[s.elements[t]];
+      f.values.row(f.position(static_cast<int32_t>(r))) = flips.row(t);
+    }
     // The sun straight to the sensor, at each sunny hour's exact position.
     const SensorRecord& d = annual.direct[rows[r]];
     std::vector<std::pair<int32_t, DirectChange>> changes;
@@ -235,7 +245,8 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
       for (int32_t k : elements) {
         const float change = value(k) * sun - base;
         if (change == 0.0f) continue;
-        m.flip_total[k](row, column) += change;
+        FlipChange& f = m.flip_total[k];
+        f.values(f.position(static_cast<int32_t>(r)), column) += change;
         changes.push_back({k, {static_cast<int32_t>(row), column, change}});
       }
     }

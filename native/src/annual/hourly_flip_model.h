@@ -39,6 +39,16 @@ struct DirectChange {
   float lux = 0.0f;
 };
 
+// An element's flip: the change of `total` at the rows it reaches (the sensors whose paths, or sun
+// rays, meet it; a floor's element reaches its own room's), each row's hours.
+struct FlipChange {
+  std::vector<int32_t> rows;  // model rows, ascending
+  HourlyMatrix values;        // rows.size() x columns, lux
+  bool empty() const { return rows.empty(); }
+  // Position of `row` in `rows`, or -1.
+  int position(int32_t row) const;
+};
+
 struct HourlyFlipModel {
   std::vector<uint8_t> about;  // S, per element
   std::vector<int> rows;       // the sensors, as scene indices
@@ -46,7 +56,7 @@ struct HourlyFlipModel {
   HourlyMatrix total, direct;  // rows x columns, lux: every light, and the sun straight to the sensor
   // Per element: the change of `total` when it alone flips from S (empty: it changes nothing here),
   // and the part of that change that is direct sun.
-  std::vector<HourlyMatrix> flip_total;
+  std::vector<FlipChange> flip_total;
   std::vector<std::vector<DirectChange>> flip_direct;
   size_t memory_bytes() const;
 };

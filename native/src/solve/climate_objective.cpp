@@ -97,45 +97,50 @@ ClimateTally ClimateObjective::tally(const HourlyMatrix& total, const HourlyMatr
     throw std::invalid_argument("climate tally: " + std::to_string(total.rows()) + " rows of hours, " +
                                 std::to_string(model_rows->size()) + " model rows named");
   ClimateTally t = empty_tally();
-  const int m = occupied_columns_;
   for (Eigen::Index i = 0; i < total.rows(); ++i) {
     const int r = model_rows ? (*model_rows)[static_cast<size_t>(i)] : static_cast<int>(i);
     if (r < 0 || r >= model_rows_)
       throw std::invalid_argument("climate tally: model row " + std::to_string(r) + " outside the model's " +
                                   std::to_string(model_rows_));
-    const auto year = total.row(i).head(m).array();
-    if (needs_occupied_sum_) t.occupied_sum[r] = total.row(i).head(m).cast<double>().sum();
-    for (size_t g = 0; g < goals_.goals.size(); ++g) {
-      if (!goal_rows_[g].member[r]) continue;
-      const ClimateGoal& goal = goals_.goals[g];
-      switch (goal.metric) {
-        case ClimateMetric::SpatialDaylightAutonomy:
-          t.hours[g][r] = static_cast<int32_t>((year >= static_cast<float>(goal.illuminance_lux)).count());
-          break;
-        case ClimateMetric::SunlightExposure:
-          t.hours[g][r] = direct.size() ? static_cast<int32_t>((direct.row(i).head(m).array() >
-                                                                static_cast<float>(goal.illuminance_lux)).count())
-                                        : 0;
-          break;
-        case ClimateMetric::UsefulDaylight: {
-          const float lo = static_cast<float>(goal.lower_lux), hi = static_cast<float>(goal.upper_lux);
-          t.hours[g][r] = static_cast<int32_t>(((year >= lo) && (year <= hi)).count());
-          break;
-        }
-        case ClimateMetric::En17037: {
-          const En17037Illuminances e = en17037_illuminances(goal.level);
-          for (size_t j = 0; j < daylight_columns_.size(); ++j) {
-            const float lux = total(i, daylight_columns_[j]);
-            t.above_target[g][j] += lux >= e.target_lux;
-            t.above_minimum[g][j] += lux >= e.minimum_target_lux;
-          }
-          break;
-        }
-        case ClimateMetric::MeanIlluminance: break;
-      }
-    }
+    tally_row(&t, total.row(i).data(), direct.size() ? direct.row(i).data() : nullptr, r, false);
   }
   return t;
+}
+
+void ClimateObjective::tally_row(ClimateTally* t, const float* total, const float* direct, int r, bool remove) const {
+  const int m = occupied_columns_;
+  const Eigen::Map<const Eigen::ArrayXf> year(total, m);
+  if (needs_occupied_sum_) t->occupied_sum[r] = remove ? 0.0 : year.cast<double>().sum();
+  for (size_t g = 0; g < goals_.goals.size(); ++g) {
+    if (!goal_rows_[g].member[r]) continue;
+    const ClimateGoal& goal = goals_.goals[g];
+    switch (goal.metric) {
+      case ClimateMetric::SpatialDaylightAutonomy:
+        t->hours[g][r] = remove ? 0 : static_cast<int32_t>((year >= static_cast<float>(goal.illuminance_lux)).count());
+        break;
+      case ClimateMetric::SunlightExposure:
+        t->hours[g][r] = remove || !direct ? 0
+                                           : static_cast<int32_t>((Eigen::Map<const Eigen::ArrayXf>(direct, m) >
+                                                                   static_cast<float>(goal.illuminance_lux)).count());
+        break;
+      case ClimateMetric::UsefulDaylight: {
+        const float lo = static_cast<float>(goal.lower_lux), hi = static_cast<float>(goal.upper_lux);
+        t->hours[g][r] = remove ? 0 : static_cast<int32_t>(((year >= lo) && (year <= hi)).count());
+        break;
+      }
+      case ClimateMetric::En17037: {
+        const En17037Illuminances e = en17037_illuminances(goal.level);
+        const int32_t step = remove ? -1 : 1;
+        for (size_t j = 0; j < daylight_columns_.size(); ++j) {
+          const float lux = total[daylight_columns_[j]];
+          t->above_target[g][j] += step * (lux >= e.target_lux);
+          t->above_minimum[g][j] += step * (lux >= e.minimum_target_lux);
+        }
+        break;
+      }
+      case ClimateMetric::MeanIlluminance: break;
+    }
+  }
 }
 
 std::vector<ClimateFigure> ClimateObjective::figures(const ClimateTally& t) const {

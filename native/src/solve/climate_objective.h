@@ -49,6 +49,9 @@ class ClimateObjective {
                      const std::vector<int>* model_rows = nullptr) const;
   // The tally of no rows, to add the parts' tallies to.
   ClimateTally empty_tally() const;
+  // Model row r's share of a tally, from its hours (`total`, and `direct` or null without an ASE
+  // goal: the model's columns each): added to `t`, or with `remove` taken out of it.
+  void tally_row(ClimateTally* t, const float* total, const float* direct, int r, bool remove) const;
   // The figures and the error of a whole model's tally (its parts' tallies added).
   std::vector<ClimateFigure> figures(const ClimateTally& tally) const;
   // The error: goals' shortfalls (hard and smooth; a mean goal's relative squared error), the

@@ -26,10 +26,11 @@ void ClimateShard::flip(Year* year, int k) const {
   // Away from the model's state the change adds; back toward it, it comes off again.
   const float sign = (year->open[k] != 0) == (model_.about[k] != 0) ? 1.0f : -1.0f;
   year->open[k] ^= 1;
-  const HourlyMatrix& change = model_.flip_total[k];
-  if (change.size() == 0) return;
-  if (sign > 0.0f) year->total += change;
-  else year->total -= change;
+  const FlipChange& change = model_.flip_total[k];
+  for (size_t i = 0; i < change.rows.size(); ++i) {
+    if (sign > 0.0f) year->total.row(change.rows[i]) += change.values.row(static_cast<Eigen::Index>(i));
+    else year->total.row(change.rows[i]) -= change.values.row(static_cast<Eigen::Index>(i));
+  }
   if (year->direct.size())
     for (const DirectChange& d : model_.flip_direct[k]) year->direct(d.row, d.column) += sign * d.lux;
 }
@@ -86,16 +87,33 @@ std::vector<ClimateTally> ClimateShard::flip_tallies(int slot, const std::vector
     if (k < 0 || static_cast<size_t>(k) >= year.open.size())
       throw std::invalid_argument("climate shard: element " + std::to_string(k) + " is not one of the " +
                                   std::to_string(year.open.size()));
+  // Each flip changes the rows it reaches: their share of the state's tally is taken out and the
+  // flipped rows' put in, computed as flip() computes them, so each tally equals a settled state's.
+  const ClimateTally base = tally(year);
+  const Eigen::Index columns = year.total.cols();
   std::vector<ClimateTally> out(elements.size());
   tbb::parallel_for(size_t(0), elements.size(), [&](size_t i) {
     const int k = elements[i];
-    if (model_.flip_total[k].size() == 0 && model_.flip_direct[k].empty()) {
-      out[i] = tally(year);  // the flip changes nothing at these sensors
-      return;
+    const FlipChange& change = model_.flip_total[k];
+    const float sign = (year.open[k] != 0) == (model_.about[k] != 0) ? 1.0f : -1.0f;
+    ClimateTally t = base;
+    Eigen::Matrix<float, 1, Eigen::Dynamic> total(columns), direct(year.direct.size() ? columns : 0);
+    const std::vector<DirectChange>& sun = model_.flip_direct[k];
+    auto d = sun.begin();
+    for (size_t p = 0; p < change.rows.size(); ++p) {
+      const int32_t r = change.rows[p];
+      const Eigen::Index at = static_cast<Eigen::Index>(p);
+      if (sign > 0.0f) total = year.total.row(r) + change.values.row(at);
+      else total = year.total.row(r) - change.values.row(at);
+      const bool has_direct = direct.size() > 0;
+      if (has_direct) direct = year.direct.row(r);
+      for (; d != sun.end() && d->row <= r; ++d)  // sorted by row, then column
+        if (d->row == r && has_direct) direct[d->column] += sign * d->lux;
+      objective_.tally_row(&t, year.total.row(r).data(), has_direct ? year.direct.row(r).data() : nullptr,
+                           model_rows_[r], true);
+      objective_.tally_row(&t, total.data(), has_direct ? direct.data() : nullptr, model_rows_[r], false);
     }
-    Year flipped = year;
-    flip(&flipped, k);
-    out[i] = tally(flipped);
+    out[i] = std::move(t);
   });
   return out;
 }

@@ -100,7 +100,7 @@ std::unique_ptr<ClimateShard> LocalRecordQueries::climate_shard(const ClimatePro
   HourlyFlipModel part = hourly_flip_model(c_, about, local, problem.columns, progress_);
   // Excluded elements change nothing in the model (their flips are dropped).
   for (size_t k = 0; k < excluded.size() && k < part.flip_total.size(); ++k)
-    if (excluded[k]) part.flip_total[k].resize(0, 0), part.flip_direct[k].clear();
+    if (excluded[k]) part.flip_total[k] = FlipChange(), part.flip_direct[k].clear();
   return std::make_unique<ClimateShard>(std::move(part), std::move(model_rows), *problem.objective);
 }
 
