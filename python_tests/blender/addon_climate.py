@@ -106,6 +106,15 @@ class Export(unittest.TestCase):
         first = study.sensor_objects[0][1]  # both objects have the group on the same vertices
         self.assertEqual(scene["sensors"]["groups"], {"window": sorted(near) + [first + i for i in sorted(near)]})
 
+        # A goal on a sensor object (a room's grid): the group is all of that object's sensors.
+        add_goal('SDA', sensor_group="More Sensors")
+        study = exported()
+        first = dict(study.sensor_objects)
+        start = 0 if study.sensor_objects[0][0] == "More Sensors" else study.sensor_objects[0][1]
+        self.assertEqual(study.scene["sensors"]["groups"]["More Sensors"],
+                         list(range(start, start + first["More Sensors"])))
+        self.assertEqual(study.scene["goals"]["climate"][-1]["sensors"], "More Sensors")
+
     def test_fields_stay_in_the_spec_ranges(self):
         room()
         goal = add_goal('SDA')
@@ -236,6 +245,14 @@ class Solved(unittest.TestCase):
             self.assertEqual(item.has_verified, goal["verified"] is not None)
             self.assertEqual((item.unit, item.sense, item.sensors), (goal["unit"], goal["sense"], len(goal["sensors"])))
         self.assertEqual(r.climate.goals[1].sensors, len(near))
+        # Each room the goals name (here the vertex group): its figures of the solved year, the result's.
+        self.assertEqual([group["name"] for group in climate["rooms"]], ["window"])
+        self.assertEqual([item.name for item in r.climate.rooms], ["window"])
+        for item, group in zip(r.climate.rooms, climate["rooms"]):
+            self.assertEqual(item.sensors, len(group["sensors"]))
+            self.assertAlmostEqual(item.spatial_daylight_autonomy, group["space"]["spatial_daylight_autonomy"], places=6)
+            self.assertAlmostEqual(item.annual_sunlight_exposure, group["space"]["annual_sunlight_exposure"], places=6)
+            self.assertAlmostEqual(item.mean_illuminance, group["space"]["mean_illuminance_lux"], places=2)
         self.assertEqual(r.climate.all_met, climate["all_met"])
         self.assertEqual(r.climate.unmet.split("\n") if r.climate.unmet else [], climate["unmet"])
         self.assertTrue(r.climate.least_glazing)

@@ -44,9 +44,10 @@ def _udi_upper_changed(goal, context):
 
 
 def _vertex_group_names(self, context, text):
-    """The search list of the Sensor Group field: the vertex groups of the sensor objects."""
-    names = sorted({g.name for o in context.scene.objects if o.type == 'MESH' and o.fenestra.is_sensor
-                    for g in o.vertex_groups})
+    """The search list of the Sensor Group field: the sensor objects (a room's grid each) and their
+    vertex groups."""
+    sensors = [o for o in context.scene.objects if o.type == 'MESH' and o.fenestra.is_sensor]
+    names = sorted({o.name for o in sensors} | {g.name for o in sensors for g in o.vertex_groups})
     return [n for n in names if text.lower() in n.lower()]
 
 
@@ -54,8 +55,9 @@ class FenestraClimateGoal(PropertyGroup):
     metric: EnumProperty(name="Metric", items=METRICS, default='SDA', update=_redraw)
     sensor_group: StringProperty(
         name="Sensor Group", default="", search=_vertex_group_names,
-        description="A vertex group of the sensor object(s): the goal is on the sensors in it (in every sensor "
-                    "object that has a vertex group of this name). Empty: all sensors")
+        description="A sensor object (a room's sensor grid: the goal is on all its sensors) or a vertex group of "
+                    "the sensor object(s) (the goal is on the sensors in it, in every sensor object that has a "
+                    "vertex group of this name). Empty: all sensors")
     weight: FloatProperty(name="Weight", min=0.01, max=MAX_WEIGHT, soft_max=10.0, default=1.0,
                           description="The goal's share of the objective, relative to the other goals (1: equal)")
     # sDA (defaults: IES LM-83's sDA300/50% and LEED v4's 55 %).
@@ -149,9 +151,19 @@ class FenestraClimateGoalResult(PropertyGroup):
     verified_met: BoolProperty(name="Verified Met")
 
 
+class FenestraClimateRoomResult(PropertyGroup):
+    """One room of the result: a sensor group a climate goal names, and its figures of the solved year."""
+    name: StringProperty(name="Room", description="The sensor object or vertex group the goals name")
+    sensors: IntProperty(name="Sensors", description="How many sensors the room has")
+    spatial_daylight_autonomy: FloatProperty(name="sDA", description="sDA300/50% of the room's sensors, 0 to 1")
+    annual_sunlight_exposure: FloatProperty(name="ASE", description="ASE1000,250 of the room's sensors, 0 to 1")
+    mean_illuminance: FloatProperty(name="Mean", description="The room's mean illuminance of the occupied hours, lux")
+
+
 class FenestraClimateResult(PropertyGroup):
     valid: BoolProperty(default=False, description="The last solve had climate goals")
     goals: CollectionProperty(type=FenestraClimateGoalResult)
+    rooms: CollectionProperty(type=FenestraClimateRoomResult)
     all_met: BoolProperty(name="All Met")
     has_verified: BoolProperty(default=False)
     verified_all_met: BoolProperty(name="All Met, Verified")
@@ -164,4 +176,4 @@ class FenestraClimateResult(PropertyGroup):
     domain_area: FloatProperty(name="Domain Area", description="Area of the opening domain's elements, m²")
 
 
-classes = (FenestraClimateGoal, FenestraClimateGoalResult, FenestraClimateResult)
+classes = (FenestraClimateGoal, FenestraClimateGoalResult, FenestraClimateRoomResult, FenestraClimateResult)

@@ -12,9 +12,10 @@ def _number(value, default=0.0):
 def clear(climate):
     """Back to no climate result (scene.fenestra.results.climate)."""
     for key in climate.bl_rna.properties.keys():
-        if key not in {"rna_type", "name", "goals"}:
+        if key not in {"rna_type", "name", "goals", "rooms"}:
             climate.property_unset(key)
     climate.goals.clear()
+    climate.rooms.clear()
 
 
 def apply(results, climate):
@@ -38,6 +39,12 @@ def apply(results, climate):
         item.has_verified = goal.get("verified") is not None
         item.verified = _number(goal.get("verified"))
         item.verified_met = bool(goal.get("verified_met"))
+    for room in climate.get("rooms") or []:  # each sensor group the goals name, with the solved year's figures
+        item, space = target.rooms.add(), room.get("space") or {}
+        item.name, item.sensors = room.get("name", ""), len(room.get("sensors") or [])
+        item.spatial_daylight_autonomy = _number(space.get("spatial_daylight_autonomy"))
+        item.annual_sunlight_exposure = _number(space.get("annual_sunlight_exposure"))
+        item.mean_illuminance = _number(space.get("mean_illuminance_lux"))
     target.all_met = bool(climate.get("all_met"))
     target.has_verified = climate.get("verified_all_met") is not None
     target.verified_all_met = bool(climate.get("verified_all_met"))

@@ -150,10 +150,11 @@ def _point_goals(mesh, obj_name, scale):
 
 def _group_members(obj, mesh, name):
     """The vertices of the (evaluated) mesh in the object's vertex group `name` with a weight above
-    0, as indices; none when the object has no such group."""
+    0, as indices; every vertex when `name` is the object's own (a room's sensor grid) and it has no
+    such vertex group; none otherwise."""
     index = obj.vertex_groups.find(name)
     if index < 0:
-        return np.zeros(0, np.int64)
+        return np.arange(len(mesh.vertices), dtype=np.int64) if obj.name == name else np.zeros(0, np.int64)
     return np.array([v.index for v in mesh.vertices if any(g.group == index and g.weight > 0 for g in v.groups)],
                     np.int64)
 
