@@ -127,11 +127,13 @@ class FENESTRA_PT_climate_results(FenestraPanel, bpy.types.Panel):
         if len(c.rooms):  # each room (sensor group) the goals name, with the solved year's figures
             box = layout.box()
             box.label(text="Rooms", icon='HOME')
-            col = box.column(align=True)
             for room in c.rooms:
-                col.label(text="%s: sDA %.0f %%, ASE %.0f %%, %.0f lx" % (
-                    room.name, 100 * room.spatial_daylight_autonomy, 100 * room.annual_sunlight_exposure,
-                    room.mean_illuminance))
+                col = box.column(align=True)
+                col.label(text="%s (%d sensors)" % (room.name, room.sensors))
+                row = col.row()
+                row.active = False
+                row.label(text="sDA %.0f %%  ASE %.0f %%  %.0f lx" % (
+                    100 * room.spatial_daylight_autonomy, 100 * room.annual_sunlight_exposure, room.mean_illuminance))
         share = c.glazing_area / c.domain_area if c.domain_area > 0 else 0.0
         col = layout.column(align=True)
         col.label(text="Glazing %.2f m² (%.0f %%)" % (c.glazing_area, 100 * share), icon='MOD_BOOLEAN')
