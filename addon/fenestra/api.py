@@ -284,6 +284,25 @@ def evaluate(scene, openings, progress=None, callback=None, max_memory=None):
     return _run(lambda p: _core.evaluate(scene, rects, p), progress, callback)
 
 
+def _annual_arguments(scene, openings, output, cutters, paths):
+    """An annual study's arguments checked as annual() checks them, before any work: (output path or
+    None, the openings as the native core takes them). Raises ValueError (TypeError for a flag
+    that is not a bool) naming the argument."""
+    _arg.flag(cutters, "cutters")
+    out = None if output is None else _arg.path(output, "output")
+    rects = openings_argument(openings)
+    if not scene.has_climate:
+        raise ValueError("annual needs a scene whose sky is \"climate\" (a weather file, docs/scene-format.md); "
+                         "scene '%s' has another sky" % scene.source)
+    if isinstance(paths, bool) or not isinstance(paths, (int, np.integer)) or paths < 0:
+        raise ValueError("paths must be a whole number of paths per sensor, at least 0 (0: the scene's "
+                         "render.paths_per_sensor), got %r" % (paths,))
+    if paths and not cutters:
+        raise ValueError("paths belongs to annual(cutters=True); the records' study has the contributions' paths "
+                         "(render.paths_per_sensor)")
+    return out, rects
+
+
 def annual(scene, openings, contributions=None, output=None, progress=None, callback=None, max_memory=None,
            cutters=False, paths=0):
     """The annual study of a "climate" scene with the openings open (as for evaluate): every sensor's
@@ -303,24 +322,13 @@ def annual(scene, openings, contributions=None, output=None, progress=None, call
     _scene(scene)
     _contributions(contributions)
     _check_run(progress, callback, max_memory)
-    _arg.flag(cutters, "cutters")
-    out = None if output is None else _arg.path(output, "output")
-    rects = openings_argument(openings)
-    if not scene.has_climate:
-        raise ValueError("annual needs a scene whose sky is \"climate\" (a weather file, docs/scene-format.md); "
-                         "scene '%s' has another sky" % scene.source)
-    if isinstance(paths, bool) or not isinstance(paths, (int, np.integer)) or paths < 0:
-        raise ValueError("paths must be a whole number of paths per sensor, at least 0 (0: the scene's "
-                         "render.paths_per_sensor), got %r" % (paths,))
+    out, rects = _annual_arguments(scene, openings, output, cutters, paths)
     if cutters:
         if contributions is not None:
             raise ValueError("annual(cutters=True) traces its own paths with the openings cut: "
                              "leave contributions out")
         _cost.check_cost(scene, "annual_cutters", max_memory, paths=int(paths) or None)  # no records are kept
         return _run(lambda p: _core.annual_with_cutters(scene, rects, int(paths), p, out or ""), progress, callback)
-    if paths:
-        raise ValueError("paths belongs to annual(cutters=True); the records' study has the contributions' paths "
-                         "(render.paths_per_sensor)")
     if contributions is None:
         _cost.check_cost(scene, "contributions", max_memory)
         contributions = _run(lambda p: _core.compute_contributions(scene, p), progress, callback)

@@ -29,18 +29,7 @@ def annual(scene, openings, cluster, shards=None, base_dir=".", output=None, cal
     "warnings" (the command line's setup checks). callback(fraction, status) about once a second;
     returning False cancels (fenestra.Cancelled)."""
     spec, local = _spec(scene, base_dir)
-    api._arg.flag(cutters, "cutters")
-    out = None if output is None else api._arg.path(output, "output")
-    rects = api.openings_argument(openings)
-    if not local.has_climate:
-        raise ValueError("annual needs a scene whose sky is \"climate\" (a weather file, docs/scene-format.md); "
-                         "scene '%s' has another sky" % local.source)
-    if isinstance(paths, bool) or not isinstance(paths, (int, np.integer)) or paths < 0:
-        raise ValueError("paths must be a whole number of paths per sensor, at least 0 (0: the scene's "
-                         "render.paths_per_sensor), got %r" % (paths,))
-    if paths and not cutters:
-        raise ValueError("paths belongs to annual(cutters=True); the records' study has the contributions' paths "
-                         "(render.paths_per_sensor)")
+    out, rects = api._annual_arguments(local, openings, output, cutters, paths)
     warnings = [str(w) for w in warnings]
     if out is not None:
         _core.check_output_paths(list(_core.npz_json_pair(out)), [local.source])

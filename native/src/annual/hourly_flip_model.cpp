@@ -140,6 +140,13 @@ int FlipChange::position(int32_t row) const {
   return at != rows.end() && *at == row ? static_cast<int>(at - rows.begin()) : -1;
 }
 
+void add_flip(const FlipChange& change, float sign, HourlyMatrix* total) {
+  for (size_t i = 0; i < change.rows.size(); ++i) {
+    if (sign > 0.0f) total->row(change.rows[i]) += change.values.row(static_cast<Eigen::Index>(i));
+    else total->row(change.rows[i]) -= change.values.row(static_cast<Eigen::Index>(i));
+  }
+}
+
 size_t HourlyFlipModel::memory_bytes() const {
   size_t bytes = sizeof(float) * (total.size() + direct.size());
   for (const auto& m : flip_total) bytes += sizeof(float) * m.values.size() + sizeof(int32_t) * m.rows.size();

@@ -49,6 +49,9 @@ struct FlipChange {
   int position(int32_t row) const;
 };
 
+// Adds `change` to `total` (its rows), or with sign < 0 takes it off.
+void add_flip(const FlipChange& change, float sign, HourlyMatrix* total);
+
 struct HourlyFlipModel {
   std::vector<uint8_t> about;  // S, per element
   std::vector<int> rows;       // the sensors, as scene indices

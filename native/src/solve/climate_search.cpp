@@ -82,11 +82,7 @@ void flip_climate_response(const HourlyFlipModel& model, const ClimateObjective&
   // Away from the model's state the change adds; back toward it, it comes off again.
   const float sign = (open[j] != 0) == (model.about[j] != 0) ? 1.0f : -1.0f;
   r->open_area += (open[j] ? -1.0 : 1.0) * objective.element_area(j);
-  const FlipChange& change = model.flip_total[j];
-  for (size_t i = 0; i < change.rows.size(); ++i) {
-    if (sign > 0.0f) r->total.row(change.rows[i]) += change.values.row(static_cast<Eigen::Index>(i));
-    else r->total.row(change.rows[i]) -= change.values.row(static_cast<Eigen::Index>(i));
-  }
+  add_flip(model.flip_total[j], sign, &r->total);
   if (r->direct.size())
     for (const DirectChange& d : model.flip_direct[j]) r->direct(d.row, d.column) += sign * d.lux;
 }

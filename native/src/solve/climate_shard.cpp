@@ -26,11 +26,7 @@ void ClimateShard::flip(Year* year, int k) const {
   // Away from the model's state the change adds; back toward it, it comes off again.
   const float sign = (year->open[k] != 0) == (model_.about[k] != 0) ? 1.0f : -1.0f;
   year->open[k] ^= 1;
-  const FlipChange& change = model_.flip_total[k];
-  for (size_t i = 0; i < change.rows.size(); ++i) {
-    if (sign > 0.0f) year->total.row(change.rows[i]) += change.values.row(static_cast<Eigen::Index>(i));
-    else year->total.row(change.rows[i]) -= change.values.row(static_cast<Eigen::Index>(i));
-  }
+  add_flip(model_.flip_total[k], sign, &year->total);
   if (year->direct.size())
     for (const DirectChange& d : model_.flip_direct[k]) year->direct(d.row, d.column) += sign * d.lux;
 }
