@@ -254,12 +254,11 @@ def memory_line(scene, a, workers):
     """The solve's memory on the cluster by the cost model, as one process prints its estimate."""
     from fenestra import distributed
 
-    local = scene
-    if "paths" in a:
-        local.render.paths_per_sensor = a["paths"]
-    elif scene.solver_paths > 0:  # as the solve traces its contributions
-        local.render.paths_per_sensor = scene.solver_paths
-    m = distributed.solve_memory(local, workers, a.get("shards"))
+    if "paths" in a:  # the paths the solve traces its contributions with (the scene is not used after)
+        scene.render.paths_per_sensor = a["paths"]
+    elif scene.solver_paths > 0:
+        scene.render.paths_per_sensor = scene.solver_paths
+    m = distributed.solve_memory(scene, workers, a.get("shards"))
     mib = distributed.client._mib
     return ("estimated memory: about %s per worker, %s in this process (one process would hold %s)"
             % (mib(m["worker"]), mib(m["client"]), mib(m["one_process"])))

@@ -267,16 +267,13 @@ void bind_shard_climate(py::class_<ShardQueries, std::shared_ptr<ShardQueries>>&
             const std::vector<uint8_t> o = mask_of(open, q.contributions->element_count(), "climate state");
             // Other goals than the model's get a problem of their own: the model stays as it is.
             std::unique_ptr<ClimateProblem> other;
-            const ClimateProblem* problem = nullptr;
-            if (q.climate_problem && same_bits(q.climate_goals, goals)) {
-              problem = q.climate_problem.get();
-            } else if (!q.climate_shard) {
-              problem = &shard_problem(q, goals);
-            } else {
+            if (!(q.climate_problem && same_bits(q.climate_goals, goals))) {
+              if (!q.contributions->annual)
+                throw std::invalid_argument("climate goals: these contributions are not a climate sky's");
               other = std::make_unique<ClimateProblem>(climate_problem(
                   *q.scene, q.contributions->annual.get(), goals_from(goals, static_cast<Eigen::Index>(q.scene->sensors.size()))));
-              problem = other.get();
             }
+            const ClimateProblem* problem = other ? other.get() : q.climate_problem.get();
             ClimateTally t;
             {
               py::gil_scoped_release release;
