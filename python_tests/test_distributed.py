@@ -311,12 +311,13 @@ def test_a_shard_too_large_for_its_worker_is_refused_before_any_work(tmp_path):
     need = distributed.check_shards_fit(estimate, blocks, {"tcp://a:1": 0})  # no limit: fits, says how much
     assert need > estimate["memory"]["path_records"] / 2
     with pytest.raises(distributed.ClusterError, match=r"a shard of 12 sensors needs about .* MiB .* worker tcp://b:2's "
-                                                       r"memory limit of .* use at least \d+ shards"):
+                                                       r"memory limit of .* use at least \d+ workers of this memory, one "
+                                                       r"shard each"):
         distributed.check_shards_fit(estimate, blocks, {"tcp://a:1": 10 * need, "tcp://b:2": need / 3})
     # The suggested shard count fits.
     message = str(pytest.raises(distributed.ClusterError, distributed.check_shards_fit, estimate, blocks,
                                 {"tcp://b:2": need / 3}).value)
-    shards = int(message.split("use at least ")[1].split()[0])
+    shards = int(message.split("use at least ")[1].split()[0])  # workers, a shard each
     distributed.check_shards_fit(estimate, distributed.client._blocks(24, shards), {"tcp://b:2": need / 3})
 
 
@@ -330,19 +331,93 @@ def test_a_climate_solves_shard_counts_its_part_of_the_hourly_model_before_any_w
     scene = fenestra.load_scene(str(path))
     estimate = fenestra.estimate_cost(scene, "contributions")
     climate = distributed.climate_share(scene)
-    per_row, goal = climate
-    assert list(goal) == list(range(6)) and per_row > 0
+    assert list(climate.sensors) == list(range(6)) and np.all(climate.model > 0) and np.all(climate.years > 0)
+    solve = fenestra.estimate_cost(scene, "solve")["memory"]
+    assert climate.model.sum() == pytest.approx(solve["climate_model"])
+    assert climate.years.sum() == pytest.approx(solve["climate_population"])
     blocks = distributed.client._blocks(6, 2)
     records = distributed.check_shards_fit(estimate, blocks, {})
     need = distributed.check_shards_fit(estimate, blocks, {}, climate)
-    assert need == pytest.approx(records + 3 * per_row)
+    assert need == pytest.approx(records + climate.bytes[:3].sum())
     with pytest.raises(distributed.ClusterError, match=r"a shard of 3 sensors \(3 of them climate goal sensors\) "
-                                                       r"needs about .*hourly model.* use at least \d+ shards"):
+                                                       r"needs about .*hourly model.* use at least \d+ workers of this "
+                                                       r"memory, one shard each"):
         distributed.check_shards_fit(estimate, blocks, {"tcp://a:1": (records + need) / 2}, climate)
     memory = distributed.solve_memory(scene, 2)
     assert memory["worker"] == pytest.approx(need)
     solve = fenestra.estimate_cost(scene, "solve")["memory"]
     assert memory["client"] < memory["one_process"] - solve["climate_model"] - solve["climate_population"] + 1
+
+
+def test_the_climate_share_knows_a_floors_rooms_apart_and_names_the_element_size_that_fits(tmp_path):
+    """Closed rooms: each goal sensor's rows hold its own room's facade, not the floor's, so a floor
+    is counted by what its rooms see, not sensors x elements. A refusal names the element size at
+    which the shard would fit, and at that size it does."""
+    sys.path.insert(0, os.path.join(ROOT, "scripts"))
+    from office_floor import write_office_floor
+
+    path = write_office_floor(str(tmp_path), element_size=0.5, spacing=1.5, paths=64, rooms_long=2, rooms_short=1,
+                              width=18.0, depth=18.0)
+    scene = fenestra.load_scene(path)
+    climate = distributed.climate_share(scene)
+    reach = np.asarray(fenestra._core.climate_reach(scene))
+    assert len(climate.sensors) == scene.sensor_count and np.all(reach > 0)
+    # A sensor sees its room's facade (one or two walls of the floor's eight), less than half the domain.
+    assert reach.max() < 0.5 * scene.element_count, (reach.max(), scene.element_count)
+    estimate = fenestra.estimate_cost(scene, "contributions")
+    blocks = distributed.client._blocks(scene.sensor_count, 2)
+    need = distributed.check_shards_fit(estimate, blocks, {}, climate)
+    message = str(pytest.raises(distributed.ClusterError, distributed.check_shards_fit, estimate, blocks,
+                                {"tcp://a:1": 0.6 * need}, climate).value)
+    size = float(message.split("a larger element_size (")[1].split(" m")[0])
+    assert size > scene.element_size
+    with open(path) as f:
+        spec = json.load(f)
+    spec["opening_domain"]["element_size"] = size
+    with open(path, "w") as f:
+        json.dump(spec, f)
+    larger = fenestra.load_scene(path)
+    distributed.check_shards_fit(fenestra.estimate_cost(larger, "contributions"), blocks, {"tcp://a:1": 0.6 * need},
+                                 distributed.climate_share(larger))
+
+
+def test_a_climate_model_the_records_count_too_large_is_refused_before_it_is_built(tmp_path, monkeypatch):
+    """The estimate before tracing can be short (light through a door meets another room's facade);
+    the shards then count their parts of the model from their records, and a worker that would not
+    hold its part is refused before any is built, naming the workers and the element size that fit."""
+    weather = os.path.join(ROOT, "examples", "weather", "USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw")
+    (tmp_path / "room.obj").write_text(box_obj((0, 0, 0), (6, 5, 3), lambda f: "facade" if f == "south" else "grey"))
+    scene = {
+        "fenestra": 1, "geometry": "room.obj",
+        "materials": {"grey": {"reflectance": 0.5}, "facade": {"reflectance": 0.5}},
+        "opening_domain": {"materials": ["facade"], "element_size": 0.25},
+        "sensors": {"points": [[0.3 + 0.6 * (i % 10), 0.3 + 0.15 * (i // 10), 0.8] for i in range(300)]},
+        "sky": {"type": "climate", "weather": weather},
+        "goals": {"climate": [{"metric": "sda", "min_area_fraction": 0.5}]},
+        "render": {"paths_per_sensor": 32, "seed": 2},
+        "solver": {"population": 8, "generations": 2, "tradeoffs": False},
+    }
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    local = fenestra.load_scene(str(path))
+    real = distributed.client.climate_share
+    # The estimate before tracing misses the model (as it may where doors join rooms).
+    monkeypatch.setattr(distributed.client, "climate_share",
+                        lambda s: None if real(s) is None else real(s)._replace(model=np.zeros(len(real(s).sensors))))
+    years = real(local).years.sum()
+    model = fenestra.estimate_cost(local, "solve")["memory"]["climate_model"]
+    limit = 400 << 20  # what a worker's own start leaves room for under Dask's memory manager
+    assert model / 2 > limit > years  # each worker's half of the model alone would not fit
+    with distributed.Cluster(workers=2, threads_per_worker=1, memory_limit=limit, timeout=30) as cluster:
+        error = pytest.raises(distributed.ClusterError, distributed.solve, str(path), cluster).value
+        assert len(cluster.workers()) == 2  # nobody died building it
+    message = str(error)
+    assert "the climate goals' hourly model: worker tcp://" in message, message
+    assert "counted from their path records" in message, message
+    workers = int(re.search(r"use at least (\d+) workers of this memory", message).group(1))
+    held = float(re.search(r"would hold about (\d+) MiB", message).group(1))
+    assert held > 400 and workers >= 3 and workers * 400 >= 2 * held, message
+    assert "or a larger element_size (" in message
 
 
 def test_cli_refuses_shards_larger_than_a_workers_memory(tmp_path):

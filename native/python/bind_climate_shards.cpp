@@ -227,6 +227,16 @@ void bind_shard_climate(py::class_<ShardQueries, std::shared_ptr<ShardQueries>>&
        "Builds this shard of the climate goals' hourly model about `about` (the excluded elements' flips dropped) "
        "for the per-sensor goals `goals` (target, weight, lower, upper per sensor); returns its bytes.")
       .def(
+          "climate_model_bytes",
+          [](ShardQueries& q, const DoubleArray& goals) {
+            const ClimateProblem& problem = shard_problem(q, goals);
+            py::gil_scoped_release release;
+            return q.queries.climate_shard_bytes(problem);
+          },
+          py::arg("goals"),
+          "Bytes this shard's part of the climate goals' hourly model will hold for the per-sensor goals `goals`, "
+          "counted from its records before it is built (about any state).")
+      .def(
           "climate_settle",
           [](ShardQueries& q, const IntArray& slots, const IntArray& bases, const MaskArray& states) {
             ClimateShard& shard = shard_of(q);

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "scene/scene.h"
+#include "study/climate_reach.h"
 #include "study/cost_model.h"
 #include "util/byte_size.h"
 #include "util/cost_context.h"
@@ -35,6 +36,10 @@ class PyCostScope {
 }  // namespace
 
 void bind_cost(py::module_& m) {
+  m.def("climate_reach", [](const Scene& scene) { return climate_reach(scene); }, py::arg("scene"),
+        "Per sensor, the opening elements its rows of the climate goals' hourly model are estimated to hold "
+        "(those it sees with the domain open, times a margin; 0 for sensors no climate goal looks at), "
+        "before any path is traced (docs/cost.md).");
   m.def("parse_memory_size", [](const std::string& text) { return parse_byte_size(text, "max_memory"); },
         py::arg("text"), "Bytes from '8G', '512M', '1.5GB', '2GiB' or a plain number (decimal units; Ki, Mi, Gi binary).");
   m.def(

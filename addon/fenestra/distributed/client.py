@@ -3,9 +3,11 @@ shards' work submitted to the workers (worker.py), gathered with progress, cance
 work recomputed, and assembled bit for bit as one process would: contributions
 (DistributedContributions), evaluate and solve, with the memory checks before any work."""
 
+import collections
 import hashlib
 import itertools
 import json
+import math
 import os
 import threading
 import time
@@ -130,33 +132,57 @@ def _mib(n):
     return "%.0f MiB" % (n / 2**20) if n < 2**30 else "%.1f GiB" % (n / 2**30)
 
 
+class ClimateShare(collections.namedtuple("ClimateShare", "model years sensors element_size")):
+    """What each climate goal sensor adds to the worker holding it, by the cost model: `model` (bytes
+    per goal sensor) its rows of the hourly model (the elements its light is estimated to meet,
+    fenestra.climate_reach), `years` its part of the search's years; `sensors` the goal sensors
+    (ascending); `element_size` the scene's (meters)."""
+
+    @property
+    def bytes(self):
+        return self.model + self.years
+
+
 def climate_share(scene):
-    """For a solve with climate goals, what each of its goal sensors adds to the worker holding it:
-    (bytes, the goal sensors): its part of the hourly model and of the search's years, the cost
-    model's figures (docs/cost.md) shared out by goal sensor. None without climate goals."""
+    """For a solve with climate goals, a ClimateShare: each goal sensor's part of the cost model's
+    `climate_model` (in proportion to the elements it is estimated to reach) and of
+    `climate_population` (docs/cost.md). None without climate goals."""
     sensors = np.asarray(scene.climate_goal_sensors if scene.has_climate else [], dtype=np.int64)
     if not len(sensors):
         return None
     memory = api.estimate_cost(scene, "solve")["memory"]
-    return (memory.get("climate_model", 0.0) + memory.get("climate_population", 0.0)) / len(sensors), sensors
+    reach = np.asarray(_core.climate_reach(scene), dtype=np.float64)[sensors]
+    model = memory.get("climate_model", 0.0) * reach / max(reach.sum(), 1.0)
+    years = np.full(len(sensors), memory.get("climate_population", 0.0) / len(sensors))
+    return ClimateShare(model, years, sensors, scene.element_size)
+
+
+def _goal_bytes(climate, begin, end, part="bytes"):
+    """The climate share (its `part`: bytes, model or years) of the goal sensors in [begin, end)."""
+    return float(getattr(climate, part)[(climate.sensors >= begin) & (climate.sensors < end)].sum())
+
+
+def _element_size_that_fits(element_size, model_bytes, other_bytes, limit):
+    """The element size (meters, rounded up to 0.01 m) at which `model_bytes` (the hourly model,
+    which goes as the elements a sensor's light meets: 1 / size^2 on a wall, with a fifth to spare
+    for the cells at the panels' edges) and `other_bytes` fit in `limit`; None when the rest alone
+    does not."""
+    room = limit - other_bytes
+    if model_bytes <= 0 or room <= 0:
+        return None
+    return math.ceil(100.0 * element_size * math.sqrt(1.2 * model_bytes / room)) / 100.0
 
 
 def shard_needs(estimate, blocks, climate=None):
     """Bytes each shard's worker holds for it: its path records while they are assembled, its rows of
     E, E_stderr and A, the ray-tracing scene and tables every shard builds, and with `climate`
-    (climate_share) its goal sensors' part of the hourly model and of the search's years."""
+    (a ClimateShare) its goal sensors' part of the hourly model and of the search's years."""
     memory, sensors = estimate["memory"], estimate["sensors"]
     per_sensor = (memory["path_records"] + memory["path_records_assembly"] + memory["portal_selection"]
                   + memory["E"] + memory["E_stderr"] + memory["A"]) / sensors
     fixed = memory["ray_scene"] + memory["analysis"]
-    needs = []
-    for begin, end in blocks:
-        need = fixed + per_sensor * (end - begin)
-        if climate is not None:
-            per_row, goal = climate
-            need += per_row * int(np.count_nonzero((goal >= begin) & (goal < end)))
-        needs.append(need)
-    return needs
+    return [fixed + per_sensor * (end - begin) + (_goal_bytes(climate, begin, end) if climate is not None else 0.0)
+            for begin, end in blocks]
 
 
 def solve_memory(scene, workers, shards=None):
@@ -175,7 +201,8 @@ def solve_memory(scene, workers, shards=None):
 
 def check_shards_fit(estimate, blocks, worker_limits, climate=None):
     """Raises ClusterError, before any work, when the largest shard would not fit in the smallest
-    worker's memory limit (bytes; 0 or None: no limit), naming the shards that would
+    worker's memory limit (bytes; 0 or None: no limit), naming the workers of that memory, one
+    shard each, that would hold the study, and with climate goals the element size that would fit
     (docs/distributed.md). `estimate`: fenestra.estimate_cost(scene, "contributions") of the whole
     study; `climate`: climate_share(scene) for a solve with climate goals. Returns the largest
     shard's bytes."""
@@ -186,7 +213,8 @@ def check_shards_fit(estimate, blocks, worker_limits, climate=None):
     if limits and need > min(limits.values()):
         worker = min(limits, key=limits.get)
         sensors = estimate["sensors"]
-        goal = 0 if climate is None else int(np.count_nonzero((climate[1] >= largest[0]) & (climate[1] < largest[1])))
+        goal = 0 if climate is None else int(np.count_nonzero((climate.sensors >= largest[0])
+                                                             & (climate.sensors < largest[1])))
         what = ("a shard of %d sensors%s needs about %s (path records while they are assembled, its rows of E, "
                 "E_stderr and A%s), more than worker %s's memory limit of %s"
                 % (largest[1] - largest[0], " (%d of them climate goal sensors)" % goal if climate is not None else "",
@@ -194,12 +222,50 @@ def check_shards_fit(estimate, blocks, worker_limits, climate=None):
                    if climate is not None else "", worker, _mib(limits[worker])))
         fits = next((count for count in range(len(blocks) + 1, sensors + 1)
                      if max(shard_needs(estimate, _blocks(sensors, count), climate)) <= limits[worker]), None)
+        size = None
+        if climate is not None:
+            model = _goal_bytes(climate, *largest, "model")
+            size = _element_size_that_fits(climate.element_size, model, need - model, limits[worker])
+        larger = " or a larger element_size (%.2f m or more)" % size if size is not None else ""
         if fits is None:
-            raise ClusterError(what + ": even one sensor per shard does not fit; use fewer paths, %sor workers with "
-                               "more memory" % ("a larger element_size, fewer sensors in the climate goals, "
+            raise ClusterError(what + ": even one sensor per shard does not fit; use fewer paths%s, %sor workers with "
+                               "more memory" % (larger, "fewer sensors in the climate goals, "
                                                 if climate is not None else ""))
-        raise ClusterError(what + ": use at least %d shards (shards=, --shards), more workers, or fewer paths" % fits)
+        raise ClusterError(what + ": use at least %d workers of this memory, one shard each (shards=, --shards)%s, "
+                                  "or fewer paths" % (fits, larger))
     return need
+
+
+def check_climate_model_fits(model_bytes, shards, climate, held, worker_limits):
+    """Raises ClusterError, before the climate goals' hourly model is built, when a worker's shards
+    would not fit its memory limit with their parts of it. `model_bytes`: per shard, the bytes its
+    part of the model will hold, counted from its records (exact); `shards`: (begin, end, worker)
+    of each; `climate`: climate_share(scene) (the search's years per goal sensor are its
+    population's part, the model's part is replaced by the count); `held`: per shard, the bytes its
+    records hold; `worker_limits`: {worker: bytes, 0 or None: no limit}. Names the number of workers
+    of that memory, one shard each, and the element size that would fit. Returns {worker: bytes}."""
+    parts = {}  # worker -> [the model's rows, the search's years, the records]
+    for counted, (begin, end, worker), records in zip(model_bytes, shards, held):
+        part = parts.setdefault(worker, [0.0, 0.0, 0.0])
+        part[0] += counted
+        part[1] += _goal_bytes(climate, begin, end, "years")
+        part[2] += records
+    for worker, (model, years, records) in parts.items():
+        limit = worker_limits.get(worker) or 0
+        need = model + years + records
+        if limit and need > limit:
+            whole = sum(sum(p) for p in parts.values())
+            workers = max(len(parts) + 1, math.ceil(whole / limit))
+            size = _element_size_that_fits(climate.element_size, model, years + records, limit)
+            raise ClusterError(
+                "the climate goals' hourly model: worker %s would hold about %s (its shards' rows of the model %s, "
+                "counted from their path records; the search's years %s; the records %s), more than its memory "
+                "limit of %s: use at least %d workers of this memory, one shard each (shards=, --shards)%s, or fewer "
+                "sensors in the climate goals" % (worker, _mib(need), _mib(model), _mib(years), _mib(records),
+                                                   _mib(limit), workers,
+                                                   " or a larger element_size (%.2f m or more)" % size
+                                                   if size is not None else ""))
+    return {worker: sum(p) for worker, p in parts.items()}
 
 
 def contributions(scene, cluster, shards=None, base_dir=".", callback=None):
@@ -430,7 +496,7 @@ class _ShardedRecords:
         self.calls += 1
         changes = op not in (
             "evaluate", "sampled", "flip_effects", "record_bytes", "try", "annual_parts", "sensors_reached",
-            "climate_flip_tallies", "climate_tally")
+            "climate_flip_tallies", "climate_tally", "climate_model_bytes")
         parts = self._ask_shards(op, args)
         if changes:
             self._log.append((op, args))
@@ -562,9 +628,22 @@ class _ShardedRecords:
         """Each shard builds its part of the climate goals' hourly model from its records and keeps it
         (with the search's states) on its worker; the native search asks it through the returned
         object and adds the shards' tallies."""
+        goals = np.asarray(goals, dtype=np.float64)
+        self._check_climate_model_fits(goals)
         parts = self._ask("climate_model", np.asarray(about, dtype=np.uint8), np.asarray(excluded, dtype=np.uint8),
-                          np.asarray(goals, dtype=np.float64))
+                          goals)
         return _ClimateModelOnShards(self, float(sum(parts)))
+
+    def _check_climate_model_fits(self, goals):
+        """The shards count their parts of the model from their records (the same whatever the
+        state) and the workers' limits are checked before any is built."""
+        study = self._study
+        climate = climate_share(study.scene)
+        if climate is None:
+            return
+        limits = {w: info.get("memory_limit", 0) for w, info in study._cluster._scheduler_workers().items()}
+        check_climate_model_fits(self._ask("climate_model_bytes", goals), study.shards, climate,
+                                 study.shard_memory_bytes, limits)
 
     def climate_tally(self, open_mask, goals):
         """Per shard, the tally of the exact year of `open_mask` at its goal sensors."""

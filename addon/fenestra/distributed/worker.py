@@ -151,6 +151,8 @@ def _apply(state, op, args, sensors):
         return queries.climate_tally(*args)
     if op == "climate_flip_tallies":
         return queries.climate_flip_tallies(*args)
+    if op == "climate_model_bytes":  # counts from the records before the model is built
+        return queries.climate_model_bytes(*args)
     if op == "annual_parts":
         return queries.annual_parts(args[0])
     if op == "flip_effects":

@@ -38,18 +38,24 @@ struct SensorCoefficients {
   Eigen::MatrixXd flips;            // touched x sources: change when that element flips
 };
 
-SensorCoefficients sensor_coefficients(const SensorRecord& r, const std::vector<uint8_t>& about, int sources,
-                                       bool with_flips, const Progress* progress) {
-  SensorCoefficients out;
-  out.base = Eigen::VectorXd::Zero(sources);
-  std::vector<int32_t> touched;
-  for (size_t p = 0; p < r.path_count() && with_flips; ++p) {
-    std::vector<int32_t> elements;
+// The elements a sensor's paths meet (sorted): its coefficients' flips.
+std::vector<int32_t> path_reach(const SensorRecord& r) {
+  std::vector<int32_t> touched, elements;
+  for (size_t p = 0; p < r.path_count(); ++p) {
     path_elements(r, p, &elements);
     touched.insert(touched.end(), elements.begin(), elements.end());
   }
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  return touched;
+}
+
+// `touched`: path_reach(r), or empty without the flips.
+SensorCoefficients sensor_coefficients(const SensorRecord& r, const std::vector<uint8_t>& about, int sources,
+                                       const std::vector<int32_t>& touched, bool with_flips,
+                                       const Progress* progress) {
+  SensorCoefficients out;
+  out.base = Eigen::VectorXd::Zero(sources);
   out.elements = touched;
   out.flips = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched.size()), sources);
   Eigen::VectorXd path_base(sources), flipped(sources);
@@ -154,15 +160,29 @@ size_t HourlyFlipModel::memory_bytes() const {
   return bytes;
 }
 
-double hourly_flip_model_bytes(size_t rows, size_t columns, size_t elements) {
-  return 4.0 * static_cast<double>(rows) * static_cast<double>(columns) * static_cast<double>(elements + 2);
+double hourly_flip_model_bytes(double rows, double columns, double pairs) {
+  return 4.0 * columns * (pairs + 2.0 * rows) + 4.0 * pairs;
 }
 
 namespace {
 
+// A row's reach: the elements its paths meet (`touched`) and those its sensor's sun rays cross, sorted.
+std::vector<int32_t> row_reach(const Contributions& c, int sensor, const std::vector<int32_t>& touched) {
+  std::vector<int32_t> elements = touched, crossed;
+  const SensorRecord& direct = c.annual->direct[sensor];
+  for (size_t j = 0; j < direct.path_count(); ++j) {
+    path_elements(direct, j, &crossed);
+    elements.insert(elements.end(), crossed.begin(), crossed.end());
+  }
+  std::sort(elements.begin(), elements.end());
+  elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
+  return elements;
+}
+
 // `reached`: the (element, row) pairs whose changes the model keeps.
 void check_model_fits(size_t rows, size_t columns, size_t reached) {
-  const double bytes = 4.0 * static_cast<double>(columns) * static_cast<double>(reached + 2 * rows);
+  const double bytes =
+      hourly_flip_model_bytes(static_cast<double>(rows), static_cast<double>(columns), static_cast<double>(reached));
   const MemoryLimit limit = memory_limit();
   if (bytes > 0.8 * static_cast<double>(limit.bytes))
     throw CostError(memory_refusal("the climate goals' hourly model (" + std::to_string(rows) + " sensors x " +
@@ -188,28 +208,18 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
   m.rows = rows;
   m.columns = columns;
 
-  std::vector<SensorCoefficients> coefficients(rows.size());
-  tbb::parallel_for(size_t(0), rows.size(), [&](size_t r) {
-    if (progress && progress->cancelled()) return;
-    coefficients[r] = sensor_coefficients(c.records[rows[r]], about, sources, with_flips, progress);
-  });
-  if (progress) progress->throw_if_cancelled();
-
   // The rows each element reaches: the sensors whose paths meet it, and those whose sun rays cross it.
+  std::vector<std::vector<int32_t>> touched(rows.size());
   m.flip_total.resize(c.element_count());
   m.flip_direct.resize(c.element_count());
-  std::vector<int32_t> crossed;
   size_t reached = 0;
-  for (size_t r = 0; r < rows.size() && with_flips; ++r) {
-    std::vector<int32_t> elements = coefficients[r].elements;
-    for (size_t j = 0; j < annual.direct[rows[r]].path_count(); ++j) {
-      path_elements(annual.direct[rows[r]], j, &crossed);
-      elements.insert(elements.end(), crossed.begin(), crossed.end());
+  if (with_flips) {
+    tbb::parallel_for(size_t(0), rows.size(), [&](size_t r) { touched[r] = path_reach(c.records[rows[r]]); });
+    for (size_t r = 0; r < rows.size(); ++r) {
+      const std::vector<int32_t> elements = row_reach(c, rows[r], touched[r]);
+      for (int32_t k : elements) m.flip_total[k].rows.push_back(static_cast<int32_t>(r));  // ascending
+      reached += elements.size();
     }
-    std::sort(elements.begin(), elements.end());
-    elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
-    for (int32_t k : elements) m.flip_total[k].rows.push_back(static_cast<int32_t>(r));  // ascending
-    reached += elements.size();
   }
   check_model_fits(rows.size(), columns.hour.size(), reached);
 
@@ -223,7 +233,9 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
   std::mutex direct_lock;
   tbb::parallel_for(size_t(0), rows.size(), [&](size_t r) {
     if (progress && progress->cancelled()) return;
-    const SensorCoefficients& s = coefficients[r];
+    // Each row's coefficients are made and spent here: only the threads' rows are held at once.
+    const SensorCoefficients s =
+        sensor_coefficients(c.records[rows[r]], about, sources, touched[r], with_flips, progress);
     const Eigen::Index row = static_cast<Eigen::Index>(r);
     m.total.row(row) = sky.lux(s.base.transpose());
     const Eigen::MatrixXf flips = sky.lux(s.flips);
@@ -270,6 +282,15 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
 }
 
 }  // namespace
+
+std::vector<size_t> hourly_flip_model_reach(const Contributions& c, const std::vector<int>& rows) {
+  if (!c.annual) throw std::invalid_argument("climate goals need the contributions of a climate sky");
+  std::vector<size_t> out(rows.size());
+  tbb::parallel_for(size_t(0), rows.size(), [&](size_t r) {
+    out[r] = row_reach(c, rows[r], path_reach(c.records[rows[r]])).size();
+  });
+  return out;
+}
 
 HourlyFlipModel hourly_flip_model(const Contributions& c, const std::vector<uint8_t>& about,
                                   const std::vector<int>& rows, const HourlyColumns& columns,

@@ -64,8 +64,14 @@ struct HourlyFlipModel {
   size_t memory_bytes() const;
 };
 
-// Bytes a model of these sizes holds at most (every element's change stored).
-double hourly_flip_model_bytes(size_t rows, size_t columns, size_t elements);
+// Bytes a model of `rows` x `columns` holds when it keeps `pairs` (element, row) changes: the state's
+// year and its direct sun, each change's hours and its row (4 bytes each). The sun's own changes,
+// a few per sunny hour, are left out.
+double hourly_flip_model_bytes(double rows, double columns, double pairs);
+
+// Per row, the elements whose flips a model of these rows keeps (its sensor's paths meet them or
+// its sun rays cross them): what the model will hold, counted from the records before it is built.
+std::vector<size_t> hourly_flip_model_reach(const Contributions& c, const std::vector<int>& rows);
 
 // Throws CostError when the model would not fit in memory (util/memory_limit.h), naming the figure
 // and what to reduce; std::invalid_argument without annual records. Polls `progress`.

@@ -104,6 +104,15 @@ std::unique_ptr<ClimateShard> LocalRecordQueries::climate_shard(const ClimatePro
   return std::make_unique<ClimateShard>(std::move(part), std::move(model_rows), *problem.objective);
 }
 
+double LocalRecordQueries::climate_shard_bytes(const ClimateProblem& problem) const {
+  std::vector<int> local, model_rows;
+  climate_rows(problem, &local, &model_rows);
+  double pairs = 0.0;
+  for (size_t n : hourly_flip_model_reach(c_, local)) pairs += static_cast<double>(n);
+  return hourly_flip_model_bytes(static_cast<double>(local.size()), static_cast<double>(problem.columns.hour.size()),
+                                 pairs);
+}
+
 std::unique_ptr<ClimateModel> LocalRecordQueries::climate_model(const ClimateProblem& problem,
                                                                 const std::vector<uint8_t>& about,
                                                                 const std::vector<uint8_t>& excluded) {

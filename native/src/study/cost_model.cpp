@@ -1,7 +1,9 @@
 #include "study/cost_model.h"
 
 #include "annual/annual_cut_study.h"
+#include "annual/annual_study.h"
 #include "annual/hourly_flip_model.h"
+#include "daylight/annual_metrics.h"
 #include "daylight/annual_sources.h"
 
 #include <algorithm>
@@ -17,6 +19,7 @@
 #include "scene/domain_estimate.h"
 #include "scene/element_size_hint.h"
 #include "scene/scene.h"
+#include "study/climate_reach.h"
 #include "solve/catalogue_snap.h"
 #include "solve/exact_values.h"
 #include "solve/flip_effects_cache.h"
@@ -258,23 +261,45 @@ void add_contributions(const Scene& scene, long long paths, CostEstimate* e) {
                      fewer_paths});
 }
 
+// The columns of the climate goals' hourly model (annual/hourly_flip_model.h's hourly_columns):
+// the lit hours of the occupied period and, with an EN 17037 goal, its daylight hours.
+double climate_columns(const Scene& scene) {
+  const SkyMatrix& sky = *scene.climate->sky;
+  const AnnualMetricSettings settings = annual_metric_settings(scene);
+  bool en17037 = false;
+  for (const ClimateGoal& g : scene.sensors.climate_goals.goals) en17037 = en17037 || g.metric == ClimateMetric::En17037;
+  std::vector<char> daylight;
+  if (en17037) daylight = en17037_daylight_hours(sky.diffuse_horizontal_lux);
+  double columns = 0.0;
+  for (size_t h = 0; h < sky.hours.size(); ++h) {
+    const bool lit = sky.sun_normal_illuminance[h] > 0.0f || sky.radiance.col(static_cast<Eigen::Index>(h)).maxCoeff() > 0.0f;
+    const int clock = sky.hours[h].clock_hour;
+    const bool occupied = clock >= settings.occupied_start_hour && clock < settings.occupied_end_hour;
+    columns += lit && (occupied || (en17037 && daylight[h]));
+  }
+  return columns;
+}
+
 // Climate goals (solve/climate_design.h): the hourly model, every element's change of each goal
-// sensor's year (its lit occupied hours, at most half of the year), held twice while a model about
-// the best state replaces the first, and each individual's year (total and direct sun).
+// sensor's year where the sensor's light meets the element (study/climate_reach.h estimates those
+// pairs from what each sensor sees: the records count them exactly before the model is built), one
+// model at a time; and each individual's year (total and direct sun) in the search's slots.
 void add_climate_goals(const Scene& scene, CostEstimate* e) {
-  std::vector<uint8_t> goal_sensor(scene.sensors.size(), 0);
-  for (const ClimateGoal& g : scene.sensors.climate_goals.goals)
-    for (int i : g.sensors) goal_sensor[i] = 1;
-  const double rows = static_cast<double>(std::count(goal_sensor.begin(), goal_sensor.end(), 1));
-  const double hours = 0.5 * static_cast<double>(scene.climate->sky->hours.size());
-  const double N = static_cast<double>(e->elements), pop = scene.solver.population;
+  const std::vector<double> reach = climate_reach(scene);
+  double rows = 0.0, pairs = 0.0;
+  for (double r : reach) rows += r > 0.0, pairs += r;
+  const double columns = climate_columns(scene), pop = scene.solver.population;
   const std::string fewer = "fewer sensors in the climate goals or " + std::string(kLargerElementSize);
-  e->memory.push_back({"climate_model", "the climate goals' hourly model (goal sensors x hours x elements)",
-                       2.0 * hourly_flip_model_bytes(static_cast<size_t>(rows), static_cast<size_t>(hours),
-                                                     static_cast<size_t>(N)),
-                       "solving", fewer});
+  e->memory.push_back({"climate_model", "the climate goals' hourly model (goal sensors x hours x the elements each "
+                       "sensor's light meets, estimated)",
+                       hourly_flip_model_bytes(rows, columns, pairs), "solving", fewer});
+  // A slot per individual and per child, and the polish's (solve/genetic_search.h); the direct sun's
+  // hours only for an ASE goal.
+  bool ase = false;
+  for (const ClimateGoal& g : scene.sensors.climate_goals.goals) ase = ase || g.metric == ClimateMetric::SunlightExposure;
   e->memory.push_back({"climate_population", "the genetic algorithm's years (goal sensors x hours per individual)",
-                       3.0 * pop * 2.0 * 4.0 * rows * hours, "solving", "a smaller solver.population, or " + fewer});
+                       (2.0 * pop + 1.0) * (ase ? 8.0 : 4.0) * rows * columns, "solving",
+                       "a smaller solver.population, or " + fewer});
 }
 
 void add_solver(const Scene& scene, CostEstimate* e) {
