@@ -72,6 +72,7 @@ bench: build
 	$(BUILD)/bench/fenestra_climate_design_bench
 	$(PYTHON) scripts/forward_check_bench.py $(BUILD)/fenestra
 	$(PYTHON) scripts/distributed_bench.py
+	$(PYTHON) scripts/floor_bench.py
 
 # Ground truth: known openings' light as goals, solved for and checked (out/validate/, README table).
 validate: build examples-blend

@@ -121,6 +121,41 @@ TEST(ClimateReach, TheRecordsCountTheModelExactlyWhereLightPassesADoor) {
   EXPECT_EQ(b.counted_bytes, b.model_bytes - b.direct_bytes);
 }
 
+TEST(ClimateReach, ExcludedElementsAreLeftOutOfTheModelAndItsCount) {
+  TempDir dir;
+  const Scene scene = two_rooms(dir, 256, true);
+  const Contributions c = compute_contributions(scene);
+  std::vector<int> rows(scene.sensors.size());
+  std::iota(rows.begin(), rows.end(), 0);
+  const HourlyColumns columns = hourly_columns(*c.annual, false);
+  std::vector<uint8_t> about(c.element_count(), 0), excluded(c.element_count(), 0);
+  for (size_t k = 0; k < excluded.size(); k += 3) excluded[k] = 1;
+  for (size_t k = 1; k < about.size(); k += 4) about[k] = !excluded[k];
+  const HourlyFlipModel whole = hourly_flip_model(c, about, rows, columns);
+  const HourlyFlipModel part = hourly_flip_model(c, about, rows, columns, nullptr, excluded);
+  // The state is the same, bit for bit; the excluded elements' flips are gone, the others' the same
+  // but for float rounding (the sky's product is blocked by the count of each row's flips).
+  EXPECT_TRUE(part.total == whole.total);
+  EXPECT_TRUE(part.direct == whole.direct);
+  size_t pairs = 0;
+  for (size_t k = 0; k < excluded.size(); ++k) {
+    if (excluded[k]) {
+      EXPECT_TRUE(part.flip_total[k].empty() && part.flip_direct[k].empty()) << "element " << k;
+      continue;
+    }
+    EXPECT_EQ(part.flip_total[k].rows, whole.flip_total[k].rows) << "element " << k;
+    const HourlyMatrix& a = part.flip_total[k].values;
+    const HourlyMatrix& b = whole.flip_total[k].values;
+    ASSERT_EQ(a.rows(), b.rows());
+    const float scale = std::max(1e-3f, b.cwiseAbs().maxCoeff());
+    EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 1e-5f * scale) << "element " << k;
+    pairs += part.flip_total[k].rows.size();
+  }
+  size_t counted = 0;
+  for (size_t n : hourly_flip_model_reach(c, rows, excluded)) counted += n;
+  EXPECT_EQ(counted, pairs);
+}
+
 TEST(ClimateReach, OnlyGoalSensorsAndNoClimateGoalsGiveNoRows) {
   TempDir dir;
   Scene scene = two_rooms(dir, 16, true);

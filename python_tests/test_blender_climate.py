@@ -21,7 +21,7 @@ XDOTOOL = shutil.which("xdotool")
 def test_climate_goals_exported_refused_and_solved(blender, tmp_path):
     r = blender.run(tmp_path, os.path.join(HERE, "blender", "addon_climate.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
-    assert "Ran 10 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+    assert "Ran 11 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 
 
 @pytest.mark.skipif(None in (BLENDER, XVFB_RUN, XDOTOOL), reason="needs Blender, xvfb-run and xdotool")

@@ -197,9 +197,18 @@ def run_sky(a, scene):
 
 
 def reporters(a):
-    """say(text) on stderr unless --quiet, and a progress callback that says the stage and share done."""
+    """say(text) on stderr unless --quiet, and a progress callback that says the stage and share done
+    when either changes (the callback comes about once a second, a long stage's share seldom moves)."""
     say = (lambda text: None) if a["quiet"] else (lambda text: print(text, file=sys.stderr, flush=True))
-    return say, lambda fraction, status: say("  %s: %3.0f%%" % (status, 100 * fraction))
+    last = [None]
+
+    def progress(fraction, status):
+        line = "  %s: %3.0f%%" % (status, 100 * fraction)
+        if line != last[0]:
+            last[0] = line
+            say(line)
+
+    return say, progress
 
 
 def cluster_of(a):

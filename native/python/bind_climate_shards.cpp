@@ -228,14 +228,15 @@ void bind_shard_climate(py::class_<ShardQueries, std::shared_ptr<ShardQueries>>&
        "for the per-sensor goals `goals` (target, weight, lower, upper per sensor); returns its bytes.")
       .def(
           "climate_model_bytes",
-          [](ShardQueries& q, const DoubleArray& goals) {
+          [](ShardQueries& q, const MaskArray& excluded, const DoubleArray& goals) {
+            const std::vector<uint8_t> x = mask_of(excluded, q.contributions->element_count(), "excluded elements");
             const ClimateProblem& problem = shard_problem(q, goals);
             py::gil_scoped_release release;
-            return q.queries.climate_shard_bytes(problem);
+            return q.queries.climate_shard_bytes(problem, x);
           },
-          py::arg("goals"),
+          py::arg("excluded"), py::arg("goals"),
           "Bytes this shard's part of the climate goals' hourly model will hold for the per-sensor goals `goals`, "
-          "counted from its records before it is built (about any state).")
+          "the excluded elements' flips left out, counted from its records before it is built (about any state).")
       .def(
           "climate_settle",
           [](ShardQueries& q, const IntArray& slots, const IntArray& bases, const MaskArray& states) {

@@ -331,6 +331,84 @@ class Solved(unittest.TestCase):
         self.assertIsNone(result_display.current(bpy.context))
 
 
+def floor(names):
+    """Rooms side by side (addon_study's box, 0.3 m apart), each lit by its south wall, each with
+    its own sensor grid named "<room> sensors". Returns the grids."""
+    f = bpy.context.scene.fenestra
+    f.sensor_height, f.sensor_spacing = 0.8, 1.0
+    grids = []
+    for i, name in enumerate(names):
+        room = addon_study.box_room()
+        room.name = name
+        room.location.x = (addon_study.ROOM[0] + 0.3) * i
+        bpy.context.view_layer.update()
+        addon_study.mark_south_wall(room)
+        addon_study.select_only(room)
+        before = set(bpy.data.objects)
+        assert bpy.ops.fenestra.add_sensor_grid() == {'FINISHED'}
+        (grid,) = set(bpy.data.objects) - before
+        grid.name = name + " sensors"
+        grids.append(grid)
+    addon_study.climate()
+    f.solve.wall_thickness, f.solve.element_size = 0.0, 0.5
+    s = f.solve
+    s.quality, s.paths, s.generations, s.population, s.seed = 'CUSTOM', 256, 30, 16, 3
+    s.study_directory = os.path.join(OUT, "study")
+    return grids
+
+
+class Floor(unittest.TestCase):
+    """A floor of rooms, a sensor grid each, sDA and ASE goals per room and the least glazing: the
+    export names each room's sensors, and the solve's Rooms figures are result.json's."""
+
+    def setUp(self):
+        addon_study.reset()
+
+    def test_a_floor_of_rooms_solves_with_goals_per_room(self):
+        names = ("West office", "Meeting", "East office")
+        grids = floor(names)
+        f = bpy.context.scene.fenestra
+        f.goals.source = 'NONE'
+        for grid in grids:
+            add_goal('SDA', sda_area=50.0, sensor_group=grid.name)
+            add_goal('ASE', sensor_group=grid.name)
+        f.goals.least_glazing = True
+        # Each goal's sensors are its room's grid, in the study's order of sensors.
+        scene = exported().scene
+        sensors = scene["sensors"]["points"]
+        for grid in grids:
+            points = [tuple(round(c, 4) for c in grid.matrix_world @ v.co) for v in grid.data.vertices]
+            group = scene["sensors"]["groups"][grid.name]
+            self.assertEqual(sorted(tuple(round(c, 4) for c in sensors[i]) for i in group), sorted(points))
+        self.assertEqual(bpy.ops.fenestra.solve_openings(), {'FINISHED'})
+        r = f.results
+        self.assertTrue(r.valid and r.climate.valid)
+        with open(os.path.join(OUT, "study", "result.json")) as fh:
+            climate = json.load(fh)["climate"]
+        self.assertEqual([g["description"] for g in climate["goals"]],
+                         [d % (name + " sensors") for name in names
+                          for d in ("sDA300/50%% >= 50 %% (%s)", "ASE1000,250 <= 10 %% (%s)")])
+        # One row of the Rooms box per grid, with the result's figures of that room.
+        self.assertEqual([item.name for item in r.climate.rooms], [g.name for g in grids])
+        self.assertEqual([room["name"] for room in climate["rooms"]], [g.name for g in grids])
+        for item, room, grid in zip(r.climate.rooms, climate["rooms"], grids):
+            self.assertEqual(item.sensors, len(grid.data.vertices))
+            self.assertEqual(item.sensors, len(room["sensors"]))
+            self.assertAlmostEqual(item.spatial_daylight_autonomy, room["space"]["spatial_daylight_autonomy"], places=6)
+            self.assertAlmostEqual(item.annual_sunlight_exposure, room["space"]["annual_sunlight_exposure"], places=6)
+            self.assertAlmostEqual(item.mean_illuminance, room["space"]["mean_illuminance_lux"], places=2)
+        # The floor's figures are all its sensors'.
+        self.assertEqual(len(r.sensors), sum(len(g.data.vertices) for g in grids))
+        self.assertAlmostEqual(f.annual.spatial_daylight_autonomy, climate["space"]["spatial_daylight_autonomy"],
+                               places=6)
+        # Every room got an opening in its own south wall (each room's goals ask for light).
+        cutters = addon_study.cutters()
+        for i, name in enumerate(names):
+            x0 = (addon_study.ROOM[0] + 0.3) * i
+            mine = [c for c in cutters if x0 <= c.matrix_world.translation.x <= x0 + addon_study.ROOM[0]]
+            self.assertTrue(mine, "no opening in %s's wall" % name)
+
+
 if __name__ == "__main__":
     os.makedirs(OUT, exist_ok=True)
     addon_study.enable()

@@ -628,13 +628,12 @@ class _ShardedRecords:
         """Each shard builds its part of the climate goals' hourly model from its records and keeps it
         (with the search's states) on its worker; the native search asks it through the returned
         object and adds the shards' tallies."""
-        goals = np.asarray(goals, dtype=np.float64)
-        self._check_climate_model_fits(goals)
-        parts = self._ask("climate_model", np.asarray(about, dtype=np.uint8), np.asarray(excluded, dtype=np.uint8),
-                          goals)
+        goals, excluded = np.asarray(goals, dtype=np.float64), np.asarray(excluded, dtype=np.uint8)
+        self._check_climate_model_fits(excluded, goals)
+        parts = self._ask("climate_model", np.asarray(about, dtype=np.uint8), excluded, goals)
         return _ClimateModelOnShards(self, float(sum(parts)))
 
-    def _check_climate_model_fits(self, goals):
+    def _check_climate_model_fits(self, excluded, goals):
         """The shards count their parts of the model from their records (the same whatever the
         state) and the workers' limits are checked before any is built."""
         study = self._study
@@ -642,7 +641,7 @@ class _ShardedRecords:
         if climate is None:
             return
         limits = {w: info.get("memory_limit", 0) for w, info in study._cluster._scheduler_workers().items()}
-        check_climate_model_fits(self._ask("climate_model_bytes", goals), study.shards, climate,
+        check_climate_model_fits(self._ask("climate_model_bytes", excluded, goals), study.shards, climate,
                                  study.shard_memory_bytes, limits)
 
     def climate_tally(self, open_mask, goals):

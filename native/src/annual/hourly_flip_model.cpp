@@ -38,12 +38,17 @@ struct SensorCoefficients {
   Eigen::MatrixXd flips;            // touched x sources: change when that element flips
 };
 
-// The elements a sensor's paths meet (sorted): its coefficients' flips.
-std::vector<int32_t> path_reach(const SensorRecord& r) {
+bool is_excluded(const std::vector<uint8_t>& excluded, int32_t k) {
+  return static_cast<size_t>(k) < excluded.size() && excluded[k];
+}
+
+// The elements a sensor's paths meet, but the excluded (sorted): its coefficients' flips.
+std::vector<int32_t> path_reach(const SensorRecord& r, const std::vector<uint8_t>& excluded) {
   std::vector<int32_t> touched, elements;
   for (size_t p = 0; p < r.path_count(); ++p) {
     path_elements(r, p, &elements);
-    touched.insert(touched.end(), elements.begin(), elements.end());
+    for (int32_t k : elements)
+      if (!is_excluded(excluded, k)) touched.push_back(k);
   }
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
@@ -67,10 +72,11 @@ SensorCoefficients sensor_coefficients(const SensorRecord& r, const std::vector<
     add_path_sources(r, p, [&](int32_t k) { return about[k] != 0; }, 1.0, path_base.data());
     out.base += path_base;
     for (int32_t flip : elements) {
+      const auto at = std::lower_bound(touched.begin(), touched.end(), flip);
+      if (at == touched.end() || *at != flip) continue;  // excluded
       flipped = -path_base;
       add_path_sources(r, p, [&](int32_t k) { return (about[k] != 0) != (k == flip); }, 1.0, flipped.data());
-      const auto slot = std::lower_bound(touched.begin(), touched.end(), flip) - touched.begin();
-      out.flips.row(slot) += flipped.transpose();
+      out.flips.row(at - touched.begin()) += flipped.transpose();
     }
   }
   const double n = static_cast<double>(std::max<size_t>(1, r.path_count()));
@@ -166,13 +172,16 @@ double hourly_flip_model_bytes(double rows, double columns, double pairs) {
 
 namespace {
 
-// A row's reach: the elements its paths meet (`touched`) and those its sensor's sun rays cross, sorted.
-std::vector<int32_t> row_reach(const Contributions& c, int sensor, const std::vector<int32_t>& touched) {
+// A row's reach: the elements its paths meet (`touched`) and those its sensor's sun rays cross, but
+// the excluded, sorted.
+std::vector<int32_t> row_reach(const Contributions& c, int sensor, const std::vector<int32_t>& touched,
+                               const std::vector<uint8_t>& excluded) {
   std::vector<int32_t> elements = touched, crossed;
   const SensorRecord& direct = c.annual->direct[sensor];
   for (size_t j = 0; j < direct.path_count(); ++j) {
     path_elements(direct, j, &crossed);
-    elements.insert(elements.end(), crossed.begin(), crossed.end());
+    for (int32_t k : crossed)
+      if (!is_excluded(excluded, k)) elements.push_back(k);
   }
   std::sort(elements.begin(), elements.end());
   elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
@@ -194,7 +203,8 @@ void check_model_fits(size_t rows, size_t columns, size_t reached) {
 }
 
 HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& about, const std::vector<int>& rows,
-                            const HourlyColumns& columns, bool with_flips, const Progress* progress) {
+                            const HourlyColumns& columns, bool with_flips, const Progress* progress,
+                            const std::vector<uint8_t>& excluded) {
   if (!c.annual) throw std::invalid_argument("climate goals need the contributions of a climate sky");
   if (about.size() != c.element_count())
     throw std::invalid_argument("open-element mask has " + std::to_string(about.size()) + " entries, expected " +
@@ -214,9 +224,9 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
   m.flip_direct.resize(c.element_count());
   size_t reached = 0;
   if (with_flips) {
-    tbb::parallel_for(size_t(0), rows.size(), [&](size_t r) { touched[r] = path_reach(c.records[rows[r]]); });
+    tbb::parallel_for(size_t(0), rows.size(), [&](size_t r) { touched[r] = path_reach(c.records[rows[r]], excluded); });
     for (size_t r = 0; r < rows.size(); ++r) {
-      const std::vector<int32_t> elements = row_reach(c, rows[r], touched[r]);
+      const std::vector<int32_t> elements = row_reach(c, rows[r], touched[r], excluded);
       for (int32_t k : elements) m.flip_total[k].rows.push_back(static_cast<int32_t>(r));  // ascending
       reached += elements.size();
     }
@@ -262,6 +272,7 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
       m.total(row, column) += base;
       if (with_flips) path_elements(d, j, &elements);
       for (int32_t k : elements) {
+        if (is_excluded(excluded, k)) continue;
         const float change = value(k) * sun - base;
         if (change == 0.0f) continue;
         FlipChange& f = m.flip_total[k];
@@ -283,24 +294,25 @@ HourlyFlipModel build_model(const Contributions& c, const std::vector<uint8_t>& 
 
 }  // namespace
 
-std::vector<size_t> hourly_flip_model_reach(const Contributions& c, const std::vector<int>& rows) {
+std::vector<size_t> hourly_flip_model_reach(const Contributions& c, const std::vector<int>& rows,
+                                            const std::vector<uint8_t>& excluded) {
   if (!c.annual) throw std::invalid_argument("climate goals need the contributions of a climate sky");
   std::vector<size_t> out(rows.size());
   tbb::parallel_for(size_t(0), rows.size(), [&](size_t r) {
-    out[r] = row_reach(c, rows[r], path_reach(c.records[rows[r]])).size();
+    out[r] = row_reach(c, rows[r], path_reach(c.records[rows[r]], excluded), excluded).size();
   });
   return out;
 }
 
 HourlyFlipModel hourly_flip_model(const Contributions& c, const std::vector<uint8_t>& about,
                                   const std::vector<int>& rows, const HourlyColumns& columns,
-                                  const Progress* progress) {
-  return build_model(c, about, rows, columns, true, progress);
+                                  const Progress* progress, const std::vector<uint8_t>& excluded) {
+  return build_model(c, about, rows, columns, true, progress, excluded);
 }
 
 HourlyFlipModel hourly_state(const Contributions& c, const std::vector<uint8_t>& open, const std::vector<int>& rows,
                              const HourlyColumns& columns, const Progress* progress) {
-  return build_model(c, open, rows, columns, false, progress);
+  return build_model(c, open, rows, columns, false, progress, {});
 }
 
 }  // namespace fenestra

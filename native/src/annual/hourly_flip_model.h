@@ -70,14 +70,18 @@ struct HourlyFlipModel {
 double hourly_flip_model_bytes(double rows, double columns, double pairs);
 
 // Per row, the elements whose flips a model of these rows keeps (its sensor's paths meet them or
-// its sun rays cross them): what the model will hold, counted from the records before it is built.
-std::vector<size_t> hourly_flip_model_reach(const Contributions& c, const std::vector<int>& rows);
+// its sun rays cross them, but the `excluded`): what the model will hold, counted from the records
+// before it is built.
+std::vector<size_t> hourly_flip_model_reach(const Contributions& c, const std::vector<int>& rows,
+                                            const std::vector<uint8_t>& excluded = {});
 
 // Throws CostError when the model would not fit in memory (util/memory_limit.h), naming the figure
 // and what to reduce; std::invalid_argument without annual records. Polls `progress`.
+// `excluded` (per element, or empty): elements whose flips the model leaves out (they change nothing
+// in it: elements the constraints rule out).
 HourlyFlipModel hourly_flip_model(const Contributions& c, const std::vector<uint8_t>& about,
                                   const std::vector<int>& rows, const HourlyColumns& columns,
-                                  const Progress* progress = nullptr);
+                                  const Progress* progress = nullptr, const std::vector<uint8_t>& excluded = {});
 // The same without the flips: the exact hourly illuminance of `open` alone (total and direct).
 HourlyFlipModel hourly_state(const Contributions& c, const std::vector<uint8_t>& open, const std::vector<int>& rows,
                              const HourlyColumns& columns, const Progress* progress = nullptr);

@@ -1,5 +1,7 @@
 #include "solve/climate_stage.h"
 
+#include <algorithm>
+
 #include "solve/catalogue_snap.h"
 #include "solve/linear_objective.h"
 #include "solve/linear_start.h"
@@ -78,16 +80,25 @@ ClimateScore climate_score(RecordQueries& records, const ClimateProblem& problem
   score.error = year.error;
   const std::vector<ClimateFigure> figures = problem.objective->figures(year.tally);
   score.all_met = true;
-  for (size_t g = 0; g < figures.size(); ++g)
-    score.all_met = score.all_met && figure_meets(problem.objective->goals().goals[g], figures[g].achieved);
+  std::vector<int> rows;
+  for (size_t g = 0; g < figures.size(); ++g) {
+    const ClimateGoal& goal = problem.objective->goals().goals[g];
+    if (figure_meets(goal, figures[g].achieved)) continue;
+    score.all_met = false;
+    if (goal.sense() == GoalSense::AtLeast || (goal.sense() == GoalSense::Target && figures[g].achieved < goal.required()))
+      rows.insert(rows.end(), goal.sensors.begin(), goal.sensors.end());
+  }
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  score.short_rows = std::move(rows);
   return score;
 }
 
-SolverGoals raised_goals(const Scene& scene, const Contributions& c, SolverGoals goals, const std::vector<int>& rows,
-                         double gain) {
+SolverGoals raised_goals(const Scene& scene, const Contributions& c, SolverGoals goals, const SolverGoals& followed,
+                         const std::vector<int>& rows, double gain) {
   const std::vector<uint8_t> own = scene_goal_weight(scene, c);
   for (int i : rows)
-    if (!own[i]) goals.target[i] *= gain;
+    if (!own[i]) goals.target[i] = followed.target[i] * gain;
   return goals;
 }
 

@@ -35,20 +35,23 @@ ElementStage climate_element_stages(const Scene& scene, const ElementGrid& grid,
 // light that met the climate goals.
 SolverGoals goals_following(SolverGoals goals, const std::vector<int>& rows, const SensorValues& answer);
 
-// Gains on the followed light when openings within the constraints miss a climate goal the
-// element answer met.
+// Gains on the followed light of the sensors whose goals the openings within the constraints miss
+// from below (a room of a floor, the others kept), one per round.
 constexpr double kClimateFollowGains[] = {1.15, 1.35, 1.6};
 
 // The year of a set of open elements scored by the climate objective, and whether every goal is met.
 struct ClimateScore {
   double error = 0.0;
   bool all_met = false;
+  // The sensors of the goals missed from below (sDA, UDI, EN 17037, a mean short of its target):
+  // more light is what they need. Ascending, distinct.
+  std::vector<int> short_rows;
 };
 ClimateScore climate_score(RecordQueries& records, const ClimateProblem& problem, const std::vector<uint8_t>& open);
 
-// The followed goals with the light of `rows` times `gain`, but for the sensors that have a goal in
-// the scene itself (those are not raised).
-SolverGoals raised_goals(const Scene& scene, const Contributions& c, SolverGoals goals, const std::vector<int>& rows,
-                         double gain);
+// `goals` with the light of `rows` set to `followed`'s times `gain`, but for the sensors that have a
+// goal in the scene itself (those are not raised).
+SolverGoals raised_goals(const Scene& scene, const Contributions& c, SolverGoals goals, const SolverGoals& followed,
+                         const std::vector<int>& rows, double gain);
 
 }  // namespace fenestra

@@ -97,18 +97,17 @@ std::unique_ptr<ClimateShard> LocalRecordQueries::climate_shard(const ClimatePro
                                                                 const std::vector<uint8_t>& excluded) {
   std::vector<int> local, model_rows;
   climate_rows(problem, &local, &model_rows);
-  HourlyFlipModel part = hourly_flip_model(c_, about, local, problem.columns, progress_);
-  // Excluded elements change nothing in the model (their flips are dropped).
-  for (size_t k = 0; k < excluded.size() && k < part.flip_total.size(); ++k)
-    if (excluded[k]) part.flip_total[k] = FlipChange(), part.flip_direct[k].clear();
+  // Excluded elements change nothing in the model (their flips are left out).
+  HourlyFlipModel part = hourly_flip_model(c_, about, local, problem.columns, progress_, excluded);
   return std::make_unique<ClimateShard>(std::move(part), std::move(model_rows), *problem.objective);
 }
 
-double LocalRecordQueries::climate_shard_bytes(const ClimateProblem& problem) const {
+double LocalRecordQueries::climate_shard_bytes(const ClimateProblem& problem,
+                                               const std::vector<uint8_t>& excluded) const {
   std::vector<int> local, model_rows;
   climate_rows(problem, &local, &model_rows);
   double pairs = 0.0;
-  for (size_t n : hourly_flip_model_reach(c_, local)) pairs += static_cast<double>(n);
+  for (size_t n : hourly_flip_model_reach(c_, local, excluded)) pairs += static_cast<double>(n);
   return hourly_flip_model_bytes(static_cast<double>(local.size()), static_cast<double>(problem.columns.hour.size()),
                                  pairs);
 }

@@ -116,7 +116,7 @@ class LocalRecordQueries : public RecordQueries {
                                               const std::vector<uint8_t>& excluded);
   // Bytes climate_shard() will hold for its model, counted from the records before it is built
   // (hourly_flip_model_reach): whatever the state, the same elements reach the same rows.
-  double climate_shard_bytes(const ClimateProblem& problem) const;
+  double climate_shard_bytes(const ClimateProblem& problem, const std::vector<uint8_t>& excluded) const;
   AnnualStudy annual_study(const std::vector<PanelRectangle>& region) override;
   AnnualStudy annual_cut(const std::vector<OpeningInput>& openings, int paths) override;
 

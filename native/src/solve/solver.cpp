@@ -397,7 +397,8 @@ class OpeningSolve {
 
   // Climate goals: openings that follow the element answer's light can still fall short of a goal
   // it met (a sensor just over its threshold drops below). The constraints stage again with the
-  // followed light raised, kept when the year of its openings is better.
+  // followed light raised at the sensors of the goals missed from below (on a floor, the rooms
+  // short of light; the others keep theirs), kept when the year of its openings is better.
   void climate_openings() {
     if (!climate_) return skip_stage(&out_.stages, "climate openings", stop_reason::kNoClimateGoals);
     run_stage(&out_.stages, "climate openings", [&] {
@@ -409,8 +410,8 @@ class OpeningSolve {
       ClimateScore kept_score = score_of(kept_.rects);
       const SolverGoals followed = out_.goals;
       for (double gain : kClimateFollowGains) {
-        if (kept_score.all_met) break;
-        const SolverGoals raised = raised_goals(scene_, c_, followed, problem.rows, gain);
+        if (kept_score.all_met || kept_score.short_rows.empty()) break;
+        const SolverGoals raised = raised_goals(scene_, c_, out_.goals, followed, kept_score.short_rows, gain);
         const LinearObjective previous = objective_;
         objective_ = linear_objective(c_, raised, settings_.bound_weight);
         Constrained k = constrain(element_.open, element_.values, grid_constraints_);
