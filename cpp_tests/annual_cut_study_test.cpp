@@ -22,7 +22,7 @@ namespace {
 using test::ObjBuilder;
 using test::TempDir;
 
-const std::string kChicago = std::string(FENESTRA_EXAMPLES) + "/weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw";
+using test::kChicago;
 // On the 0.5 m element grid of the south wall (y = 0): x 0.5..2.5 m, z 1..2 m.
 const Rectangle kWindow = {Vec3(0.5f, 0, 1), Vec3(2.5f, 0, 1), Vec3(2.5f, 0, 2), Vec3(0.5f, 0, 2)};
 

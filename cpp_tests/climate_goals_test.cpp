@@ -24,8 +24,7 @@ namespace {
 using test::ObjBuilder;
 using test::TempDir;
 
-const std::string kChicago =
-    std::string(FENESTRA_EXAMPLES) + "/weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw";
+using test::kChicago;
 
 // A 3 x 4 x 2.5 m room lit by its south wall (the opening domain, 0.5 m elements, 30 of them),
 // six sensors, the Chicago year; `goals` the scene's "goals".

@@ -19,8 +19,7 @@ namespace {
 using test::ObjBuilder;
 using test::TempDir;
 
-const std::string kChicago =
-    std::string(FENESTRA_EXAMPLES) + "/weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw";
+using test::kChicago;
 
 // Two 3 x 4 x 2.5 m rooms side by side, 0.2 m apart, each lit by its south wall (the opening
 // domain, 0.5 m elements), joined by a lined 1 x 2.1 m door or not; three sensors per room.

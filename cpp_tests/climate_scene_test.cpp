@@ -21,8 +21,7 @@ namespace {
 using test::ObjBuilder;
 using test::TempDir;
 
-const std::string kChicago =
-    std::string(FENESTRA_EXAMPLES) + "/weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw";
+using test::kChicago;
 
 // A domain square far below one sensor, under `sky` (JSON object text).
 Scene load_with_sky(const TempDir& dir, const std::string& sky) {

@@ -18,6 +18,10 @@
 
 namespace fenestra::test {
 
+// The Chicago O'Hare TMY3 weather file of the examples.
+inline const std::string kChicago =
+    std::string(FENESTRA_EXAMPLES) + "/weather/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw";
+
 class TempDir {
  public:
   TempDir() {

@@ -1,10 +1,11 @@
 """Climate goals in Blender: headless (python_tests/blender/addon_climate.py: the Climate Goals list
 exported as goals.climate / least_glazing / sensors.groups from a vertex group, the fields' ranges,
 bad setups refused naming the goal and the group, a solve on climate goals alone whose figures and
-Daylight Autonomy false colour are result.json's) and in a window under Xvfb
-(python_tests/blender/screenshot_climate.py: goals added and a solve started by real key presses
-mapped to Add Climate Goal and Solve Openings; the Results panel lists the goals, the sensors are
-drawn in their DA colours; the screenshot is docs/blender-climate-goals.png)."""
+Daylight Autonomy false colour are result.json's; a floor of three rooms with goals per room) and in
+a window under Xvfb (python_tests/blender/screenshot_climate.py: on a floor of two rooms, goals added
+and a solve started by real key presses mapped to Add Climate Goal and Solve Openings; the Results
+panel lists the goals and the rooms, the sensors are drawn in their DA colours; the screenshot is
+docs/blender-climate-goals.png)."""
 
 import os
 import shutil
@@ -40,5 +41,5 @@ def test_climate_goals_in_a_window(tmp_path):
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=env)
     checks = [line for line in r.stdout.splitlines() if line.startswith("CHECK")]
     assert r.returncode == 0 and "RESULT all checks ok" in r.stdout, "\n".join(checks) + r.stdout[-3000:] + r.stderr[-3000:]
-    assert len(checks) == 5, checks
+    assert len(checks) == 6, checks
     assert shot.stat().st_size > 0

@@ -1,17 +1,18 @@
-"""Climate goals in a window (needs a display and xdotool; run by test_blender_climate.py under Xvfb,
-and used for docs/blender-climate-goals.png):
+"""Climate goals on a floor of rooms, in a window (needs a display and xdotool; run by
+test_blender_climate.py under Xvfb, and used for docs/blender-climate-goals.png):
 
     blender --window-geometry 0 0 1400 2100 --python screenshot_climate.py -- OUT.png
 
 with user preferences whose splash screen is off (BLENDER_USER_CONFIG) and the add-on on Blender's
-add-on path (BLENDER_USER_SCRIPTS/addons/fenestra). The room of addon_study.py under a year of
-Chicago weather with Climate Goals Only. F6 is mapped to Add Climate Goal and F5 to Solve Openings
-(as a user's shortcuts would be); real key presses (xdotool, the pointer over the 3D View) add an
-sDA and an ASE goal and start the solve, which runs modal on its worker thread. Once it is done: a
-screenshot of the whole window (the Climate Goals list under Sensors, the goals reached under
-Results, the sensors in their DA colours seen from above, the legend) and OUT.png, the 3D View's
-area (viewport and sidebar) cropped from it. Prints "CHECK name ok|FAILED numbers" per check and exits 1 when a
-check fails or a step raises."""
+add-on path (BLENDER_USER_SCRIPTS/addons/fenestra). Two rooms side by side (addon_climate.py's
+floor: each lit by its south wall, each with its own sensor grid) under a year of Chicago weather,
+Climate Goals Only. F6 is mapped to Add Climate Goal and F5 to Solve Openings (as a user's
+shortcuts would be); real key presses (xdotool, the pointer over the 3D View) add an sDA and an
+ASE goal per room and start the solve, which runs modal on its worker thread. Once it is done: a
+screenshot of the whole window (the Climate Goals list under Sensors, the goals reached and each
+room's figures under Results, the sensors in their DA colours seen from above, the legend) and
+OUT.png, the 3D View's area (viewport and sidebar) cropped from it. Prints "CHECK name ok|FAILED
+numbers" per check and exits 1 when a check fails or a step raises."""
 
 import math
 import os
@@ -25,11 +26,13 @@ from bpy_extras.view3d_utils import location_3d_to_region_2d
 from mathutils import Euler
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import addon_climate  # noqa: E402
 import addon_study  # noqa: E402
 import window_script  # noqa: E402
 
 OUT = os.path.abspath(sys.argv[sys.argv.index("--") + 1])
-addon_study.OUT = os.path.join(os.path.dirname(OUT), "climate_study")
+addon_study.OUT = addon_climate.OUT = os.path.join(os.path.dirname(OUT), "climate_study")
+ROOMS = ("West office", "East office")
 RUN_TIMEOUT_S = 300
 KEY_TIMEOUT_S = 20
 state = {"failed": []}
@@ -65,17 +68,10 @@ def setup():
     addon_study.enable()
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj)
-    addon_study.study()
-    addon_study.climate()
+    state["grids"] = [g.name for g in addon_climate.floor(ROOMS)]
     f = bpy.context.scene.fenestra
-    f.solve.wall_thickness = 0.0
     f.goals.source = 'NONE'
     f.goals.least_glazing = True
-    s = f.solve
-    s.quality, s.paths, s.generations, s.population = 'CUSTOM', 256, 30, 16
-    sensors = bpy.data.objects["Fenestra Sensors"]
-    near = [v.index for v in sensors.data.vertices if (sensors.matrix_world @ v.co).y < 2.0]
-    sensors.vertex_groups.new(name="window").add(near, 1.0, 'REPLACE')
     keymap = bpy.context.window_manager.keyconfigs.addon.keymaps.new(name="Window", space_type='EMPTY')
     keymap.keymap_items.new("fenestra.climate_goal_add", 'F6', 'PRESS')
     keymap.keymap_items.new("fenestra.solve_openings", 'F5', 'PRESS')
@@ -92,9 +88,9 @@ def setup():
     space.shading.show_xray = True  # the sensors through the ceiling
     r3d = space.region_3d
     r3d.view_perspective = 'PERSP'
-    r3d.view_location = (2.0, 1.6, 1.0)
+    r3d.view_location = (5.3, 1.8, 1.0)
     r3d.view_rotation = Euler((math.radians(30), 0, 0)).to_quaternion()
-    r3d.view_distance = 8.5
+    r3d.view_distance = 15.0
     bpy.context.view_layer.objects.active = None
     for o in bpy.context.view_layer.objects:
         o.select_set(False)
@@ -102,8 +98,8 @@ def setup():
 
 
 def add_the_goals():
-    press("F6")
-    press("F6")
+    for _ in range(2 * len(ROOMS)):
+        press("F6")
     state["started"] = time.time()
     bpy.app.timers.register(window_script.guarded(wait_for_the_goals), first_interval=0.5)
     return None
@@ -111,16 +107,18 @@ def add_the_goals():
 
 def wait_for_the_goals():
     goals = bpy.context.scene.fenestra.goals
-    if len(goals.climate) < 2:
+    if len(goals.climate) < 2 * len(ROOMS):
         if time.time() - state["started"] > KEY_TIMEOUT_S:
             check("goals_added_by_keys", False, "%d goals after %d s" % (len(goals.climate), KEY_TIMEOUT_S))
             return finish()
         return 0.2
-    check("goals_added_by_keys", [g.metric for g in goals.climate] == ['SDA', 'ASE'],
-          [g.metric for g in goals.climate])
-    goals.climate[0].sda_area = 50.0
-    goals.climate[1].sensor_group = "window"
-    goals.climate_index = 1
+    check("goals_added_by_keys", len(goals.climate) == 2 * len(ROOMS), [g.metric for g in goals.climate])
+    # Each room: an sDA goal and an ASE goal on its sensor grid.
+    for i, grid in enumerate(state["grids"]):
+        sda, ase = goals.climate[2 * i], goals.climate[2 * i + 1]
+        sda.metric, sda.sda_area, sda.sensor_group = 'SDA', 50.0, grid
+        ase.metric, ase.sensor_group = 'ASE', grid
+    goals.climate_index = 0
     press("F5")
     state["started"] = time.time()
     bpy.app.timers.register(window_script.guarded(wait_for_the_solve), first_interval=0.5)
@@ -168,22 +166,28 @@ def shoot():
     f = bpy.context.scene.fenestra
     c = f.results.climate
     check("results_list_the_goals", FENESTRA_PT_climate_results.poll(bpy.context) and
-          [g.description for g in c.goals] == ["sDA300/50% >= 50 %", "ASE1000,250 <= 10 % (window)"],
+          [g.description for g in c.goals] == [d % grid for grid in state["grids"]
+                                               for d in ("sDA300/50%% >= 50 %% (%s)", "ASE1000,250 <= 10 %% (%s)")],
           [(g.description, round(g.achieved, 3), g.met) for g in c.goals])
+    check("rooms_listed", [room.name for room in c.rooms] == state["grids"] and
+          [room.sensors for room in c.rooms] == [len(bpy.data.objects[g].data.vertices) for g in state["grids"]],
+          [(room.name, room.sensors, round(room.spatial_daylight_autonomy, 3)) for room in c.rooms])
     scale, shown = result_display.current(bpy.context)
     check("da_scale", scale.quantity == 'CLIMATE_DA' and scale.top == 100.0, "%s 0..%g" % (scale.title, scale.top))
-    sensors = bpy.data.objects["Fenestra Sensors"]
-    values = shown[sensors.name]
-    colours = scale.colours(values)[:, :3]
     ox, oy = region.x, region.y
-    errors = []
-    for vertex, colour in zip(sensors.data.vertices, colours):
-        where = location_3d_to_region_2d(region, area.spaces.active.region_3d, sensors.matrix_world @ vertex.co)
-        x, y = ox + int(round(where.x)), oy + int(round(where.y))
-        patch = pixels[y - 1:y + 2, x - 1:x + 2].reshape(-1, 3)
-        errors.append(float(np.abs(patch - colour).max(axis=1).min()))
+    errors, low, high = [], 100.0, 0.0
+    for grid in state["grids"]:
+        sensors = bpy.data.objects[grid]
+        values = shown[sensors.name]
+        low, high = min(low, values.min()), max(high, values.max())
+        colours = scale.colours(values)[:, :3]
+        for vertex, colour in zip(sensors.data.vertices, colours):
+            where = location_3d_to_region_2d(region, area.spaces.active.region_3d, sensors.matrix_world @ vertex.co)
+            x, y = ox + int(round(where.x)), oy + int(round(where.y))
+            patch = pixels[y - 1:y + 2, x - 1:x + 2].reshape(-1, 3)
+            errors.append(float(np.abs(patch - colour).max(axis=1).min()))
     check("sensors_in_da_colours", max(errors) < 0.08,
-          "worst sensor off its colour by %.3f (DA %.0f..%.0f %%)" % (max(errors), values.min(), values.max()))
+          "worst sensor off its colour by %.3f (DA %.0f..%.0f %%)" % (max(errors), low, high))
     # OUT: the 3D View's area (the viewport and the sidebar), cropped from the window.
     crop = pixels[area.y:area.y + area.height, area.x:area.x + area.width]
     image = bpy.data.images.new("climate_crop", crop.shape[1], crop.shape[0])

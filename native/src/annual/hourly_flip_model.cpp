@@ -42,16 +42,22 @@ bool is_excluded(const std::vector<uint8_t>& excluded, int32_t k) {
   return static_cast<size_t>(k) < excluded.size() && excluded[k];
 }
 
-// The elements a sensor's paths meet, but the excluded (sorted): its coefficients' flips.
-std::vector<int32_t> path_reach(const SensorRecord& r, const std::vector<uint8_t>& excluded) {
-  std::vector<int32_t> touched, elements;
+// Adds to `out` the elements the records' paths meet, but the excluded; sorted and distinct.
+void add_reach(const SensorRecord& r, const std::vector<uint8_t>& excluded, std::vector<int32_t>* out) {
+  std::vector<int32_t> elements;
   for (size_t p = 0; p < r.path_count(); ++p) {
     path_elements(r, p, &elements);
     for (int32_t k : elements)
-      if (!is_excluded(excluded, k)) touched.push_back(k);
+      if (!is_excluded(excluded, k)) out->push_back(k);
   }
-  std::sort(touched.begin(), touched.end());
-  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  std::sort(out->begin(), out->end());
+  out->erase(std::unique(out->begin(), out->end()), out->end());
+}
+
+// The elements a sensor's paths meet, but the excluded (sorted): its coefficients' flips.
+std::vector<int32_t> path_reach(const SensorRecord& r, const std::vector<uint8_t>& excluded) {
+  std::vector<int32_t> touched;
+  add_reach(r, excluded, &touched);
   return touched;
 }
 
@@ -176,15 +182,8 @@ namespace {
 // the excluded, sorted.
 std::vector<int32_t> row_reach(const Contributions& c, int sensor, const std::vector<int32_t>& touched,
                                const std::vector<uint8_t>& excluded) {
-  std::vector<int32_t> elements = touched, crossed;
-  const SensorRecord& direct = c.annual->direct[sensor];
-  for (size_t j = 0; j < direct.path_count(); ++j) {
-    path_elements(direct, j, &crossed);
-    for (int32_t k : crossed)
-      if (!is_excluded(excluded, k)) elements.push_back(k);
-  }
-  std::sort(elements.begin(), elements.end());
-  elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
+  std::vector<int32_t> elements = touched;
+  add_reach(c.annual->direct[sensor], excluded, &elements);
   return elements;
 }
 
