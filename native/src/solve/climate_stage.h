@@ -37,7 +37,7 @@ SolverGoals goals_following(SolverGoals goals, const std::vector<int>& rows, con
 
 // Gains on the followed light of the sensors whose goals the openings within the constraints miss
 // from below (a room of a floor, the others kept), one per round.
-constexpr double kClimateFollowGains[] = {1.15, 1.35, 1.6};
+constexpr double kClimateFollowGains[] = {1.15, 1.35, 1.6, 1.9, 2.25, 2.7};
 
 // The year of a set of open elements scored by the climate objective, and whether every goal is met.
 struct ClimateScore {

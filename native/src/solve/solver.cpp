@@ -517,8 +517,9 @@ class OpeningSolve {
       scope.opening_light = &about_->E;
       // Openings chosen for their edges off the grid in thick walls move there, not on the grid.
       scope.thick_panels = !grid_best_;
-      const EdgeRefinement edges =
+      EdgeRefinement edges =
           refine_edges(scene_.domain, records_, objective_, constraints_, final_rects_, progress_, scope);
+      if (edges.moves > 0 && climate_ && !climate_goals_kept(final_rects_, edges.openings)) edges.moves = 0;
       out_.edge_moves = edges.moves;
       if (edges.moves > 0 && !chosen_exact_) {
         final_rects_ = edges.openings;  // the prediction comes from real cutters below
@@ -536,6 +537,20 @@ class OpeningSolve {
       return stop_reason::kDone;
     });
     thick_wall_edges();
+  }
+
+  // Climate goals: the edges follow the per-sensor light, which is not the year; they are kept when
+  // the year of `after` meets every goal `before` meets.
+  bool climate_goals_kept(const std::vector<PanelRectangle>& before, const std::vector<PanelRectangle>& after) {
+    const auto figures_of = [&](const std::vector<PanelRectangle>& rects) {
+      const AnnualStudy year = records_.annual_study(rects);
+      return climate_figures(*climate_problem_, year.illuminance.total, year.illuminance.direct);
+    };
+    const std::vector<ClimateFigure> was = figures_of(before), is = figures_of(after);
+    const std::vector<ClimateGoal>& goals = climate_problem_->objective->goals().goals;
+    for (size_t g = 0; g < goals.size(); ++g)
+      if (figure_meets(goals[g], was[g].achieved) && !figure_meets(goals[g], is[g].achieved)) return false;
+    return true;
   }
 
   // The grid's best is not always the best once edges leave the grid: on thin panels (where the
