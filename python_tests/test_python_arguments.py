@@ -34,6 +34,7 @@ def valid_arguments(small_room, tmp_path):
         "catalogues": dict(),
         "check_cost": dict(scene=scene),
         "check_setup": dict(scene=scene, command="solve"),
+        "climate_reach": dict(scene=scene),
         "constraint_violations": dict(scene=scene, openings=openings),
         "contributions": dict(scene=scene),
         "estimate_cost": dict(scene=scene),

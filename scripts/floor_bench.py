@@ -136,7 +136,7 @@ def dense_model_bytes(scene, memory):
     """The hourly model were every element kept at every goal sensor: the cost model's figure
     (hourly_flip_model_bytes: 4 bytes an hour per pair and row index, two years of the rows) with
     its hours, for rows x elements pairs."""
-    reach = [r for r in fenestra._core.climate_reach(scene) if r > 0]
+    reach = [r for r in fenestra.climate_reach(scene) if r > 0]
     rows, pairs = len(reach), sum(reach)
     hours = (memory["climate_model"] - 4.0 * pairs) / (4.0 * (pairs + 2.0 * rows))
     dense = rows * scene.element_count

@@ -11,7 +11,7 @@ from ._core import Cancelled, Contributions, Progress, Scene
 from . import _core
 from . import arguments as _arg
 from . import cost as _cost
-from .cost import available_memory, check_cost, estimate_cost
+from .cost import available_memory, check_cost, climate_reach, estimate_cost
 from .json_values import json_text
 
 

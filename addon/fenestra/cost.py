@@ -48,6 +48,17 @@ def check_cost(scene, command="solve", max_memory=None, paths=None):
     _core.check_cost(*_scene_and_command(scene, command), memory_bytes(max_memory), _paths(paths))
 
 
+def climate_reach(scene):
+    """Per sensor of the scene, the opening elements its rows of the climate goals' hourly model
+    are estimated to hold before any path is traced: those it sees with the whole domain open, times
+    1.25 for what only bounces reach, at most the domain's (docs/cost.md); 0 for the sensors no
+    climate goal looks at. A NumPy array of floats."""
+    import numpy as np
+
+    _arg.instance(scene, _core.Scene, "scene", "a fenestra.Scene (from load_scene or scene_from_dict)")
+    return np.asarray(_core.climate_reach(scene), dtype=np.float64)
+
+
 def _paths(paths):
     """Paths per sensor for the native estimate: -1 for the scene's own."""
     return -1 if paths is None else _arg.integer(paths, "paths", 1, 1 << 30)

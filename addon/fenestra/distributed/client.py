@@ -151,7 +151,7 @@ def climate_share(scene):
     if not len(sensors):
         return None
     memory = api.estimate_cost(scene, "solve")["memory"]
-    reach = np.asarray(_core.climate_reach(scene), dtype=np.float64)[sensors]
+    reach = api.climate_reach(scene)[sensors]
     model = memory.get("climate_model", 0.0) * reach / max(reach.sum(), 1.0)
     years = np.full(len(sensors), memory.get("climate_population", 0.0) / len(sensors))
     return ClimateShare(model, years, sensors, scene.element_size)
@@ -194,8 +194,7 @@ def solve_memory(scene, workers, shards=None):
     blocks = _blocks(scene.sensor_count, shards if shards is not None else workers)
     largest = max(shard_needs(api.estimate_cost(scene, "contributions"), blocks, climate_share(scene)))
     whole = api.estimate_cost(scene, "solve")
-    client = sum(whole["memory"].get(name, 0.0) for name in _CLIENT_PARTS)
-    client += 8.0 * scene.sensor_count * scene.element_count  # the flip effects the shards' answers make
+    client = sum(_client_parts(scene, whole).values())
     return {"worker": -(-len(blocks) // workers) * largest, "client": client, "one_process": whole["total_bytes"]}
 
 
@@ -732,21 +731,35 @@ def solve(scene, cluster, shards=None, base_dir=".", callback=None, max_memory=N
 
 
 # What the client of a solve on a cluster holds, by the cost model's names (docs/cost.md): the
-# contributions' arrays and the solver's own state. The records, their indexes and the tracing stay
-# on the workers.
-_CLIENT_PARTS = ("E", "E_stderr", "A", "T", "solver_copies", "flip_effects_kept", "population", "genetic_history",
-                 "result_history")
+# contributions' arrays (and T's margin while the shards' entries are summed) and the solver's own
+# state. The records, their indexes and the tracing stay on the workers.
+_CLIENT_PARTS = ("E", "E_stderr", "A", "T", "T_symmetrised", "solver_copies", "flip_effects_kept", "population",
+                 "genetic_history", "result_history")
+# The client process itself: Python, NumPy, fenestra and Dask's client, with a local cluster's
+# scheduler (66 MiB measured once the cluster has started).
+_CLIENT_PROCESS_BYTES = 80 << 20
+
+
+def _client_parts(scene, estimate):
+    """Bytes the client of a solve holds, by part: the cost model's _CLIENT_PARTS; the native copy
+    of E, E_stderr, A and T the solver reads (the arrays stay with the study); the flip-effect
+    matrix the shards' answers are assembled into (sensors x elements, 8 bytes each); the process."""
+    held = {name: estimate["memory"].get(name, 0.0) for name in _CLIENT_PARTS}
+    held["contributions_copy"] = sum(estimate["memory"].get(name, 0.0) for name in ("E", "E_stderr", "A", "T"))
+    held["flip_effects"] = 8.0 * scene.sensor_count * scene.element_count
+    held["process"] = float(_CLIENT_PROCESS_BYTES)
+    return held
 
 
 def check_client_fits(scene, max_memory=None):
     """Raises ValueError, naming the figures, when what the client of a solve on a cluster holds
-    would not fit in max_memory (default: what this machine has available): E, E_stderr, A and T,
-    the solver's copies, the flip effects it keeps, its population, and the flip-effect matrix the shards' answers are
-    assembled into (sensors x elements, 8 bytes each). Climate goals' hourly model is checked when
-    it is stacked, as one process checks it."""
+    would not fit in max_memory (default: what this machine has available): E, E_stderr, A and T
+    (with T's margin while it is summed, and the native copy the solver reads), the solver's
+    copies, the flip effects it keeps, its population, the flip-effect matrix the shards' answers
+    are assembled into (sensors x elements, 8 bytes each) and the process itself. The climate
+    goals' hourly model stays in the shards (check_shards_fit, check_climate_model_fits)."""
     estimate = api.estimate_cost(scene, "solve", max_memory)
-    held = {name: estimate["memory"].get(name, 0.0) for name in _CLIENT_PARTS}
-    held["flip_effects"] = 8.0 * scene.sensor_count * scene.element_count
+    held = _client_parts(scene, estimate)
     total = sum(held.values())
     if total > estimate["available_bytes"]:
         largest = max(held, key=held.get)
