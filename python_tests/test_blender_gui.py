@@ -313,3 +313,20 @@ def test_new_goals_solve_with_the_contributions_kept(gui, solved):
     assert after["folder"]["scene.json"] != solved["folder"]["scene.json"]
     assert after["folder"]["scene.obj"] == solved["folder"]["scene.obj"]
     assert after["staging"] == []
+
+
+def test_f3_finds_solve_openings_in_the_fenestra_menu(gui, solved):
+    """Blender's menu search (F3, the pointer over the 3D View) finds Solve Openings in Object >
+    Fenestra; Return runs it, as a click on the menu item would."""
+    gui.command("set", values=QUICK)
+    before = gui.job_number()
+    gui.point_at_view()
+    gui.key("F3")
+    time.sleep(1.0)  # the search popup opens under the pointer
+    gui.xdotool("type", "--delay", "60", "solve openings")
+    time.sleep(1.0)
+    gui.key("Return")
+    s = gui.wait_for(lambda s: s["job"] is not None and s["job"]["number"] > before,
+                     timeout=30, what="the solve F3 found", name="job.json")
+    s = gui.wait_until_ended(s["job"]["number"])
+    assert s["job"]["error"] is None and s["results_valid"], s

@@ -20,13 +20,14 @@ import bpy
 from .com import contributions_cache, solve_job
 from .draw import false_colour_overlay, legend, overlay, sensor_hover, sensor_labels
 from .props import properties
-from .ui import (annual_operator, annual_panel, check_setup, climate_panel, evaluate_openings, operators, panels,
-                 result_operators, result_panels, solve_guard, solve_progress, tradeoff_operators)
+from .ui import (annual_operator, annual_panel, check_setup, climate_panel, evaluate_openings, menu, operators,
+                 panels, result_operators, result_panels, solve_guard, solve_progress, tradeoff_operators)
 
 classes = (properties.classes + operators.classes + result_operators.classes + sensor_hover.classes
            + evaluate_openings.classes + solve_progress.classes + panels.classes + climate_panel.classes
            + result_panels.classes
-           + check_setup.classes + tradeoff_operators.classes + annual_operator.classes + annual_panel.classes)
+           + check_setup.classes + tradeoff_operators.classes + annual_operator.classes + annual_panel.classes
+           + menu.classes)
 DRAWN = (overlay, false_colour_overlay, legend, sensor_labels)
 
 
@@ -38,6 +39,7 @@ def register():
         module.register()
     solve_progress.register()
     solve_guard.register()
+    menu.register()
 
 
 def unregister():
@@ -45,6 +47,7 @@ def unregister():
     if job is not None:
         job.wait(solve_job.CANCEL_WAIT_AT_EXIT_S)
     contributions_cache.clear()
+    menu.unregister()
     solve_guard.unregister()
     solve_progress.unregister()
     for module in reversed(DRAWN):

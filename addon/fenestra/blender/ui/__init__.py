@@ -1,5 +1,5 @@
 """What the user clicks and reads in the sidebar's Fenestra tab: the operators (operators,
 annual_operator, evaluate_openings, tradeoff_operators, result_operators, check_setup), the running
 job's modal half and progress (job_operator, solve_progress) and what cancels it (solve_guard), the
-panels (panels, result_panels, climate_panel, annual_panel) and the automatic constraints they show
-greyed (constraint_defaults)."""
+panels (panels, result_panels, climate_panel, annual_panel), the Fenestra menu in the Object menu
+(menu) and the automatic constraints the panels show greyed (constraint_defaults)."""
