@@ -140,3 +140,7 @@ def test_a_solve_that_dropped_light_says_so_among_its_warnings(tmp_path):
     said = [w for w in result["warnings"] if w.startswith("the tracer left out")]
     assert len(said) == 1 and str(result["dropped"]["truncated_conditions"]) in said[0]
     assert r.stderr.count("fenestra: warning: the tracer left out") == 1
+    # Its summary line counts in words: "1 opening", "3 openings".
+    openings, opened = len(result["openings"]), len(result["open_elements"])
+    assert r.stdout.startswith("solve: %d opening%s, %d open element%s;" % (
+        openings, "" if openings == 1 else "s", opened, "" if opened == 1 else "s")), r.stdout

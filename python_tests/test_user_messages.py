@@ -181,3 +181,12 @@ def test_opening_off_the_domain_names_the_cutter(tmp_path):
 def test_a_message_without_keys_is_left_as_it_is():
     text = "No sensors: mark an object as sensors (Sensors > Sensor Object) or add a sensor grid"
     assert user_messages.for_user(text) == text
+
+
+def test_counts_read_as_words():
+    from fenestra.wording import counted
+
+    assert counted(1, "opening") == "1 opening"
+    assert [counted(n, "face") for n in (0, 2, 11)] == ["0 faces", "2 faces", "11 faces"]
+    assert counted(1, "open element") == "1 open element" and counted(3, "open element") == "3 open elements"
+    assert counted(2, "child", "children") == "2 children" and counted(1, "child", "children") == "1 child"

@@ -10,6 +10,8 @@ import sys
 import time
 import warnings
 
+from .wording import counted
+
 USAGE = """usage:
   fenestra solve SCENE.json -o RESULT.json (--workers N | --scheduler ADDRESS) [options]
   fenestra contributions SCENE.json -o OUT[.npz] (--workers N | --scheduler ADDRESS) [options]
@@ -290,12 +292,13 @@ def run_solve(a, scene, setup=()):
     e = r["error"]
     opened = len(r["open_elements"])
     if "climate" in r:
-        print("solve: %d openings, %d open elements; %.2f s\nwrote %s"
-              % (len(r["openings"]), opened, r["timings_s"]["total"], a["output"]))
+        print("solve: %s, %s; %.2f s\nwrote %s"
+              % (counted(len(r["openings"]), "opening"), counted(opened, "open element"), r["timings_s"]["total"],
+                 a["output"]))
     else:
-        print("solve: %d openings, %d open elements; relative RMS error %.2f%% (linear model %.2f%%, compensated "
+        print("solve: %s, %s; relative RMS error %.2f%% (linear model %.2f%%, compensated "
               "%.2f%%), worst sensor %.1f%%; %.2f s\nwrote %s"
-              % (len(r["openings"]), opened, 100 * e["relative_rms"], 100 * e["linear"]["relative_rms"],
+              % (counted(len(r["openings"]), "opening"), counted(opened, "open element"), 100 * e["relative_rms"], 100 * e["linear"]["relative_rms"],
                  100 * e["compensated"]["relative_rms"], 100 * e["max_relative"], r["timings_s"]["total"],
                  a["output"]))
         if e.get("verified"):

@@ -34,6 +34,7 @@
 #include "trace/evaluate.h"
 #include "util/byte_size.h"
 #include "util/out_of_memory.h"
+#include "util/wording.h"
 
 namespace {
 
@@ -391,12 +392,14 @@ int run(const Args& a) {
     double total = 0.0;
     for (const auto& t : r.timings) total = t.stage == "total" ? t.seconds : total;
     if (r.climate.active)  // its per-sensor errors measure how the openings follow the element answer's light
-      std::printf("solve: %zu openings, %zu open elements; %.2f s\nwrote %s\n", r.openings.size(),
-                  static_cast<size_t>(std::count(r.open.begin(), r.open.end(), 1)), total, a.output.c_str());
+      std::printf("solve: %s, %s; %.2f s\nwrote %s\n", counted(r.openings.size(), "opening").c_str(),
+                  counted(static_cast<size_t>(std::count(r.open.begin(), r.open.end(), 1)), "open element").c_str(),
+                  total, a.output.c_str());
     else
-      std::printf("solve: %zu openings, %zu open elements; relative RMS error %.2f%% (linear model %.2f%%, "
+      std::printf("solve: %s, %s; relative RMS error %.2f%% (linear model %.2f%%, "
                   "compensated %.2f%%), worst sensor %.1f%%; %.2f s\nwrote %s\n",
-                  r.openings.size(), static_cast<size_t>(std::count(r.open.begin(), r.open.end(), 1)),
+                  counted(r.openings.size(), "opening").c_str(),
+                  counted(static_cast<size_t>(std::count(r.open.begin(), r.open.end(), 1)), "open element").c_str(),
                   100 * r.error.relative_rms, 100 * r.linear_error.relative_rms, 100 * r.compensated_error.relative_rms,
                   100 * r.error.max_relative, total, a.output.c_str());
     if (r.verified && !r.climate.active)
@@ -429,8 +432,8 @@ int run(const Args& a) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_json(a.output, evaluation_json(v, openings.size(), scene.render.paths_per_sensor,
                                        unobstructed_horizontal_illuminance(*scene.sky, scene.suns, scene.daylight.get()), setup));
-  std::printf("evaluate: %zu sensors, %zu openings, %.2f s\nwrote %s\n", scene.sensors.size(), openings.size(), seconds,
-              a.output.c_str());
+  std::printf("evaluate: %s, %s, %.2f s\nwrote %s\n", counted(scene.sensors.size(), "sensor").c_str(),
+              counted(openings.size(), "opening").c_str(), seconds, a.output.c_str());
   return 0;
 }
 

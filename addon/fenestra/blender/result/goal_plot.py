@@ -5,6 +5,7 @@ import json
 import os
 
 import bpy
+from ...wording import counted
 
 PLOT_NAME = "goals_vs_achieved.png"
 
@@ -61,8 +62,8 @@ def write(result, path):
         ax.grid(True, which="major", color="0.92")
         ax.legend(loc="upper left", fontsize=8)
         error = result.get("error", {})
-        ax.set_title("%d sensors, %d openings, relative RMS error %.1f %%"
-                     % (len(sensors), len(result.get("openings", [])), 100 * error.get("relative_rms", 0.0)),
+        ax.set_title("%s, %s, relative RMS error %.1f %%"
+                     % (counted(len(sensors), "sensor"), counted(len(result.get("openings", [])), "opening"), 100 * error.get("relative_rms", 0.0)),
                      fontsize=10)
         fig.savefig(path)
     finally:

@@ -19,6 +19,7 @@ from ..com import (annual_job, contributions_cache, native, native_messages, stu
 from ..result import annual_results
 from ..study import export, opening_cutters
 from . import job_operator, solve_guard
+from ...wording import counted
 
 FOLDER = "annual"  # in the study folder
 FILES = ("scene.json", "scene.obj", "openings.json", "annual.json", "annual.npz")
@@ -116,8 +117,8 @@ class FENESTRA_OT_annual_daylight(job_operator.JobOperator, bpy.types.Operator):
         context.scene.fenestra.display.false_colour = 'ANNUAL'
         annual = context.scene.fenestra.annual
         reused = " (light paths reused)" if job.reused else ""
-        return self._tell(job, 'INFO', "Annual Daylight, %d openings: %s; %.1f s%s" % (
-            annual.openings, summary_line(annual), seconds, reused))
+        return self._tell(job, 'INFO', "Annual Daylight, %s: %s; %.1f s%s" % (
+            counted(annual.openings, "opening"), summary_line(annual), seconds, reused))
 
 
 classes = (FENESTRA_OT_annual_daylight,)

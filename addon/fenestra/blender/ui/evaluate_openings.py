@@ -17,6 +17,7 @@ import numpy as np
 from ..com import native, user_messages
 from ..result import climate_results, results
 from ..study import export, opening_cutters
+from ...wording import counted
 
 
 def goal_error(goals, values):
@@ -86,8 +87,8 @@ class FENESTRA_OT_evaluate_openings(bpy.types.Operator):
             display = context.scene.fenestra.display
             if display.false_colour in climate_results.QUANTITIES:
                 display.false_colour = 'ACHIEVED'
-        self.report({'INFO'}, "%d openings as they stand: relative RMS error %.1f %% (before: %.1f %%), worst "
-                    "sensor %.1f %%" % (len(cutters), 100 * rms, 100 * solved, 100 * worst))
+        self.report({'INFO'}, "%s as they stand: relative RMS error %.1f %% (before: %.1f %%), worst "
+                    "sensor %.1f %%" % (counted(len(cutters), "opening"), 100 * rms, 100 * solved, 100 * worst))
         return {'FINISHED'}
 
 

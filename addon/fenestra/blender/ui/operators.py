@@ -12,6 +12,7 @@ from ..com import (contributions_cache, names, native, native_messages, solve_jo
 from ..result import results, sky_preview
 from ..study import export, setup_checks
 from . import check_setup, job_operator, solve_guard
+from ...wording import counted
 
 
 def _native_or_report(op):
@@ -79,7 +80,7 @@ class FENESTRA_OT_mark_domain(bpy.types.Operator):
 
     def execute(self, context):
         n = _mark_selected(context, True)
-        self.report({'INFO'}, "%d faces marked as opening domain" % n)
+        self.report({'INFO'}, "%s marked as opening domain" % counted(n, "face"))
         return {'FINISHED'}
 
 
@@ -95,7 +96,7 @@ class FENESTRA_OT_clear_domain(bpy.types.Operator):
 
     def execute(self, context):
         n = _mark_selected(context, False)
-        self.report({'INFO'}, "%d faces removed from the opening domain" % n)
+        self.report({'INFO'}, "%s removed from the opening domain" % counted(n, "face"))
         return {'FINISHED'}
 
 
@@ -150,7 +151,7 @@ class FENESTRA_OT_add_sensor_grid(bpy.types.Operator):
         obj.fenestra.is_sensor = True
         obj.hide_render = True
         context.collection.objects.link(obj)
-        self.report({'INFO'}, "%d sensors at %.2f m" % (len(verts), height))
+        self.report({'INFO'}, "%s at %.2f m" % (counted(len(verts), "sensor"), height))
         return {'FINISHED'}
 
 
@@ -237,11 +238,11 @@ class FENESTRA_OT_solve_openings(job_operator.JobOperator, bpy.types.Operator):
         reused = " (contributions reused)" if job.reused else ""
         if r.climate.valid:  # climate goals: whether they are met is the news, and the glazing it takes
             met = sum(1 for g in r.climate.goals if g.has_achieved and g.met)
-            return self._tell(job, 'INFO', "%d openings, %d of %d climate goals met, glazing %.2f m², %.1f s%s (study in %s)"
-                              % (r.openings, met, len(r.climate.goals), r.climate.glazing_area, r.seconds_total,
+            return self._tell(job, 'INFO', "%s, %d of %d climate goals met, glazing %.2f m², %.1f s%s (study in %s)"
+                              % (counted(r.openings, "opening"), met, len(r.climate.goals), r.climate.glazing_area, r.seconds_total,
                                  reused, self._study.directory))
-        return self._tell(job, 'INFO', "%d openings, relative RMS error %.1f %%, %.1f s%s (study in %s)"
-                          % (r.openings, 100 * r.relative_rms, r.seconds_total, reused, self._study.directory))
+        return self._tell(job, 'INFO', "%s, relative RMS error %.1f %%, %.1f s%s (study in %s)"
+                          % (counted(r.openings, "opening"), 100 * r.relative_rms, r.seconds_total, reused, self._study.directory))
 
 
 class FENESTRA_OT_clear_results(bpy.types.Operator):

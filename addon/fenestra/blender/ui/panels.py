@@ -6,6 +6,7 @@ from ..com import names, native
 from ..result import climate_results, sensor_results
 from ..study import sky, visibility, weather_file
 from . import constraint_defaults, solve_progress
+from ...wording import counted
 
 SHOWN = 12  # sensors listed in the Results panel
 
@@ -53,7 +54,7 @@ class FENESTRA_PT_domain(FenestraPanel, bpy.types.Panel):
         row.operator("fenestra.clear_domain")
         if context.mode != 'EDIT_MESH':
             layout.label(text="Select faces in Edit Mode", icon='INFO')
-        layout.label(text="%d faces, %.2f m²" % (settings.domain_faces, settings.domain_area))
+        layout.label(text="%s, %.2f m²" % (counted(settings.domain_faces, "face"), settings.domain_area))
         for obj, faces, reason in visibility.hidden_domain(context):
             draw_warning(layout, "%d on '%s': %s; left out of the study" % (faces, obj.name, reason))
         row = layout.split(factor=0.8)
@@ -77,7 +78,8 @@ class FENESTRA_PT_sensors(FenestraPanel, bpy.types.Panel):
         if obj is not None and obj.type == 'MESH':
             layout.prop(obj.fenestra, "is_sensor", text="Sensor Object (%s)" % obj.name)
         sensors = [o for o in context.scene.objects if o.fenestra.is_sensor and o.type == 'MESH']
-        layout.label(text="%d sensors in %d objects" % (sum(len(o.data.vertices) for o in sensors), len(sensors)))
+        layout.label(text="%s in %s" % (counted(sum(len(o.data.vertices) for o in sensors), "sensor"),
+                                          counted(len(sensors), "object")))
         for obj, count, reason in visibility.hidden_sensors(context):
             draw_warning(layout, "%d in '%s': %s; left out of the study" % (count, obj.name, reason))
         goals = settings.goals
@@ -246,8 +248,8 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             layout.label(text="No result yet")
             return
         col = layout.column(align=True)
-        col.label(text="%d openings" % r.openings)
-        col.label(text="%d of %d elements open" % (r.open_elements, r.elements))
+        col.label(text=counted(r.openings, "opening"))
+        col.label(text="%d of %s open" % (r.open_elements, counted(r.elements, "element")))
         # A climate solve's per-sensor goals are its own element answer's light: its figures are the
         # climate goals' (their sub-panel), not these errors.
         per_sensor_goals = not r.climate.valid

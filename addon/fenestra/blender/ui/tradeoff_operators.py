@@ -9,6 +9,7 @@ import bpy
 from ..result import results
 from ..com.study_error import StudyError
 from ..study import export
+from ...wording import counted
 
 
 class FENESTRA_OT_apply_tradeoff(bpy.types.Operator):
@@ -42,8 +43,8 @@ class FENESTRA_OT_apply_tradeoff(bpy.types.Operator):
         results.apply(context, study, results.tradeoff_result(result, self.index))
         r.tradeoff_shown = self.index
         entry = result["tradeoffs"][self.index]
-        self.report({'INFO'}, "%d openings, relative RMS error %.1f %% (predicted)"
-                    % (entry["openings_count"], 100 * entry["error"]["relative_rms"]))
+        self.report({'INFO'}, "%s, relative RMS error %.1f %% (predicted)"
+                    % (counted(entry["openings_count"], "opening"), 100 * entry["error"]["relative_rms"]))
         return {'FINISHED'}
 
 
