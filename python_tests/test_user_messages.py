@@ -190,3 +190,16 @@ def test_counts_read_as_words():
     assert [counted(n, "face") for n in (0, 2, 11)] == ["0 faces", "2 faces", "11 faces"]
     assert counted(1, "open element") == "1 open element" and counted(3, "open element") == "3 open elements"
     assert counted(2, "child", "children") == "2 children" and counted(1, "child", "children") == "1 child"
+
+
+def test_a_constraint_cost_warning_names_the_constraints_by_their_labels():
+    """The Results panel shows the solve's warnings in the tab's words: the constraints by the
+    Constraints panel's labels, never as keys of the result."""
+    warning = ("the openings within the constraints meet the goals at 10.3 % on the element grid, the free answer at "
+               "0.6 %; without min_width, min_height, margin, sill_min, head_clearance, min_gap, "
+               "panel_width_per_opening it would be 2.0 % (constraint_costs in the result)")
+    text = user_messages.for_user(warning)
+    assert "without Min Width, Min Height, Margin, Min Sill, Head Clearance, Min Gap, Width per Opening it would be " \
+           "2.0 %" in text, text
+    assert not re.search(r"\b[a-z]+_[a-z_]+\b", text), text  # no snake_case key left
+    assert "(constraint_costs" not in text and text.endswith("2.0 %"), text

@@ -182,6 +182,7 @@ DROPPED = [
     re.compile(r",? or raise the limit with --max-memory \(max_memory= in Python\)"),
     re.compile(r",? or a solver\.time_budget_s"),
     re.compile(r" \(MemAvailable\)"),
+    re.compile(r" \(constraint_costs in the result\)"),
     re.compile(r"EnvironmentMap\((?:[^()]|\([^()]*\))*\): "),
 ]
 

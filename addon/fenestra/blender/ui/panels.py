@@ -2,7 +2,7 @@
 
 import bpy
 
-from ..com import names, native
+from ..com import names, native, user_messages
 from ..result import climate_results, sensor_results
 from ..study import sky, visibility, weather_file
 from . import constraint_defaults, solve_progress
@@ -263,7 +263,7 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             col.label(text="Checked: %.1f %% (noise %.1f %%)" % (100 * r.verified_rms, 100 * r.verified_noise))
         for warning in filter(None, r.warnings.split("\n")):
             if not (r.climate.valid and climate_results.is_unmet_warning(warning)):  # (listed with the goals)
-                draw_warning(layout, warning)
+                draw_warning(layout, user_messages.for_user(warning))  # the constraints by their labels
         if len(r.tradeoffs) > 1:
             box = layout.box()
             box.label(text="Trade-offs (predicted)")
