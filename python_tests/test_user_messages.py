@@ -10,6 +10,8 @@ import json
 import os
 import re
 
+import numpy as np
+
 import pytest
 
 import fenestra
@@ -203,3 +205,28 @@ def test_a_constraint_cost_warning_names_the_constraints_by_their_labels():
            "2.0 %" in text, text
     assert not re.search(r"\b[a-z]+_[a-z_]+\b", text), text  # no snake_case key left
     assert "(constraint_costs" not in text and text.endswith("2.0 %"), text
+
+
+def _goal_errors():
+    spec = importlib.util.spec_from_file_location(
+        "goal_errors", os.path.join(ROOT, "addon", "fenestra", "blender", "com", "goal_errors.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_a_goal_far_below_the_others_is_judged_in_lux():
+    """A dark zone painted at 1 lx among goals of 300 lx: 2 367 lx there is not "277 193 %" but
+    2 366 lx off its goal; goals of the usual size keep their relative error."""
+    ge = _goal_errors()
+    goal = np.array([300.0, 300.0, 320.0, 1.0, -1.0])
+    achieved = np.array([330.0, 240.0, 320.0, 2367.0, 500.0])
+    floor = ge.goal_floor(goal)
+    assert floor == pytest.approx(0.1 * 300.0)  # a tenth of the median positive goal
+    error = ge.scaled_errors(goal, achieved)
+    np.testing.assert_allclose(error[:3], [0.1, 0.2, 0.0])
+    assert error[3] == pytest.approx(2366.0 / floor) and error[4] == -1.0  # no goal: last
+    assert ge.describe(300.0, 240.0, floor) == ("20.0 %", "goal 300 lx, got 240 lx")
+    assert ge.describe(1.0, 2367.0, floor) == ("2366 lx off", "goal 1 lx, got 2367 lx")
+    assert ge.goal_floor(np.array([-1.0, 0.0])) == 0.0
+    assert list(ge.scaled_errors([0.0, -1.0], [5.0, 5.0])) == [0.0, -1.0]  # goals 0 or none: no division

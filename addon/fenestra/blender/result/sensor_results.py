@@ -4,6 +4,8 @@
 import bmesh
 import numpy as np
 
+from ..com import goal_errors
+
 _cache = {"key": None}
 
 
@@ -89,12 +91,28 @@ def name(sensor, vertex_only=False):
     return "%s %d" % (sensor.object_name, sensor.vertex)
 
 
-def farthest_from_goal(results, count):
-    """The `count` sensors with the largest |achieved - goal| / goal (sensors without a goal last)."""
+def _goals_and_achieved(results):
     n = len(results.sensors)
     goal, achieved = np.zeros(n), np.zeros(n)
     results.sensors.foreach_get("goal", goal)
     results.sensors.foreach_get("achieved", achieved)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        error = np.where(goal > 0, np.abs(achieved - goal) / goal, -1.0)
+    return goal, achieved
+
+
+def farthest_from_goal(results, count):
+    """The `count` sensors farthest from their goals (goal_errors.scaled_errors: relative where the
+    goal is meaningful; sensors without a goal last)."""
+    error = goal_errors.scaled_errors(*_goals_and_achieved(results))
     return [results.sensors[int(i)] for i in np.argsort(-error, kind="stable")[:count]]
+
+
+def worst_sensor_lines(results):
+    """("Worst sensor 12.3 %", "goal 300 lx, got 337 lx"), in lux for a goal too low for a relative
+    error to mean anything ("Worst sensor 2366 lx off"); None without sensors with goals."""
+    goal, achieved = _goals_and_achieved(results)
+    error = goal_errors.scaled_errors(goal, achieved)
+    if not len(error) or error.max() < 0:
+        return None
+    i = int(np.argmax(error))
+    headline, detail = goal_errors.describe(goal[i], achieved[i], goal_errors.goal_floor(goal))
+    return "Worst sensor " + headline, detail

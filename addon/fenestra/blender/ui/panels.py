@@ -257,8 +257,10 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             col.label(text="Error %.1f %% RMS" % (100 * r.relative_rms))
         if r.evaluated:
             col.label(text="Evaluated as placed", icon='CHECKMARK')
-        if per_sensor_goals:
-            col.label(text="Worst sensor %.1f %%" % (100 * r.max_relative))
+        worst = sensor_results.worst_sensor_lines(r) if per_sensor_goals else None
+        if worst:
+            col.label(text=worst[0])
+            col.label(text="    " + worst[1])
         if r.verified_rms >= 0 and per_sensor_goals:
             col.label(text="Checked: %.1f %% (noise %.1f %%)" % (100 * r.verified_rms, 100 * r.verified_noise))
         for warning in filter(None, r.warnings.split("\n")):
