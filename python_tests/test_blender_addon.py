@@ -23,7 +23,7 @@ ADDON = os.path.join(os.path.dirname(HERE), "addon", "fenestra")
 def test_addon_study(blender, tmp_path):
     r = blender.run(tmp_path, os.path.join(HERE, "blender", "addon_study.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
-    assert "Ran 21 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+    assert "Ran 22 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 
 
 def test_openings_cut_through_the_walls(blender, tmp_path):

@@ -108,9 +108,22 @@ class Registration(unittest.TestCase):
             self.assertTrue(hasattr(bpy.types.Scene, "fenestra"))
             self.assertTrue(hasattr(bpy.ops.fenestra, "solve_openings"))
             self.assertIn("FENESTRA_PT_main", dir(bpy.types))
+            # The Fenestra menu in the Object menu (F3 finds its commands), gone with the add-on.
+            self.assertIn("FENESTRA_MT_study", dir(bpy.types))
             disable()
             self.assertFalse(hasattr(bpy.types.Scene, "fenestra"))
+            self.assertNotIn("FENESTRA_MT_study", dir(bpy.types))
         enable()
+
+    def test_the_progress_bar_tells_what_it_is(self):
+        """Its tooltip is its description (a read-only property's says "Disabled: This property is
+        for internal use only"); dragging it changes nothing."""
+        wm = bpy.context.window_manager
+        prop = wm.bl_rna.properties["fenestra_solve_progress"]
+        self.assertFalse(prop.is_readonly)
+        self.assertTrue(prop.description.startswith("How much of the solve's current stage is done"))
+        wm.fenestra_solve_progress = 50.0
+        self.assertEqual(wm.fenestra_solve_progress, 0.0)  # no solve runs
 
 
 class Solve(unittest.TestCase):

@@ -15,6 +15,11 @@ def _percent(wm):
     return 100.0 * job.fraction if job is not None else 0.0
 
 
+def _keep(wm, value):
+    """Dragging the bar changes nothing; with a setter Blender shows the bar's description as its
+    tooltip, not "Disabled: This property is for internal use only"."""
+
+
 class FENESTRA_OT_cancel_solve(bpy.types.Operator):
     """Stop the running solve: the model and the study folder stay as they were"""
     bl_idname = "fenestra.cancel_solve"
@@ -91,8 +96,9 @@ classes = (FENESTRA_OT_cancel_solve,)
 
 def register():
     bpy.types.WindowManager.fenestra_solve_progress = bpy.props.FloatProperty(
-        name="Solve Progress", subtype='PERCENTAGE', min=0.0, max=100.0, precision=0, get=_percent,
-        description="The running stage of the solve, done")
+        name="Solve Progress", subtype='PERCENTAGE', min=0.0, max=100.0, precision=0, get=_percent, set=_keep,
+        options=set(), description="How much of the solve's current stage is done (its name is on the bar). Esc, "
+        "or Cancel below, stops the solve and leaves the model and the study folder as they were")
 
 
 def unregister():
