@@ -50,10 +50,8 @@ def _wall_quads(axis, at, span, inward, hole=None):
         if u1 - u0 <= 1e-9:
             continue
         quad = [corner(u0, z0), corner(u1, z0), corner(u1, z1), corner(u0, z1)]
-        # Counter-clockwise seen from the side it faces: the normal is (u-axis x z-axis).
-        along_u = (0, 1, 0) if axis == 0 else (1, 0, 0)
-        normal_sign = along_u[1] if axis == 0 else -along_u[0]  # x: (0,1,0)x(0,0,1) = +x; y: (1,0,0)x(0,0,1) = -y
-        if normal_sign != inward:
+        # Counter-clockwise seen from the side it faces: u x z is +x on an x wall, -y on a y wall.
+        if (1 if axis == 0 else -1) != inward:
             quad.reverse()
         quads.append(quad)
     return quads
@@ -163,8 +161,7 @@ def _corridor(obj, box, holes):
             def corner(u, z):
                 return (at, u, z) if axis == 0 else (u, at, z)
             quad = [corner(u0, z0), corner(u1, z0), corner(u1, z1), corner(u0, z1)]
-            normal_sign = 1 if axis == 0 else -1
-            if normal_sign != inward:
+            if (1 if axis == 0 else -1) != inward:
                 quad.reverse()
             obj.quad("corridor_%s_%d" % (side, i), "partition", quad)
     for name, z, up in (("floor", 0.0, 1), ("ceiling", HEIGHT, -1)):
