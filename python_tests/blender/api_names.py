@@ -15,7 +15,10 @@ The add-on's Python files (and any EXTRA ones) are read as syntax trees, never r
   pointer's target, local names bound to these;
 - enum values: a string assigned to, or compared with, an enum property of such data
   (m.solver = 'EXACT', obj.type == 'MESH'), and a string given to an enum argument of a function
-  (modifiers.new(name, 'BOOLEAN'), attributes.new(name, 'BOOLEAN', 'FACE')).
+  (modifiers.new(name, 'BOOLEAN'), attributes.new(name, 'BOOLEAN', 'FACE'));
+- icons: every `icon='NAME'` keyword, whatever layout it is given to (icons are renamed between
+  versions: LIGHTPROBE_GRID is LIGHTPROBE_VOLUME in 4.x, and a panel naming a missing one fails to
+  draw).
 Prints "CHECKED n" and one "MISSING file:line: what" per name this Blender lacks; exits 1 if any."""
 
 import ast
@@ -398,6 +401,16 @@ def sources():
     return [(f, os.path.relpath(f, os.path.dirname(package))) for f in files] + [(f, f) for f in extra]
 
 
+ICONS = set(bpy.types.UILayout.bl_rna.functions["operator"].parameters["icon"].enum_items.keys())
+
+
+def missing_icons(tree, shown):
+    """"file:line: icon='NAME'" for each icon keyword naming an icon this Blender lacks."""
+    return ["%s:%d: icon=%r" % (shown, node.lineno, node.value.value) for node in ast.walk(tree)
+            if isinstance(node, ast.keyword) and node.arg == "icon" and isinstance(node.value, ast.Constant)
+            and isinstance(node.value.value, str) and node.value.value not in ICONS]
+
+
 def main():
     installed.enable()
     for cls in importlib.import_module(installed.package().__name__ + ".blender").classes:
@@ -406,9 +419,10 @@ def main():
     for path, shown in sources():
         checker = Checker(shown)
         with open(path) as f:
-            checker.visit(ast.parse(f.read(), path))
+            tree = ast.parse(f.read(), path)
+        checker.visit(tree)
         checked += checker.checked
-        missing += checker.missing
+        missing += checker.missing + missing_icons(tree, shown)
     print("BLENDER %s" % bpy.app.version_string)
     print("CHECKED %d" % checked)
     for line in missing:

@@ -16,7 +16,7 @@ class FENESTRA_MT_study(bpy.types.Menu):
         layout.operator("fenestra.annual_daylight", icon='TIME')
         layout.separator()
         layout.operator("fenestra.check_setup", icon='VIEWZOOM')
-        layout.operator("fenestra.add_sensor_grid", icon='LIGHTPROBE_GRID')
+        layout.operator("fenestra.add_sensor_grid", icon='MESH_GRID')
 
 
 def draw_in_object_menu(self, context):

@@ -73,7 +73,7 @@ class FENESTRA_PT_sensors(FenestraPanel, bpy.types.Panel):
         col = layout.column(align=True)
         col.prop(settings, "sensor_height")
         col.prop(settings, "sensor_spacing")
-        col.operator("fenestra.add_sensor_grid", icon='LIGHTPROBE_GRID')
+        col.operator("fenestra.add_sensor_grid", icon='MESH_GRID')
         obj = context.active_object
         if obj is not None and obj.type == 'MESH':
             layout.prop(obj.fenestra, "is_sensor", text="Sensor Object (%s)" % obj.name)

@@ -53,7 +53,7 @@ class FENESTRA_PT_selected_sensor(ResultSubPanel, bpy.types.Panel):
             return
         obj, vertex, goal, achieved = found
         col = self.layout.column(align=True)
-        col.label(text="%s, vertex %d" % (obj.name, vertex), icon='LIGHTPROBE_GRID')
+        col.label(text="%s, vertex %d" % (obj.name, vertex), icon='MESH_GRID')
         col.label(text="Goal: %s" % ("none" if math.isnan(goal) else "%.0f lx" % goal))
         col.label(text="Achieved: %.0f lx" % achieved)
         if not math.isnan(goal) and goal > 0:
