@@ -179,6 +179,35 @@ TEST(SetupChecks, ADomainSeenFromTheSideTheSolverDoesNotTakeForTheRoom) {
       << found[0].message;
 }
 
+// Sensors in the domain wall's plane (y = 0) or 3 cm off it, 2 cm off a wall or under the ceiling;
+// on the floor facing up, 8 cm off a wall or under the ceiling is where sensors may be.
+TEST(SetupChecks, SensorsOnTheDomainOrOnAnotherSurface) {
+  TempDir dir;
+  Room r;
+  r.extra_sensors = {{2.0f, 0.0f, 0.8f},  {2.5f, 0.03f, 1.2f}, {0.02f, 2.0f, 0.8f}, {2.0f, 2.0f, 2.68f},
+                     {2.0f, 2.0f, 0.0f},  {2.0f, 0.08f, 0.8f}, {3.92f, 2.0f, 0.8f}, {2.0f, 2.0f, 2.62f}};
+  const Scene scene = room_scene(dir, r);
+  for (SetupStage stage : {SetupStage::Solve, SetupStage::Evaluate}) {
+    const auto found = check_setup(scene, stage);
+    const SetupWarning* domain = find(found, Kind::OnDomain);
+    const SetupWarning* surface = find(found, Kind::NearSurface);
+    ASSERT_TRUE(domain && surface);
+    EXPECT_EQ(domain->sensors, (std::vector<int>{16, 17}));
+    EXPECT_EQ(surface->sensors, (std::vector<int>{18, 19}));
+    EXPECT_EQ(domain->message.rfind("2 of 24 sensors lie on the opening domain (within 0.05 m of it): sensors 16 "
+                                    "(2.00, 0.00, 0.80), 17 (2.50, 0.03, 1.20)",
+                                    0),
+              0u)
+        << domain->message;
+    EXPECT_NE(surface->message.find("on a wall, ceiling or other surface"), std::string::npos) << surface->message;
+  }
+  // The sound room's own 16 sensors, 0.5 m off the walls, are not named.
+  TempDir dir2;
+  const auto sound = check_setup(room_scene(dir2, Room()), SetupStage::Solve);
+  EXPECT_EQ(find(sound, Kind::OnDomain), nullptr);
+  EXPECT_EQ(find(sound, Kind::NearSurface), nullptr);
+}
+
 TEST(SetupChecks, StrictMakesThemAnError) {
   TempDir dir;
   Room r;

@@ -46,6 +46,7 @@ void bind_cost(py::module_& m);      // bind_cost.cpp
 void bind_shards(py::module_& m);    // bind_shards.cpp
 void bind_record_queries(py::module_& m);  // bind_record_queries.cpp
 void bind_setup_checks(py::module_& m);    // bind_setup_checks.cpp
+void bind_sensor_grid(py::module_& m);     // bind_sensor_grid.cpp
 py::tuple annual_parts_tuple(const fenestra::AnnualCoefficients& k, const fenestra::SensorValues& mean);  // bind_record_queries.cpp
 // A study's annual parts from its shards, stacked in sensor order (annual_parts_tuple's form), checked
 // against `annual`'s sources and sun hours.
@@ -229,6 +230,7 @@ PYBIND11_MODULE(_core, m) {
   bind_solver(m);
   bind_cost(m);
   bind_setup_checks(m);
+  bind_sensor_grid(m);
   bind_shards(m);
   bind_record_queries(m);
   static py::exception<Cancelled> cancelled(m, "Cancelled");

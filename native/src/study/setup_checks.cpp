@@ -13,6 +13,7 @@
 
 #include "scene/scene.h"
 #include "solve/goals.h"
+#include "trace/nearest_surface.h"
 #include "trace/ray_scene.h"
 #include "util/number_text.h"
 
@@ -271,6 +272,51 @@ void domain_sides(const Scene& scene, const RayScene& rays, std::vector<SetupWar
   out->push_back(std::move(w));
 }
 
+
+// Sensors within kNearSurface of a face that cuts through their hemisphere: the opening domain's
+// first (OnDomain), any other's next (NearSurface). A face parallel to the sensor and behind it
+// (the floor under a workplane sensor, a table) is no problem.
+void near_surfaces(const Scene& scene, std::vector<SetupWarning>* out) {
+  const Mesh& mesh = scene.mesh;
+  std::vector<uint8_t> domain(mesh.triangle_count(), 0);
+  for (const Panel& p : scene.domain.panels())
+    for (uint32_t t : p.triangles) domain[t] = 1;
+  const NearestSurface surfaces(mesh);
+  const size_t total = scene.sensors.size();
+  std::vector<uint8_t> found(total, 0);  // 1 on the domain, 2 on another surface
+  tbb::parallel_for(size_t(0), total, [&](size_t i) {
+    const Vec3& p = scene.sensors.points[i];
+    const Vec3& n = scene.sensors.normals[i];
+    const float radius = kNearSurface + lift_at(p);
+    if (nearest_in_view(surfaces, mesh, p, n, radius, &domain).found())
+      found[i] = 1;
+    else if (nearest_in_view(surfaces, mesh, p, n, radius).found())
+      found[i] = 2;
+  });
+  const std::string within = decimal_text(kNearSurface, "%.2f") + " m";
+  for (const auto kind : {SetupWarning::Kind::OnDomain, SetupWarning::Kind::NearSurface}) {
+    SetupWarning w;
+    w.kind = kind;
+    w.total = w.checked = total;
+    const uint8_t mark = kind == SetupWarning::Kind::OnDomain ? 1 : 2;
+    for (size_t i = 0; i < total; ++i)
+      if (found[i] == mark) w.sensors.push_back(static_cast<int>(i));
+    if (w.sensors.empty()) continue;
+    const std::string head = of_text(w.sensors.size(), total, total) + " " + verb(w.sensors.size(), "lies", "lie");
+    if (kind == SetupWarning::Kind::OnDomain)
+      w.message = head + " on the opening domain (within " + within + " of it): " + sensors_text(scene, w.sensors) +
+                  "; half their view is the opening itself, so their light is nothing a person in the room would "
+                  "read and the solve chases it: move them into the room, at least " + within +
+                  " off the walls (sensors.points), or remove them";
+    else
+      w.message = head + " on a wall, ceiling or other surface (within " + within + " of it): " +
+                  sensors_text(scene, w.sensors) +
+                  "; part of their view is inside that surface, so their light depends on millimetres: move them "
+                  "at least " + within + " off every surface but the floor under them (sensors.points)";
+    out->push_back(std::move(w));
+  }
+}
+
 }  // namespace
 
 const char* setup_kind_name(SetupWarning::Kind kind) {
@@ -280,6 +326,8 @@ const char* setup_kind_name(SetupWarning::Kind kind) {
     case SetupWarning::Kind::OpenRoom: return "open_room";
     case SetupWarning::Kind::Downward: return "downward";
     case SetupWarning::Kind::DomainSide: return "domain_side";
+    case SetupWarning::Kind::OnDomain: return "on_domain";
+    case SetupWarning::Kind::NearSurface: return "near_surface";
   }
   return "unknown";
 }
@@ -304,6 +352,7 @@ std::vector<SetupWarning> check_setup(const Scene& scene, SetupStage stage) {
   if (stage != SetupStage::Evaluate && rays) open_sky(scene, *rays, &out);
   downward(scene, &out);
   if (rays) domain_sides(scene, *rays, &out);
+  if (rays_needed) near_surfaces(scene, &out);
   return out;
 }
 

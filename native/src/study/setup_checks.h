@@ -13,6 +13,11 @@
 // - Domain panels seen from the side the solver does not take for the room: the solver takes the
 //   side of a flat panel's plane where most sensors are for its room; when the sensors that see
 //   the panel are on the other side, a thick wall is measured and cut on the wrong side.
+// - Sensors on the opening domain: within kNearSurface of a domain face that cuts through their
+//   hemisphere (a grid whose edge rows lie in the window wall's plane). Half their view is the
+//   opening itself: the records and a real cut disagree there by orders of magnitude.
+// - Sensors on a surface: the same within kNearSurface of any other face (a wall, a column, a
+//   ceiling); a floor or table under an upward sensor, parallel to it, is where sensors belong.
 //
 // Only geometry is looked at: rays against the scene's triangles with every element closed, a
 // few dozen per sensor on at most kMaxCheckedSensors sensors (evenly spaced through the scene's
@@ -33,7 +38,7 @@ struct Scene;
 enum class SetupStage { Solve, Contributions, Evaluate };
 
 struct SetupWarning {
-  enum class Kind { ZeroGoals, Outdoors, OpenRoom, Downward, DomainSide };
+  enum class Kind { ZeroGoals, Outdoors, OpenRoom, Downward, DomainSide, OnDomain, NearSurface };
   Kind kind = Kind::ZeroGoals;
   std::string message;        // in the scene file's words, naming the first few sensors and their positions
   std::vector<int> sensors;   // the sensors it is about (in scene order)
@@ -54,6 +59,7 @@ struct SetupWarning {
 };
 
 inline constexpr size_t kMaxCheckedSensors = 10000;
+inline constexpr float kNearSurface = 0.05f;  // meters: a sensor this close to a face lies on it
 
 const char* setup_kind_name(SetupWarning::Kind kind);  // "zero_goals", "outdoors", ...
 SetupStage setup_stage(const std::string& name);        // "solve", "contributions", "evaluate"

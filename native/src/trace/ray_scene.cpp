@@ -71,7 +71,9 @@ void reveal_grid_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-RTCGeometry make_triangles(const Mesh& mesh) {
+}  // namespace
+
+RTCGeometry embree_triangles(const Mesh& mesh) {
   RTCGeometry g = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                         3 * sizeof(float), mesh.positions.size()));
@@ -83,8 +85,6 @@ RTCGeometry make_triangles(const Mesh& mesh) {
     for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.triangles[i][k];
   return g;
 }
-
-}  // namespace
 
 namespace {
 std::atomic<uint64_t> g_rays_traced{0};
@@ -111,7 +111,7 @@ RayScene::RayScene(const Mesh& mesh, const Mesh& reveals, const Mesh& reveal_gri
   scene_ = rtcNewScene(embree_device());
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   const auto attach = [&](const Mesh& m, RTCFilterFunctionN filter, uint32_t id) {
-    RTCGeometry g = make_triangles(m);
+    RTCGeometry g = embree_triangles(m);
     rtcSetGeometryIntersectFilterFunction(g, filter);
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(scene_, g, id);

@@ -13,6 +13,9 @@ namespace fenestra {
 // One Embree device per process; errors are turned into exceptions at the call that caused them.
 RTCDevice embree_device();
 
+// A new Embree triangle geometry holding `mesh`'s positions and triangles (not yet committed).
+RTCGeometry embree_triangles(const Mesh& mesh);
+
 // Rays traced by this thread so far (intersect calls); parallel_tasks adds them to rays_traced().
 uint64_t& thread_ray_count();
 // Rays traced by all parallel_tasks since the process started.
