@@ -78,6 +78,23 @@ TEST(SensorGrid, ASolidRoomsGridLiesOverTheFloorsUpperFaceOffTheWalls) {
   EXPECT_NEAR(lo, 4.0 - hi, 1e-4);
 }
 
+// A closed thin box (Blender's cube scaled to a room: normals out, the floor's down) is a room, and
+// inside a solid wall 0.8 m thick, next to a room inside a solid, is none.
+TEST(SensorGrid, ThinBoxRoomsWithOutwardNormalsAndThickSolidWalls) {
+  Soup box;
+  box.box({0, 0, 0}, {4, 5, 3}, false, true);
+  const SensorGrid thin = grid(box, 0.8, 0.5);
+  ASSERT_EQ(thin.rooms.size(), 1u);
+  EXPECT_EQ(thin.rooms[0].points.size(), 80u);
+  EXPECT_NEAR(thin.rooms[0].floor_z[0], 0.0, 1e-5);
+  Soup thick;
+  thick.box({-0.8, -0.8, -0.2}, {4.8, 5.8, 3.2}, false, true);
+  thick.box({0, 0, 0}, {4, 5, 3}, true, true);
+  const SensorGrid g = grid(thick, 0.8, 0.5);
+  ASSERT_EQ(g.rooms.size(), 1u);
+  for (const Vec3d& p : g.rooms[0].points) EXPECT_GE(wall_distance(p, 0, 4, 0, 5), 0.25 - 1e-4) << p.transpose();
+}
+
 TEST(SensorGrid, TheInsetIsHalfTheSpacingAtLeastAQuarterMetreOrAsGiven) {
   EXPECT_DOUBLE_EQ(automatic_inset(0.3), 0.25);
   EXPECT_DOUBLE_EQ(automatic_inset(1.0), 0.5);

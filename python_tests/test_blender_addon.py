@@ -1,6 +1,7 @@
 """The Blender add-on, headless: registration, a solved study, save/reload, bad setups
 (python_tests/blender/addon_study.py), the openings cut through zero-thickness and solid walls
-(python_tests/blender/addon_holes.py) and through a curved wall, whose UV map is exported
+(python_tests/blender/addon_holes.py), sensor grids over solid rooms (python_tests/blender/addon_sensor_grid.py)
+and the openings cut through a curved wall, whose UV map is exported
 (python_tests/blender/addon_curved.py), messages and setup checks (python_tests/blender/addon_checks.py)
 and Evaluate on moved cutters (python_tests/blender/addon_evaluate.py), the Sun Position add-on's place and date
 (python_tests/blender/addon_sun_position.py), undo and redo of a solve (python_tests/blender/addon_undo.py)
@@ -48,7 +49,17 @@ def test_messages_and_setup_checks(blender, tmp_path):
     sensors outdoors or facing down, rooms open to the sky, domain faces seen from the wrong side."""
     r = blender.run(tmp_path, os.path.join(HERE, "blender", "addon_checks.py"), str(tmp_path / "out"))
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
-    assert "Ran 18 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+    assert "Ran 19 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
+
+
+def test_sensor_grids_over_the_rooms_floors(blender, tmp_path):
+    """Add Sensor Grid on a solid room (walls, floor and ceiling one mesh) lays its sensors at the
+    height above the floor's upper face, off the walls and the domain, so Check Setup finds nothing
+    and a solve's check with real cutters agrees with its prediction; a solid holding two rooms gets
+    a sensor object per room; the inset and refusals follow the settings."""
+    r = blender.run(tmp_path, os.path.join(HERE, "blender", "addon_sensor_grid.py"), str(tmp_path / "out"))
+    assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-4000:]
+    assert "Ran 6 tests" in r.stderr and "OK" in r.stderr, r.stderr[-2000:]
 
 
 def test_evaluate_moved_cutters(blender, tmp_path):

@@ -61,6 +61,7 @@ try:
         write_image,
         write_sky,
     )
+    from .sensor_grids import sensor_grid
     from . import native_signatures
     native_signatures.install()  # wrong argument types named in Fenestra's words
 except ImportError as exc:
@@ -97,6 +98,7 @@ __all__ = [
     "utc_seconds",
     "read_openings",
     "scene_from_dict",
+    "sensor_grid",
     "sky",
     "solve",
     "write_image",

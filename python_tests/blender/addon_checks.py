@@ -5,7 +5,8 @@
 Bad setups are refused with messages that name objects and fields, never scene-file keys or
 paths; hidden marked objects are named as hidden; the goal fields hold only goals the solver
 takes; Check Setup (and Solve Openings) warn, with counts, about goals all 0, sensors outdoors,
-rooms open to the sky, sensors facing down and domain faces whose room the solver cannot tell.
+rooms open to the sky, sensors facing down, domain faces whose room the solver cannot tell and
+sensors lying on the domain or on a wall.
 The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
 
 import os
@@ -240,6 +241,22 @@ class Checks(unittest.TestCase):
         self.assertEqual(len(warnings), 1, warnings)
         self.assertTrue(warnings[0].startswith("The domain faces of 'Room A' (1 flat part) are seen by 16 sensors "
                                                "from one side, but 36 of 52 sensors lie on the other side"), warnings)
+
+    def test_sensors_on_the_domain_and_on_the_walls(self):
+        """A 5 x 5 grid from wall to wall (rows in the wall planes, as a grid over the floor's whole
+        extent has): the south row lies on the domain, the others' edge rows on the walls."""
+        room()
+        verts = [(float(i), float(j), 0.8) for i in range(5) for j in range(5)]
+        faces = [(i * 5 + j, (i + 1) * 5 + j, (i + 1) * 5 + j + 1, i * 5 + j + 1) for i in range(4) for j in range(4)]
+        mesh_object("Edge rows", verts, faces).fenestra.is_sensor = True
+        settings()
+        warnings = [w for w in check() if " lie on " in w]  # in the wall planes, many also see outdoors
+        self.assertEqual(len(warnings), 2, warnings)
+        self.assertTrue(warnings[0].startswith("5 of 25 sensors of 'Edge rows' lie on the opening domain"), warnings)
+        self.assertTrue(warnings[1].startswith("11 of 25 sensors of 'Edge rows' lie on a wall, ceiling or other "
+                                               "surface"), warnings)
+        for w in warnings:
+            self.assertIsNone(KEY.search(w), w)
 
     def test_hidden_marked_objects_left_out(self):
         room()

@@ -30,6 +30,9 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 struct Floor {
   float z = 0.0f;             // the face's height (local meters)
   float top = kInfinity;      // the next face above it, or infinity
+  // The faces' normals: the floor's up and the ceiling's down (a room inside a solid), or the
+  // floor's down and the ceiling's up (a thin box room with outward normals, or inside a solid).
+  bool facing_in = false, facing_out = false;
   bool enclosed() const { return top < kInfinity; }
 };
 
@@ -107,11 +110,12 @@ std::vector<Floor> column_floors(const RayScene& rays, const Model& m, float x, 
     const Hit hit = rays.intersect(origin, down, t, m.top - m.bottom, nullptr);
     if (!hit.valid()) break;
     const float z = m.top - hit.t, nz = unit_z(m.mesh, hit.primitive);
-    const bool inside_a_solid = nz < 0.0f && above && above_nz > 0.0f;
-    if (m.candidate[hit.primitive] && std::abs(nz) >= kFloorSlope && !inside_a_solid) {
+    if (m.candidate[hit.primitive] && std::abs(nz) >= kFloorSlope) {
       Floor f;
       f.z = z;
       f.top = above ? above_z : kInfinity;
+      f.facing_in = nz > 0.0f && above && above_nz < 0.0f;
+      f.facing_out = nz < 0.0f && above && above_nz > 0.0f;
       out.push_back(f);
     }
     above = true, above_z = z, above_nz = nz;
@@ -156,14 +160,22 @@ Probes find_floors(const RayScene& rays, const Model& m, const SensorGridSetting
       p.floors[p.at(i, j)] = column_floors(rays, m, static_cast<float>(p.x(i)), static_cast<float>(p.y(j)));
   });
   // With any floor under a ceiling, open floors are a roof's top or a terrace: not the rooms meant.
-  // Floors with less air above them than the sensors need hold none.
-  bool enclosed = false;
+  // Where some room's faces look into it (a room inside a solid), the space between a face looking
+  // down and one looking up above it is solid: a thick wall's inside. Else the model's rooms are
+  // thin boxes, whose normals may point out of them. Floors with less air above them than the
+  // sensors need hold none.
+  bool enclosed = false, solid = false;
   for (const auto& column : p.floors)
-    for (const Floor& f : column) enclosed = enclosed || f.enclosed();
+    for (const Floor& f : column) {
+      enclosed = enclosed || f.enclosed();
+      solid = solid || (f.facing_in && f.top - f.z >= clear);
+    }
   p.enclosed = enclosed;
   for (auto& column : p.floors)
     column.erase(std::remove_if(column.begin(), column.end(),
-                                [&](const Floor& f) { return (enclosed && !f.enclosed()) || f.top - f.z < clear; }),
+                                [&](const Floor& f) {
+                                  return (enclosed && !f.enclosed()) || (solid && f.facing_out) || f.top - f.z < clear;
+                                }),
                  column.end());
   p.first_node.resize(p.floors.size() + 1, 0);
   for (size_t c = 0; c < p.floors.size(); ++c) p.first_node[c + 1] = p.first_node[c] + static_cast<int>(p.floors[c].size());

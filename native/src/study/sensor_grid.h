@@ -3,11 +3,12 @@
 // above that face, kept off the walls, one group per room. The Blender add-on's Add Sensor Grid
 // and fenestra.sensor_grid() build grids with this; docs/sensors.md says how it reads a model.
 //
-// A model is read along vertical columns (one ray down through everything). Between two
-// successive faces a column meets lies air unless the lower face looks down and the upper looks
-// up (the inside of a slab or a solid wall). A floor is a face of the chosen objects, within 45
-// degrees of horizontal, with air above it tall enough for the sensors; with any floor under a
-// ceiling in the model, floors open to the sky (a roof's top) are left out. Neighbouring columns
+// A model is read along vertical columns (one ray down through everything). A floor is a face of
+// the chosen objects, within 45 degrees of horizontal, with room above it for the sensors. Where a
+// room's floor looks up and its ceiling down (a room inside a solid), the space between a face
+// looking down and one looking up above it is solid (a thick wall's inside); else rooms are thin
+// boxes, whose normals may point out of them. With any floor under a ceiling in the model, floors
+// open to the sky (a roof's top) are left out. Neighbouring columns
 // are in one room where their floors are within kFloorStep and nothing stands between them at the
 // sensors' height nor just under the ceiling (a door joins no rooms; its head separates them).
 #include <array>

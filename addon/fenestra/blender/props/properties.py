@@ -338,10 +338,15 @@ class FenestraSceneSettings(PropertyGroup):
     results: PointerProperty(type=FenestraResults)
     annual: PointerProperty(type=FenestraAnnualResults)
     display: PointerProperty(type=FenestraDisplaySettings)
-    sensor_height: FloatProperty(name="Height", min=0.0, default=0.8, unit='LENGTH',
-                                 description="Sensor grid: height above the floor")
+    sensor_height: FloatProperty(name="Height", min=0.01, default=0.8, unit='LENGTH',
+                                 description="Sensor grid: height above the floor's upper face (m)")
     sensor_spacing: FloatProperty(name="Spacing", min=0.05, default=0.5, unit='LENGTH',
-                                  description="Sensor grid: distance between sensors")
+                                  description="Sensor grid: distance between neighbouring sensors (m)")
+    sensor_inset_auto: BoolProperty(name="Automatic Inset", default=True,
+                                    description="Sensor grid: keep sensors half the spacing off the walls, at least "
+                                                "0.25 m (as sDA and EN 17037 practice does)")
+    sensor_inset: FloatProperty(name="Wall Inset", min=0.0, max=100.0, default=0.5, unit='LENGTH',
+                                description="Sensor grid: distance kept between the sensors and the walls (m)")
     domain_faces: IntProperty(name="Domain Faces", description="Faces marked as opening domain (last count)")
     show_domain: BoolProperty(name="Highlight Domain", default=True,
                               description="Draw the opening domain's faces highlighted in the viewport (not over the openings cut)")

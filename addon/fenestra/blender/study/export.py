@@ -72,7 +72,7 @@ def _safe(name, taken):
     return candidate
 
 
-def _world_vertices(mesh, matrix):
+def world_vertices(mesh, matrix):
     co = np.empty(len(mesh.vertices) * 3, np.float64)
     mesh.vertices.foreach_get("co", co)
     m = np.array(matrix, np.float64)
@@ -159,7 +159,7 @@ def _group_members(obj, mesh, name):
                     np.int64)
 
 
-def _evaluated(obj, depsgraph):
+def evaluated(obj, depsgraph):
     """(evaluated object, its temporary mesh with loop triangles, or None); free with to_mesh_clear()."""
     obj_eval = obj.evaluated_get(depsgraph)
     mesh = obj_eval.to_mesh()
@@ -215,11 +215,11 @@ def _build(context, depsgraph):
     group_names = climate_goals.group_names(settings.goals)
     groups, first = {name: [] for name in group_names}, 0
     for obj in sensor_objects:
-        obj_eval, mesh = _evaluated(obj, depsgraph)
+        obj_eval, mesh = evaluated(obj, depsgraph)
         try:
             if mesh is None or len(mesh.vertices) == 0:
                 raise StudyError("Sensor object '%s' has no vertices" % obj.name)
-            points.append(_world_vertices(mesh, obj_eval.matrix_world))
+            points.append(world_vertices(mesh, obj_eval.matrix_world))
             normals.append(_world_normals(mesh, obj_eval.matrix_world))
             if settings.goals.source == 'ATTRIBUTE':
                 goals.append(_point_goals(mesh, obj.name, settings.goals.scale))
@@ -238,14 +238,14 @@ def _build(context, depsgraph):
     for obj in objects:
         if obj.fenestra.is_sensor:
             continue
-        obj_eval, mesh = _evaluated(obj, depsgraph)
+        obj_eval, mesh = evaluated(obj, depsgraph)
         if mesh is None:
             continue
         try:
             n_tris = len(mesh.loop_triangles)
             if n_tris == 0:
                 continue
-            verts = _world_vertices(mesh, obj_eval.matrix_world)
+            verts = world_vertices(mesh, obj_eval.matrix_world)
             tris = np.empty(n_tris * 3, np.int64)
             mesh.loop_triangles.foreach_get("vertices", tris)
             tris = tris.reshape(-1, 3)

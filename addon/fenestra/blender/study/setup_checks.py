@@ -6,8 +6,8 @@ change.
 - The rest are the native core's setup checks (fenestra.check_setup, native/src/study/
   setup_checks.h), the same that `fenestra solve` and fenestra.solve() run: all goals 0, sensors
   outdoors or outside every room, an open room (sensors that see the sky through gaps that are
-  not opening domain), sensors facing downward, and domain faces seen from the side the solver
-  does not take for their room. The core finds them and counts them; this module only words them
+  not opening domain), sensors facing downward, domain faces seen from the side the solver
+  does not take for their room, and sensors lying on the opening domain or on another surface. The core finds them and counts them; this module only words them
   with the objects' names (the sensors and OBJ groups it names map to objects through the study).
 """
 
@@ -71,17 +71,36 @@ def _open_room(study, finding):
             % (_of(len(finding["sensors"]), finding["total"], finding["checked"]), 100 * finding["share"], where))
 
 
-def _downward(study, finding):
-    """One warning per sensor object with sensors facing downward."""
-    down, warnings, start = set(finding["sensors"]), [], 0
+def _per_sensor_object(study, finding, text):
+    """One warning per sensor object with sensors in the finding: text(n, count, name)."""
+    found, warnings, start = set(finding["sensors"]), [], 0
     for name, count in study.sensor_objects:
-        n = sum(1 for i in range(start, start + count) if i in down)
+        n = sum(1 for i in range(start, start + count) if i in found)
         start += count
         if n:
-            warnings.append("%d of %d sensors of '%s' face downward: a sensor measures the light on the side its "
-                            "normal points to, here the light from below. If they should face up, flip the "
-                            "normals of '%s' (Edit Mode: Mesh > Normals > Flip)" % (n, count, name, name))
+            warnings.append(text(n, count, name))
     return warnings
+
+
+def _downward(study, finding):
+    return _per_sensor_object(study, finding, lambda n, count, name: (
+        "%d of %d sensors of '%s' face downward: a sensor measures the light on the side its normal points to, "
+        "here the light from below. If they should face up, flip the normals of '%s' (Edit Mode: Mesh > Normals > "
+        "Flip)" % (n, count, name, name)))
+
+
+def _on_domain(study, finding):
+    return _per_sensor_object(study, finding, lambda n, count, name: (
+        "%d of %d sensors of '%s' lie on the opening domain (within 5 cm of it): half their view is the opening "
+        "itself, so their light is nothing a person in the room would read and the solve chases it. Move them into "
+        "the room, or make the grid again with Add Sensor Grid, which keeps sensors off the walls" % (n, count, name)))
+
+
+def _near_surface(study, finding):
+    return _per_sensor_object(study, finding, lambda n, count, name: (
+        "%d of %d sensors of '%s' lie on a wall, ceiling or other surface (within 5 cm of it): part of their view "
+        "is inside it, so their light depends on millimetres. Move them off every surface but the floor under them, "
+        "or make the grid again with Add Sensor Grid" % (n, count, name)))
 
 
 def _domain_side(study, finding):
@@ -105,14 +124,15 @@ def _domain_side(study, finding):
 
 
 _WORDING = {"zero_goals": _zero_goals, "outdoors": _outdoors, "open_room": _open_room, "downward": _downward,
-            "domain_side": _domain_side}
+            "domain_side": _domain_side, "on_domain": _on_domain, "near_surface": _near_surface}
 
 
 def worded(study, findings):
     """The core's findings in the user's words, in the core's order."""
     warnings = []
     for finding in findings:
-        text = _WORDING[finding["kind"]](study, finding)
+        wording = _WORDING.get(finding["kind"])
+        text = wording(study, finding) if wording else finding["message"]
         warnings += text if isinstance(text, list) else [text]
     return warnings
 

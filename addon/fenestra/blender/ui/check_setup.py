@@ -5,6 +5,7 @@ import bpy
 
 from ..com import user_messages
 from ..study import export, setup_checks
+from ...wording import counted
 
 
 def show(operator, context, warnings):
@@ -17,7 +18,7 @@ def show(operator, context, warnings):
 
 
 class FENESTRA_OT_check_setup(bpy.types.Operator):
-    """Look for setups that solve but do not mean what they seem: hidden objects, goals all 0, sensors outdoors or facing down, rooms open to the sky, domain faces the solver cannot tell the room of"""
+    """Look for setups that solve but do not mean what they seem: hidden objects, goals all 0, sensors outdoors, facing down or lying on a wall or the domain, rooms open to the sky, domain faces the solver cannot tell the room of"""
     bl_idname = "fenestra.check_setup"
     bl_label = "Check Setup"
 
@@ -35,7 +36,8 @@ class FENESTRA_OT_check_setup(bpy.types.Operator):
         show(self, context, warnings)
         if not warnings:
             count = sum(n for _, n in study.sensor_objects)
-            self.report({'INFO'}, "No problem found (%d sensors, %d domain faces)" % (count, study.domain_faces))
+            self.report({'INFO'}, "No problem found (%s, %s)" % (counted(count, "sensor"),
+                                                                  counted(study.domain_faces, "domain face")))
         return {'FINISHED'}
 
 

@@ -5,12 +5,11 @@ import os
 
 import bpy
 import numpy as np
-from mathutils import Vector
 
 from ..com import (contributions_cache, names, native, native_messages, solve_job, study_fingerprint, study_folder,
                    user_messages)
 from ..result import results, sky_preview
-from ..study import export, setup_checks
+from ..study import export, sensor_grid_objects, setup_checks
 from . import check_setup, job_operator, solve_guard
 from ...wording import counted
 
@@ -103,7 +102,7 @@ class FENESTRA_OT_clear_domain(bpy.types.Operator):
 # Sensors ----------------------------------------------------------------------------------------
 
 class FENESTRA_OT_add_sensor_grid(bpy.types.Operator):
-    """Add a grid of upward sensors over the selected floor object, at the set height and spacing"""
+    """Add a grid of upward sensors over each room's floor in the selected objects (a floor, or a whole room or building), at the set height above the floor's upper face, kept off the walls: one sensor object per room"""
     bl_idname = "fenestra.add_sensor_grid"
     bl_label = "Add Sensor Grid"
     bl_options = {'REGISTER', 'UNDO'}
@@ -114,45 +113,45 @@ class FENESTRA_OT_add_sensor_grid(bpy.types.Operator):
         return context.mode == 'OBJECT' and obj is not None and obj.type == 'MESH'
 
     def execute(self, context):
-        settings = context.scene.fenestra
-        floor = context.active_object
-        height, spacing = settings.sensor_height, settings.sensor_spacing
-        corners = np.array([floor.matrix_world @ Vector(c) for c in floor.bound_box])
-        lo, hi = corners.min(axis=0), corners.max(axis=0)
-        nx = max(1, int((hi[0] - lo[0]) // spacing))
-        ny = max(1, int((hi[1] - lo[1]) // spacing))
-        x0 = lo[0] + (hi[0] - lo[0] - (nx - 1) * spacing) / 2
-        y0 = lo[1] + (hi[1] - lo[1] - (ny - 1) * spacing) / 2
-        z = lo[2] + height
-        # Keep the points with the floor right below them (ray cast in the floor's space).
-        depsgraph = context.evaluated_depsgraph_get()
-        inverse = floor.matrix_world.inverted()
-        down = (inverse.to_3x3() @ Vector((0, 0, -1))).normalized()
-        index, verts = {}, []
-        for i in range(nx):
-            for j in range(ny):
-                p = Vector((x0 + i * spacing, y0 + j * spacing, z))
-                hit, *_ = floor.ray_cast(inverse @ p, down, distance=height * 1.01 + 1e-3, depsgraph=depsgraph)
-                if hit:
-                    index[i, j] = len(verts)
-                    verts.append(p)
-        if not verts:
-            self.report({'ERROR'}, "No floor of '%s' lies under the grid at %.2f m" % (floor.name, height))
+        if not _native_or_report(self):
             return {'CANCELLED'}
-        faces = [(index[i, j], index[i + 1, j], index[i + 1, j + 1], index[i, j + 1])
-                 for i in range(nx - 1) for j in range(ny - 1)
-                 if all(k in index for k in ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)))]
-        mesh = bpy.data.meshes.new(names.SENSORS_NAME)
-        mesh.from_pydata([tuple(v) for v in verts], [], faces)
-        goal = mesh.color_attributes.new(names.GOAL_ATTRIBUTE, 'FLOAT_COLOR', 'POINT')
+        from ... import sensor_grids
+        settings = context.scene.fenestra
+        chosen = [o for o in context.selected_objects if o.type == 'MESH'] or [context.active_object]
+        height, spacing = settings.sensor_height, settings.sensor_spacing
+        inset = None if settings.sensor_inset_auto else settings.sensor_inset
+        vertices, triangles, floors = sensor_grid_objects.model_faces(context, chosen)
+        try:
+            grid = sensor_grids.sensor_grid(vertices, triangles, floors, height, spacing, inset)
+        except ValueError as exc:
+            self.report({'ERROR'}, user_messages.for_user(str(exc)))
+            return {'CANCELLED'}
+        rooms = grid["rooms"]
+        if not rooms:
+            self.report({'ERROR'}, "No floor of %s has room for sensors %.2f m above it and %.2f m off the walls "
+                        "(a face within 45\u00b0 of horizontal, its ceiling higher than that)"
+                        % (", ".join("'%s'" % o.name for o in chosen), height, grid["inset"]))
+            return {'CANCELLED'}
         level = min(settings.goals.level, 1.0) if settings.goals.units == 'NORMALIZED' else 0.5
-        goal.data.foreach_set("color_srgb", [level, level, level, 1.0] * len(verts))
-        obj = bpy.data.objects.new(names.SENSORS_NAME, mesh)
-        obj.fenestra.is_sensor = True
-        obj.hide_render = True
-        context.collection.objects.link(obj)
-        self.report({'INFO'}, "%s at %.2f m" % (counted(len(verts), "sensor"), height))
+        objects = sensor_grid_objects.add_rooms(context, rooms, level)
+        self.report({'INFO'}, grid_report(grid, objects, height))
         return {'FINISHED'}
+
+
+def grid_report(grid, objects, height):
+    """'80 sensors in 1 room, 0.80 m above the floor's upper face (z = 0.00 m), 0.25 m off the walls'."""
+    rooms = grid["rooms"]
+    count = sum(len(r["points"]) for r in rooms)
+    low = min(float(r["floor_z"].min()) for r in rooms)
+    high = max(float(r["floor_z"].max()) for r in rooms)
+    floors = "z = %.2f m" % low if abs(high - low) < 0.005 else "z = %.2f to %.2f m" % (low, high)
+    text = "%s in %s, %.2f m above the floor's upper face (%s), %.2f m off the walls" % (
+        counted(count, "sensor"), counted(len(rooms), "room"), height, floors, grid["inset"])
+    if not grid["enclosed"]:
+        text += "; no ceiling over the floor"
+    if len(objects) > 1:
+        text += ": " + ", ".join("'%s'" % o.name for o in objects)
+    return text
 
 
 # Sky --------------------------------------------------------------------------------------------

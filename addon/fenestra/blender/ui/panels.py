@@ -73,6 +73,11 @@ class FENESTRA_PT_sensors(FenestraPanel, bpy.types.Panel):
         col = layout.column(align=True)
         col.prop(settings, "sensor_height")
         col.prop(settings, "sensor_spacing")
+        row = col.row(align=True)
+        row.prop(settings, "sensor_inset_auto", text="", icon='AUTO')
+        sub = row.row(align=True)
+        sub.active = not settings.sensor_inset_auto
+        sub.prop(settings, "sensor_inset")
         col.operator("fenestra.add_sensor_grid", icon='MESH_GRID')
         obj = context.active_object
         if obj is not None and obj.type == 'MESH':
