@@ -46,6 +46,7 @@ def valid_arguments(small_room, tmp_path):
         "preetham_sun": dict(turbidity=3.0, sun_zenith_deg=30.0),
         "read_openings": dict(path=tmp_path / "openings.json"),
         "scene_from_dict": dict(scene=scene_dict, base_dir=small_room.parent),
+        "sensor_grid": dict(vertices=[[0, 0, 0], [4, 0, 0], [4, 4, 0], [0, 4, 0]], triangles=[[0, 1, 2], [0, 2, 3]]),
         "sky": dict(scene=scene),
         "solar_position": dict(utc_seconds=1.7e9, latitude_deg=45.0, longitude_deg=7.0),
         "solve": dict(scene=scene),

@@ -55,6 +55,7 @@ json climate_result_json(const Scene& scene, const ClimateOutcome& c) {
                     {"records_met", met_or_null(goal, c.achieved, g)},
                     {"verified", figure_or_null(c.verified, g)},
                     {"verified_met", met_or_null(goal, c.verified, g)},
+                    {"apart", g < c.apart.size() ? json(c.apart[g] != 0) : json(nullptr)},
                     {"elements", figure_or_null(c.element_figures, g)},
                     {"all_open", figure_or_null(c.all_open_figures, g)}});
   }

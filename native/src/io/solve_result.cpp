@@ -64,13 +64,15 @@ json tradeoffs_json(const Scene& scene, const SolveResult& r) {
     for (const OpeningRectangle& o : t.openings) area += o.width * o.height;
     json climate = nullptr;
     if (!t.climate.empty()) {
-      json figures = json::array();
+      json figures = json::array(), goals_met = json::array();
       bool met = true;
       for (size_t g = 0; g < t.climate.size(); ++g) {
         figures.push_back(t.climate[g].achieved);
-        met = met && figure_meets(scene.sensors.climate_goals.goals[g], t.climate[g].achieved);
+        goals_met.push_back(figure_meets(scene.sensors.climate_goals.goals[g], t.climate[g].achieved));
+        met = met && goals_met.back().get<bool>();
       }
-      climate = {{"achieved", figures}, {"all_met", met}, {"figures_by", t.climate_cut ? "cutters" : "records"}};
+      climate = {{"achieved", figures}, {"met", goals_met}, {"all_met", met},
+                 {"figures_by", t.climate_cut ? "cutters" : "records"}};
     }
     list.push_back({{"climate", climate},{"openings_count", t.openings.size()},
                     {"answer", t.answer},

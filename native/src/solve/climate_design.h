@@ -69,6 +69,7 @@ struct ClimateOutcome {
   // figure by more than kHeadlineFractionGap; an annual mean by more than 3 combined standard
   // errors): the figures shown are the real cutters', and a warning names the difference.
   bool headline_cutters = false;
+  std::vector<uint8_t> apart;  // per goal: its two figures disagree beyond the noise (1), or not (0)
   // Least glazing took a trade-off that meets the goals with less glass than the solver's answer.
   bool answer_from_tradeoffs = false;
   // The figures shown (CLI, result["climate"]["goals"][i]["achieved"], the add-on): the real

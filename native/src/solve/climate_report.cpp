@@ -108,7 +108,8 @@ void report_climate(const Scene& scene, RecordQueries& records, const ClimatePro
   for (size_t g = 0; g < climate.verified.size() && g < climate.achieved.size(); ++g) {
     const ClimateGoal& goal = scene.sensors.climate_goals.goals[g];
     const double records = climate.achieved[g].achieved, cut = climate.verified[g].achieved;
-    if (beyond_noise(goal, records, cut, *climate.study, *climate.verified_study))
+    climate.apart.push_back(beyond_noise(goal, records, cut, *climate.study, *climate.verified_study) ? 1 : 0);
+    if (climate.apart.back())
       apart += std::string(apart.empty() ? "" : ", ") + goal.describe() + ": " + figure_text(goal, records) +
                " from the path records, " + figure_text(goal, cut) + " with real cutters";
     else if (figure_meets(goal, records) && !figure_meets(goal, cut))
