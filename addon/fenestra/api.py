@@ -329,6 +329,7 @@ def annual(scene, openings, contributions=None, output=None, progress=None, call
                              "leave contributions out")
         _cost.check_cost(scene, "annual_cutters", max_memory, paths=int(paths) or None)  # no records are kept
         return _run(lambda p: _core.annual_with_cutters(scene, rects, int(paths), p, out or ""), progress, callback)
+    _core.check_openings(scene, rects)  # before the long pass: openings the records cannot count
     if contributions is None:
         _cost.check_cost(scene, "contributions", max_memory)
         contributions = _run(lambda p: _core.compute_contributions(scene, p), progress, callback)

@@ -243,6 +243,12 @@ class Solved(unittest.TestCase):
             self.assertAlmostEqual(item.achieved, goal["achieved"], places=6)
             self.assertEqual(item.met, goal["met"])
             self.assertEqual(item.has_verified, goal["verified"] is not None)
+            self.assertEqual(item.has_records, goal["records"] is not None)
+            self.assertEqual(item.apart, bool(goal["apart"]))
+            # The panel leads with the real cutters' figure where there is one.
+            lead = goal["verified"] if goal["verified"] is not None else goal["achieved"]
+            self.assertAlmostEqual(item.lead()[0], lead, places=6)
+            self.assertEqual(item.lead()[2], "real cutters" if goal["verified"] is not None else "path records")
             self.assertEqual((item.unit, item.sense, item.sensors), (goal["unit"], goal["sense"], len(goal["sensors"])))
         self.assertEqual(r.climate.goals[1].sensors, len(near))
         # Each room the goals name (here the vertex group): its figures of the solved year, the result's.
@@ -293,19 +299,33 @@ class Solved(unittest.TestCase):
             self.assertEqual(len(entry["climate"]["achieved"]), len(climate["goals"]))
             self.assertEqual(item.climate_met, int(entry["climate"]["all_met"]))
         self.assertEqual(result["tradeoffs"][0]["climate"]["achieved"], [g["achieved"] for g in climate["goals"]])
-        # A trade-off's openings are not the ones the figures are of: the figures go with the answer.
-        # (A second trade-off, a copy of the answer, is put in result.json when the solve found one.)
+        # Each trade-off's row says its glazing and each goal's figure, met or not.
+        for item, entry in zip(r.tradeoffs, result["tradeoffs"]):
+            self.assertEqual(item.climate_line.count(" met"), len(climate["goals"]), item.climate_line)
+        # A trade-off shown: the climate goals' figures are its own, with no lux error table or
+        # element count (its openings are rectangles); the rooms and the year go with the answer.
+        # (A second trade-off, with other figures, is put in result.json when the solve found none.)
         if len(r.tradeoffs) < 2:
-            result["tradeoffs"].append(result["tradeoffs"][0])
+            other = json.loads(json.dumps(result["tradeoffs"][0]))
+            other["climate"]["achieved"] = [0.5 * a for a in other["climate"]["achieved"]]
+            other["climate"]["met"] = [False for _ in other["climate"]["achieved"]]
+            other["climate"]["all_met"] = False
+            result["tradeoffs"].append(other)
             with open(os.path.join(OUT, "study", "result.json"), "w") as fh:
                 json.dump(result, fh)
             r.tradeoffs.add()
         f.display.false_colour = 'CLIMATE_DA'
         self.assertEqual(bpy.ops.fenestra.apply_tradeoff(index=1), {'FINISHED'})
-        self.assertFalse(r.climate.valid)
-        self.assertEqual(f.display.false_colour, 'ACHIEVED')
+        entry = result["tradeoffs"][1]["climate"]
+        self.assertTrue(r.climate.valid and r.climate.tradeoff)
+        self.assertEqual([round(g.lead()[0], 9) for g in r.climate.goals], [round(a, 9) for a in entry["achieved"]])
+        self.assertEqual([g.lead()[1] for g in r.climate.goals], entry["met"])
+        self.assertEqual((len(r.climate.rooms), r.open_elements), (0, -1))
+        self.assertEqual(f.display.false_colour, 'CLIMATE_DA')
         self.assertEqual(bpy.ops.fenestra.apply_tradeoff(index=0), {'FINISHED'})
         self.assertTrue(r.climate.valid)
+        self.assertFalse(r.climate.tradeoff)
+        self.assertGreaterEqual(r.open_elements, 0)
         self.assertEqual(f.display.false_colour, 'CLIMATE_DA')
 
         # Saved and reloaded: the goals and the figures stay.

@@ -149,6 +149,18 @@ class FenestraClimateGoalResult(PropertyGroup):
     verified: FloatProperty(name="Verified", description="What the openings reach with real cutters and "
                                                          "independent paths, in the goal's unit")
     verified_met: BoolProperty(name="Verified Met")
+    has_records: BoolProperty(default=False)
+    records: FloatProperty(name="Path Records", description="What the openings reach from the path records, in the "
+                                                             "goal's unit")
+    apart: BoolProperty(name="Apart", description="The path records' figure and the real cutters' disagree beyond the "
+                                                  "noise: the cutters' is the one to trust")
+
+    def lead(self):
+        """(figure, met, source) the panel leads with: the real cutters' where they exist, else the
+        path records' (the core's headline)."""
+        if self.has_verified:
+            return self.verified, self.verified_met, "real cutters"
+        return self.achieved, self.met, "path records"
 
 
 class FenestraClimateRoomResult(PropertyGroup):
@@ -167,6 +179,8 @@ class FenestraClimateResult(PropertyGroup):
     all_met: BoolProperty(name="All Met")
     has_verified: BoolProperty(default=False)
     verified_all_met: BoolProperty(name="All Met, Verified")
+    tradeoff: BoolProperty(name="Of a Trade-off", description="The figures are a trade-off's (the best found with "
+                                                               "fewer openings), not the answer's")
     unmet: StringProperty(name="Unmet", description="Each goal not met, one per line (the native core's words)")
     least_glazing: BoolProperty(name="Least Glazing")
     headline: StringProperty(name="Figures Of", description="Which year the Achieved figures are of: \"path records\", "

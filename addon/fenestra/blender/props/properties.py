@@ -296,6 +296,8 @@ class FenestraTradeoff(PropertyGroup):
     climate_by_cutters: BoolProperty(name="Checked with Real Cutters",
                                      description="The climate figures are real cutters' (least glazing checked this "
                                                  "design with less glass than the answer), not the path records'")
+    climate_line: StringProperty(name="Climate Figures",
+                                 description="Each climate goal's figure with these openings, and whether it is met")
 
 
 class FenestraResults(PropertyGroup):
@@ -317,7 +319,8 @@ class FenestraResults(PropertyGroup):
                                         "(Evaluate), not the solve's")
     max_relative: FloatProperty(name="Worst Sensor Error")
     openings: IntProperty(name="Openings")
-    open_elements: IntProperty(name="Open Elements")
+    open_elements: IntProperty(name="Open Elements", description="Elements open in the answer (-1: a trade-off is "
+                                                                  "shown, whose openings are rectangles)")
     elements: IntProperty(name="Elements")
     seconds_total: FloatProperty(name="Total", unit='TIME_ABSOLUTE')
     seconds_contributions: FloatProperty(name="Contributions", unit='TIME_ABSOLUTE')

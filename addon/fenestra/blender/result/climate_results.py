@@ -39,6 +39,9 @@ def apply(results, climate):
         item.has_verified = goal.get("verified") is not None
         item.verified = _number(goal.get("verified"))
         item.verified_met = bool(goal.get("verified_met"))
+        item.has_records = goal.get("records") is not None
+        item.records = _number(goal.get("records"))
+        item.apart = bool(goal.get("apart"))
     for room in climate.get("rooms") or []:  # each sensor group the goals name, with the solved year's figures
         item, space = target.rooms.add(), room.get("space") or {}
         item.name, item.sensors = room.get("name", ""), len(room.get("sensors") or [])
@@ -52,6 +55,7 @@ def apply(results, climate):
     target.least_glazing = bool(climate.get("least_glazing"))
     target.headline = climate.get("headline") or "path records"
     target.glazing_area = _number(climate.get("glazing_area_m2"))
+    target.tradeoff = bool(climate.get("tradeoff"))
     target.domain_area = _number(climate.get("domain_area_m2"))
     per_sensor = climate.get("per_sensor") or {}
     for field, key in (("daylight_autonomy", "daylight_autonomy"), ("mean_illuminance", "mean_illuminance_lux"),
@@ -67,6 +71,44 @@ def text(value, unit):
     if unit == "lux":
         return "%.0f lx" % value
     return "%.1f %%" % (100.0 * value)
+
+
+def _at(values, k):
+    return values[k] if values and k < len(values) else None
+
+
+def tradeoff_climate(climate, entry):
+    """The result's `climate` as trade-off `entry` of result["tradeoffs"] has it: each goal's figure
+    and whether it is met (the path records' or real cutters', as the entry's `figures_by` says),
+    its glazing; no rooms nor per-sensor year (the core reports them for the answer only)."""
+    figures = entry.get("climate") or {}
+    cut = figures.get("figures_by") == "cutters"
+    goals = []
+    for k, goal in enumerate(climate.get("goals", [])):
+        achieved, met = _at(figures.get("achieved"), k), _at(figures.get("met"), k)
+        goals.append(dict(goal, achieved=achieved, met=met, records=None if cut else achieved,
+                          records_met=None if cut else met, verified=achieved if cut else None,
+                          verified_met=met if cut else None, apart=None))
+    return dict(climate, goals=goals, rooms=[], per_sensor={}, space=None, unmet=[], tradeoff=True,
+                all_met=figures.get("all_met"), verified_all_met=None, answer_from_tradeoffs=False,
+                headline="real cutters" if cut else "path records", glazing_area_m2=entry.get("glazing_area_m2"))
+
+
+def tradeoff_line(climate, entry):
+    """A trade-off's climate figures in one line: 'sDA300/50% 62.0 % met, ASE1000,250 3.0 % met'."""
+    figures = entry.get("climate") or {}
+    parts = []
+    for k, goal in enumerate(climate.get("goals", []) if climate else []):
+        achieved, met = _at(figures.get("achieved"), k), _at(figures.get("met"), k)
+        if achieved is not None:
+            state = "" if met is None else " met" if met else " not met"
+            parts.append("%s %s%s" % (SHORT.get(goal.get("metric"), goal.get("metric", "")),
+                                      text(achieved, goal.get("unit", "")), state))
+    return ", ".join(parts)
+
+
+# Short names of the metrics for one-line summaries.
+SHORT = {"sda": "sDA", "ase": "ASE", "en17037": "EN 17037", "udi": "UDI", "mean": "Mean"}
 
 
 def is_unmet_warning(warning):

@@ -193,10 +193,14 @@ def tradeoff_result(result, index):
     sensors = [dict(s, predicted=p, predicted_stderr=e)
                for s, p, e in zip(result["sensors"], entry["predicted"], entry["predicted_stderr"])]
     error = dict(result["error"], **entry["error"], verified=None)  # the check was of the answer
-    # The climate figures are of the answer's openings too: kept only with the answer.
-    climate = result.get("climate") if index == 0 else None
+    # The answer's climate figures as they are; a trade-off's are its own goals' figures only.
+    climate = result.get("climate")
+    if climate and index != 0:
+        climate = climate_results.tradeoff_climate(climate, entry)
     return dict(result, openings=entry["openings"], sensors=sensors, error=error, climate=climate,
-                open_elements=[], warnings=[w for w in result.get("warnings", []) if not w.startswith("checked")])
+                open_elements=None if index != 0 else result.get("open_elements", []),
+                warnings=[w for w in result.get("warnings", []) if not w.startswith("checked")
+                          and not (index != 0 and w.startswith("climate goals: "))])
 
 
 def apply(context, study, result):
@@ -268,8 +272,9 @@ def apply(context, study, result):
         climate = entry.get("climate")
         item.climate_met = -1 if not climate else int(bool(climate.get("all_met")))
         item.climate_by_cutters = bool(climate) and climate.get("figures_by") == "cutters"
+        item.climate_line = climate_results.tradeoff_line(result.get("climate"), entry)
     r.tradeoff_shown = 0
-    r.open_elements = len(result.get("open_elements", []))
+    r.open_elements = -1 if result.get("open_elements") is None else len(result["open_elements"])
     r.elements = result.get("element_count", 0)
     r.seconds_total = timings.get("total", 0.0)
     r.seconds_contributions = timings.get("contributions", 0.0)

@@ -18,7 +18,7 @@ from ..com import (annual_job, contributions_cache, native, native_messages, stu
                    user_messages)
 from ..result import annual_results
 from ..study import export, opening_cutters
-from . import job_operator, solve_guard
+from . import job_operator, long_message, solve_guard
 from ...wording import counted
 
 FOLDER = "annual"  # in the study folder
@@ -65,7 +65,7 @@ class FENESTRA_OT_annual_daylight(job_operator.JobOperator, bpy.types.Operator):
     def _refuse(self, message, staging=None):
         if staging is not None:
             staging.discard()
-        self.report({'ERROR'}, message)
+        long_message.report_error(self, message)
         return False
 
     def _prepare(self, context):

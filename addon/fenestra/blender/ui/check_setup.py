@@ -6,6 +6,7 @@ import bpy
 from ..com import user_messages
 from ..study import export, setup_checks
 from ...wording import counted
+from . import long_message
 
 
 def show(operator, context, warnings):
@@ -31,7 +32,7 @@ class FENESTRA_OT_check_setup(bpy.types.Operator):
             study = export.build(context)
             warnings = setup_checks.run(context, study)
         except ValueError as exc:
-            self.report({'ERROR'}, user_messages.for_user(exc))
+            long_message.report_error(self, user_messages.for_user(exc))
             return {'CANCELLED'}
         show(self, context, warnings)
         if not warnings:

@@ -99,6 +99,30 @@ def _figure(goal, value):
     return climate_results.text(value, goal.unit)
 
 
+def draw_note(layout, text):
+    row = layout.row()
+    row.active = False
+    row.label(text=text, icon='INFO')
+
+
+def draw_goal_result(box, goal):
+    """A goal's figures: the real cutters' first where they exist, the path records' beside them,
+    and a warning where the two disagree beyond the noise."""
+    figure, met, source = goal.lead()
+    known = goal.has_achieved or goal.has_verified
+    box.label(text=goal.description, icon='CHECKMARK' if known and met else 'X')
+    col = box.column(align=True)
+    col.label(text="Required %s %s" % (SENSE.get(goal.sense, ""), _figure(goal, goal.required)))
+    col.label(text="%s: %s" % ("Real cutters" if source == "real cutters" else "Path records",
+                               _figure(goal, figure) if known else "-"))
+    if source == "real cutters" and goal.has_records:
+        row = col.row()
+        row.active = False
+        row.label(text="Path records: %s" % _figure(goal, goal.records))
+    if goal.apart:
+        draw_warning(box, "The path records and real cutters disagree beyond the noise: trust the cutters' figure")
+
+
 class FENESTRA_PT_climate_results(FenestraPanel, bpy.types.Panel):
     bl_label = "Climate Goals"
     bl_parent_id = "FENESTRA_PT_results"
@@ -111,19 +135,15 @@ class FENESTRA_PT_climate_results(FenestraPanel, bpy.types.Panel):
     def draw(self, context):
         layout, settings = self.layout, context.scene.fenestra
         c, display = settings.results.climate, settings.display
-        met = sum(1 for g in c.goals if g.has_achieved and g.met)
-        layout.label(text="All %d goals met" % len(c.goals) if c.all_met else "%d of %d goals met" % (met, len(c.goals)),
-                     icon='CHECKMARK' if c.all_met else 'ERROR')
+        leads = [g.lead() for g in c.goals if g.has_achieved or g.has_verified]
+        met = sum(1 for _, goal_met, _ in leads if goal_met)
+        all_met = met == len(c.goals) and len(leads) == len(c.goals)
+        layout.label(text="All %d goals met" % len(c.goals) if all_met else "%d of %d goals met" % (met, len(c.goals)),
+                     icon='CHECKMARK' if all_met else 'ERROR')
+        if c.tradeoff:
+            draw_note(layout, "A trade-off's figures (Results > Trade-offs); rooms and the year are the answer's")
         for goal in c.goals:
-            box = layout.box()
-            box.label(text=goal.description, icon='CHECKMARK' if goal.has_achieved and goal.met else 'X')
-            col = box.column(align=True)
-            col.label(text="Required %s %s" % (SENSE.get(goal.sense, ""), _figure(goal, goal.required)))
-            col.label(text="Achieved %s (%s)" % (_figure(goal, goal.achieved) if goal.has_achieved else "-",
-                                                 "records" if c.headline == "path records" else "real cutters"))
-            if goal.has_verified:
-                col.label(text="Verified %s" % _figure(goal, goal.verified),
-                          icon='CHECKMARK' if goal.verified_met else 'X')
+            draw_goal_result(layout.box(), goal)
         if len(c.rooms):  # each room (sensor group) the goals name, with the solved year's figures
             box = layout.box()
             box.label(text="Rooms", icon='HOME')
@@ -144,9 +164,6 @@ class FENESTRA_PT_climate_results(FenestraPanel, bpy.types.Panel):
             row = col.row()
             row.active = False
             row.label(text="Least glazing that meets the goals")
-        if c.has_verified:
-            col.label(text="Verified: %s" % ("all met" if c.verified_all_met else "not all met"),
-                      icon='CHECKMARK' if c.verified_all_met else 'ERROR')
         for line in filter(None, c.unmet.split("\n")):
             draw_warning(layout, line)
         row = layout.row(align=True)

@@ -18,6 +18,7 @@ from ..com import native, user_messages
 from ..result import climate_results, results
 from ..study import export, opening_cutters
 from ...wording import counted
+from . import long_message
 
 
 def goal_error(goals, values):
@@ -62,7 +63,7 @@ class FENESTRA_OT_evaluate_openings(bpy.types.Operator):
             fenestra.check_cost(native_scene, "evaluate")
             values, stderr = fenestra.evaluate(native_scene, openings)
         except (ValueError, OSError) as exc:
-            self.report({'ERROR'}, user_messages.for_user(exc, study, names))
+            long_message.report_error(self, user_messages.for_user(exc, study, names))
             return {'CANCELLED'}
         if len(values) != len(r.sensors):
             self.report({'ERROR'}, "The sensors changed since the solve (%d now, %d then): solve again"

@@ -9,7 +9,7 @@ import time
 import bpy
 
 from ..com import contributions_cache, native_messages, solve_job, user_messages
-from . import solve_guard, solve_progress
+from . import long_message, solve_guard, solve_progress
 
 PROGRESS_INTERVAL_S = 0.1  # the end of a job is seen within this
 
@@ -66,7 +66,10 @@ class JobOperator:
 
     def _tell(self, job, kind, message):
         """Reports the job's outcome, keeps it on the job and lets the job's memory go."""
-        self.report({kind}, message)
+        if kind == 'ERROR':
+            long_message.report_error(self, message)
+        else:
+            self.report({kind}, message)
         job.outcome = message
         job.release()
         return {'FINISHED'} if kind == 'INFO' else {'CANCELLED'}

@@ -10,7 +10,7 @@ from ..com import (contributions_cache, names, native, native_messages, solve_jo
                    user_messages)
 from ..result import results, sky_preview
 from ..study import export, sensor_grid_objects, setup_checks
-from . import check_setup, job_operator, solve_guard
+from . import check_setup, job_operator, long_message, solve_guard
 from ...wording import counted
 
 
@@ -124,11 +124,11 @@ class FENESTRA_OT_add_sensor_grid(bpy.types.Operator):
         try:
             grid = sensor_grids.sensor_grid(vertices, triangles, floors, height, spacing, inset)
         except ValueError as exc:
-            self.report({'ERROR'}, user_messages.for_user(str(exc)))
+            long_message.report_error(self, user_messages.for_user(str(exc)))
             return {'CANCELLED'}
         rooms = grid["rooms"]
         if not rooms:
-            self.report({'ERROR'}, "No floor of %s has room for sensors %.2f m above it and %.2f m off the walls "
+            long_message.report_error(self, "No floor of %s has room for sensors %.2f m above it and %.2f m off the walls "
                         "(a face within 45\u00b0 of horizontal, its ceiling higher than that)"
                         % (", ".join("'%s'" % o.name for o in chosen), height, grid["inset"]))
             return {'CANCELLED'}
@@ -203,8 +203,8 @@ class FENESTRA_OT_solve_openings(job_operator.JobOperator, bpy.types.Operator):
         except (ValueError, OSError) as exc:
             if staging is not None:
                 staging.discard()
-            self.report({'ERROR'}, user_messages.for_user(native_messages.for_the_panel(str(exc), ""),
-                                                          getattr(self, "_study", None)))
+            long_message.report_error(self, user_messages.for_user(native_messages.for_the_panel(str(exc), ""),
+                                                                   getattr(self, "_study", None)))
             return False
         self._staging = staging
         reusable = study_fingerprint.contributions_fingerprint(self._study)

@@ -243,6 +243,25 @@ class FENESTRA_PT_constraints(FenestraPanel, bpy.types.Panel):
             draw_warning(layout, "This build of the solver does not take constraints yet: they are not used.")
 
 
+def draw_tradeoffs(box, r, per_sensor_goals):
+    """The answer and the best found with fewer openings, each a button that shows it: openings,
+    glazing and the predicted error; with climate goals, each goal's figure and whether it is met."""
+    box.label(text="Trade-offs (predicted)" if per_sensor_goals else "Trade-offs")
+    col = box.column(align=True)
+    for i, t in enumerate(r.tradeoffs):
+        text = "%s: %.2f m\u00b2" % (counted(t.openings, "opening"), t.glazing_area)
+        if per_sensor_goals:
+            text += ", %.1f %%" % (100 * t.relative_rms)
+        else:
+            text += {1: ", goals met", 0: ", goals not met"}.get(t.climate_met, "")
+        op = col.operator("fenestra.apply_tradeoff", depress=(i == r.tradeoff_shown), text=text)
+        op.index = i
+        if not per_sensor_goals and t.climate_line:
+            row = col.row()
+            row.active = False
+            row.label(text="  " + t.climate_line + (" (real cutters)" if t.climate_by_cutters else ""))
+
+
 class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
     bl_label = "Results"
     bl_parent_id = "FENESTRA_PT_main"
@@ -253,8 +272,12 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             layout.label(text="No result yet")
             return
         col = layout.column(align=True)
-        col.label(text=counted(r.openings, "opening"))
-        col.label(text="%d of %s open" % (r.open_elements, counted(r.elements, "element")))
+        glazing = r.tradeoffs[r.tradeoff_shown].glazing_area if r.tradeoff_shown < len(r.tradeoffs) else None
+        col.label(text=counted(r.openings, "opening") + ("" if glazing is None else ", %.2f m\u00b2 of glazing" % glazing))
+        if r.open_elements >= 0:  # (a trade-off's openings are rectangles, not elements)
+            col.label(text="%d of %s open" % (r.open_elements, counted(r.elements, "element")))
+        if r.tradeoff_shown > 0:
+            col.label(text="A trade-off: the best found with %s" % counted(r.openings, "opening"), icon='INFO')
         # A climate solve's per-sensor goals are its own element answer's light: its figures are the
         # climate goals' (their sub-panel), not these errors.
         per_sensor_goals = not r.climate.valid
@@ -272,19 +295,7 @@ class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
             if not (r.climate.valid and climate_results.is_unmet_warning(warning)):  # (listed with the goals)
                 draw_warning(layout, user_messages.for_user(warning))  # the constraints by their labels
         if len(r.tradeoffs) > 1:
-            box = layout.box()
-            box.label(text="Trade-offs (predicted)")
-            col_t = box.column(align=True)
-            for i, t in enumerate(r.tradeoffs):
-                plural = "" if t.openings == 1 else "s"
-                if per_sensor_goals:
-                    text = "%d opening%s: %.1f %%, %.1f m\u00b2" % (t.openings, plural, 100 * t.relative_rms, t.glazing_area)
-                else:  # whether the climate goals are met
-                    met = {1: ", goals met", 0: ", goals not met"}.get(t.climate_met, "")
-                    met += " (real cutters)" if t.climate_by_cutters and met else ""
-                    text = "%d opening%s: %.1f m\u00b2%s" % (t.openings, plural, t.glazing_area, met)
-                op = col_t.operator("fenestra.apply_tradeoff", depress=(i == r.tradeoff_shown), text=text)
-                op.index = i
+            draw_tradeoffs(layout.box(), r, per_sensor_goals)
         col.label(text="Time %.1f s (solver %.1f s)" % (r.seconds_total, r.seconds_solver))
         if not per_sensor_goals:
             layout.operator("fenestra.evaluate_openings", icon='PLAY')
