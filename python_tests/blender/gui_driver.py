@@ -9,8 +9,9 @@ every few milliseconds (the running solve's also to CHANNEL/job.json, from a thr
 CHANNEL/reply-N.json): "set" scene.fenestra settings (optionally as an undo step), "snapshot" of
 the model and the study folder, "solve_from_script" (an operator call, to read a refusal),
 "sidebar" (opens the 3D View's sidebar on the Fenestra tab, returns its rectangle), "keymap" (the
-user key configuration's items for Fenestra's commands), "paint_goals" / "object_mode" (the
-sensors with a goal colour attribute into Vertex Paint and back: what the 3D View shows of them),
+user key configuration's items for Fenestra's commands), "look_at_sensors" (alone, from above,
+with a goal colour attribute), "paint_goals" / "object_mode" (into Vertex Paint and back),
+"sensors_seen" (what the 3D View shows of them), "show_all",
 "screenshot", "quit". It also counts the calls of Fenestra's commands (state "calls") and records
 which operator the last right-click menu on a button was for (state "context_menu"). The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
 
@@ -251,10 +252,11 @@ def sensors_seen(name):
             "active_colour": sensors.data.color_attributes.active_color_name}
 
 
-def paint_goals():
-    """The sensors, with a goal colour attribute (mid grey) beside another colour attribute that is
-    active, seen from above in Solid shading, into Vertex Paint."""
+def look_at_sensors():
+    """The sensors alone (the other objects hidden), from above, in Solid shading; with a goal
+    colour attribute (mid grey) beside another colour attribute that is active."""
     from fenestra.blender.com import names
+    from mathutils import Vector
     sensors = bpy.data.objects["Sensors"]
     colours = sensors.data.color_attributes
     if names.GOAL_ATTRIBUTE not in colours:
@@ -263,18 +265,24 @@ def paint_goals():
         other = colours.new("Other", 'FLOAT_COLOR', 'POINT')
         other.data.foreach_set("color_srgb", [0.0, 0.0, 0.0, 1.0] * len(sensors.data.vertices))
     colours.active_color_name = "Other"
+    for o in bpy.context.view_layer.objects:
+        o.hide_set(o is not sensors)
     window, area = view3d()
     space = area.spaces.active
     space.shading.type = 'SOLID'
     r3d = space.region_3d
     r3d.view_perspective = 'ORTHO'
     r3d.view_rotation = (1.0, 0.0, 0.0, 0.0)  # from above
-    from mathutils import Vector
     r3d.view_location = sensors.matrix_world @ (sum((Vector(c) for c in sensors.bound_box), Vector()) / 8)
     r3d.view_distance = 14.0
     for o in bpy.context.view_layer.objects:
         o.select_set(o is sensors)
     bpy.context.view_layer.objects.active = sensors
+    return {}
+
+
+def paint_goals():
+    window, area = view3d()
     with bpy.context.temp_override(window=window, area=area):
         bpy.ops.object.mode_set(mode='VERTEX_PAINT')
     return {}
@@ -305,6 +313,12 @@ def follow_commands():
             reply = {"rect": sidebar()}
         elif name == "keymap":
             reply = {"items": keymap_items()}
+        elif name == "look_at_sensors":
+            reply = look_at_sensors()
+        elif name == "show_all":
+            for o in bpy.context.view_layer.objects:
+                o.hide_set(False)
+            reply = {}
         elif name == "paint_goals":
             reply = paint_goals()
         elif name == "object_mode":
