@@ -354,9 +354,12 @@ def test_f3_finds_each_command(gui, solved, typed, idname, values):
     time.sleep(1.0)
     gui.xdotool("type", "--delay", "60", typed)
     time.sleep(1.0)
+    gui.command("screenshot", name="f3_" + idname)
     gui.key("Return")
     gui.wait_for(lambda s: s["calls"].get(idname, 0) > before, timeout=60, what="%s run from F3" % idname)
     gui.wait_for(lambda s: not s["running"], timeout=120, what="the command to end")
+    time.sleep(0.5)
+    gui.key("Escape")  # closes a refusal's report popup, which would take the next keys
     gui.command("set", values=QUICK)
 
 
@@ -442,6 +445,7 @@ def test_right_click_changes_the_shortcut_of_check_setup(gui, solved):
     gui.key("ctrl+F8")
     gui.wait_for(lambda s: s["calls"].get("fenestra.check_setup", 0) > before, timeout=30,
                  what="Check Setup run by its new shortcut")
+    gui.command("restore_panels")
 
 
 def saturation(colours):

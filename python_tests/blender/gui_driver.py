@@ -8,7 +8,8 @@ then, while the test drives Blender with real key events, reports its state to C
 every few milliseconds (the running solve's also to CHANNEL/job.json, from a thread) and follows the test's commands (CHANNEL/command-N.json, answered in
 CHANNEL/reply-N.json): "set" scene.fenestra settings (optionally as an undo step), "snapshot" of
 the model and the study folder, "solve_from_script" (an operator call, to read a refusal),
-"sidebar" (opens the 3D View's sidebar on the Fenestra tab, returns its rectangle), "keymap" (the
+"sidebar" (opens the 3D View's sidebar with the Fenestra tab and Item alone, returns its
+rectangle; "restore_panels" brings the other tabs back), "keymap" (the
 user key configuration's items for Fenestra's commands), "look_at_sensors" (alone, from above,
 with a goal colour attribute), "paint_goals" / "object_mode" (into Vertex Paint and back),
 "sensors_seen" (what the 3D View shows of them), "show_all",
@@ -207,12 +208,25 @@ def to_x(window, region, x, y):
 def sidebar():
     """Opens the sidebar on the Fenestra tab; returns its rectangle [left, top, right, bottom] in X
     screen coordinates."""
-    import window_script
     window, area = view3d()
     area.spaces.active.show_region_ui = True
-    if not state.get("only_fenestra"):
-        window_script.only_the_fenestra_tab(("FENESTRA_PT_domain", "FENESTRA_PT_sensors", "FENESTRA_PT_sky"))
-        state["only_fenestra"] = True
+    if "hidden_panels" not in state:  # the other tabs' panels out, and some of Fenestra's closed
+        state["hidden_panels"] = []
+        for name in dir(bpy.types):
+            cls = getattr(bpy.types, name)
+            if (isinstance(cls, type) and issubclass(cls, bpy.types.Panel) and getattr(cls, "bl_space_type", "") == 'VIEW_3D'
+                    and getattr(cls, "bl_region_type", "") == 'UI' and getattr(cls, "bl_category", "") != "Fenestra"
+                    and not name.startswith("FENESTRA_")):
+                try:
+                    bpy.utils.unregister_class(cls)
+                    state["hidden_panels"].append(cls)
+                except RuntimeError:
+                    pass
+        for name in ("FENESTRA_PT_domain", "FENESTRA_PT_sensors", "FENESTRA_PT_sky"):
+            panel = getattr(bpy.types, name)
+            bpy.utils.unregister_class(panel)
+            panel.bl_options = {'DEFAULT_CLOSED'}
+            bpy.utils.register_class(panel)
     region = next(r for r in area.regions if r.type == 'UI')
     return to_x(window, region, 0, region.height) + to_x(window, region, region.width, 0)
 
@@ -309,6 +323,15 @@ def follow_commands():
             reply = snapshot()
         elif name == "solve_from_script":
             reply = solve_from_script()
+        elif name == "restore_panels":  # the other tabs' panels back (Vertex Paint's header needs some)
+            hidden = state.pop("hidden_panels", [])
+            while hidden:  # parents before their sub-panels
+                ready = [c for c in hidden if not getattr(c, "bl_parent_id", "")
+                         or hasattr(bpy.types, c.bl_parent_id)]
+                for cls in ready or hidden:
+                    bpy.utils.register_class(cls)
+                    hidden.remove(cls)
+            reply = {}
         elif name == "sidebar":
             reply = {"rect": sidebar()}
         elif name == "keymap":
