@@ -249,7 +249,7 @@ def test_esc_before_the_solver(gui, solved, stage, settings):
 
 @pytest.mark.parametrize("stage,settings,settle", [
     ("genetic algorithm", LONG_GENETIC, 0.3),
-    ("tracing the scene with its openings", LONG_VERIFICATION, 0.05),
+    ("checking with real cutters", LONG_VERIFICATION, 0.05),
 ], ids=["genetic", "verification"])
 def test_esc_in_the_solver(gui, solved, stage, settings, settle):
     gui.command("set", values=dict(QUICK, **settings))
@@ -330,3 +330,148 @@ def test_f3_finds_solve_openings_in_the_fenestra_menu(gui, solved):
                      timeout=30, what="the solve F3 found", name="job.json")
     s = gui.wait_until_ended(s["job"]["number"])
     assert s["job"]["error"] is None and s["results_valid"], s
+
+
+# -- reaching the commands -------------------------------------------------------------------------
+
+def calls(gui, idname):
+    return gui.read_state()["calls"].get(idname, 0)
+
+
+@pytest.mark.parametrize("typed,idname,values", [
+    ("evaluate", "fenestra.evaluate_openings", {}),
+    ("annual daylight", "fenestra.annual_daylight", {"sky.type": 'CLIMATE'}),  # its poll wants the climate sky
+    ("fenestra check setup", "fenestra.check_setup", {}),  # "check setup" alone ranks others first
+], ids=["evaluate", "annual", "check_setup"])
+def test_f3_finds_each_command(gui, solved, typed, idname, values):
+    """Menu search (F3) finds Evaluate, Annual Daylight and Check Setup in Object > Fenestra; Return
+    runs the command (Annual Daylight then refuses the missing weather file, which is its own
+    business: it ran)."""
+    gui.command("set", values=dict(QUICK, **values))
+    before = calls(gui, idname)
+    gui.point_at_view()
+    gui.key("F3")
+    time.sleep(1.0)
+    gui.xdotool("type", "--delay", "60", typed)
+    time.sleep(1.0)
+    gui.command("screenshot", name="f3_" + idname)
+    gui.key("Return")
+    gui.wait_for(lambda s: s["calls"].get(idname, 0) > before, timeout=60, what="%s run from F3" % idname)
+    gui.wait_for(lambda s: not s["running"], timeout=120, what="the command to end")
+    time.sleep(0.5)
+    gui.key("Escape")  # closes a refusal's report popup, which would take the next keys
+    gui.command("set", values=QUICK)
+
+
+def open_fenestra_sidebar(gui):
+    """The sidebar open, on the Fenestra tab (a real click on the tab); returns its rectangle."""
+    left, top, right, bottom = gui.command("sidebar")["rect"]
+    time.sleep(0.5)
+    gui.xdotool("mousemove", str(right - 12), str(top + 80))  # the second tab: Item, Fenestra
+    time.sleep(0.2)
+    gui.xdotool("click", "1")
+    time.sleep(0.5)
+    return left, top, right, bottom
+
+
+def right_click(gui, x, y):
+    """A right-click at (x, y); returns the operator the button's context menu is for (None for a
+    button without one, "" when no button menu opened)."""
+    before = gui.read_state()["context_menu"]["count"]
+    gui.xdotool("mousemove", str(x), str(y))
+    time.sleep(0.15)
+    gui.xdotool("click", "3")
+    try:
+        s = gui.wait_for(lambda s: s["context_menu"]["count"] > before, timeout=1.0, what="a context menu")
+    except AssertionError:
+        return ""
+    return s["context_menu"]["operator"]
+
+
+def find_button(gui, rect, operator):
+    """Right-clicks down the middle of the sidebar until a button's menu is for `operator`; closes
+    it and returns the button's (x, y)."""
+    left, top, right, bottom = rect
+    x = (left + right) // 2
+    seen = []
+    for y in range(top + 20, bottom - 10, 16):
+        found = right_click(gui, x, y)
+        gui.key("Escape")
+        time.sleep(0.2)
+        seen.append(found)
+        if found == operator:
+            return x, y
+    raise AssertionError("no button for %s in the sidebar; menus for %s" % (operator, sorted(set(map(str, seen)))))
+
+
+def keymap_item(gui, idname):
+    items = [i for i in gui.command("keymap")["items"] if i[1] == idname and i[0] == "Object Mode"]
+    assert len(items) == 1, gui.command("keymap")
+    return dict(zip(("keymap", "idname", "type", "shift", "ctrl", "alt", "active"), items[0]))
+
+
+def test_fenestra_commands_have_shortcuts_to_change(gui, solved):
+    """Solve Openings, Evaluate, Annual Daylight and Check Setup have shortcuts in the Object Mode
+    keymap (Shift F5 to F8), so that Blender's right-click menu on their buttons offers Change
+    Shortcut."""
+    for idname, key in (("fenestra.solve_openings", 'F5'), ("fenestra.evaluate_openings", 'F6'),
+                        ("fenestra.annual_daylight", 'F7'), ("fenestra.check_setup", 'F8')):
+        item = keymap_item(gui, idname)
+        assert (item["type"], item["shift"], item["ctrl"], item["alt"], item["active"]) == (key, True, False, False, True)
+
+
+def test_right_click_changes_the_shortcut_of_check_setup(gui, solved):
+    """A real right-click on Check Setup in the sidebar opens the button's menu; its second item,
+    Change Shortcut, takes the next key pressed (Ctrl F8); that key over the 3D View runs Check
+    Setup. (The right-click menus of Solve Openings and Evaluate are found the same way.)"""
+    gui.command("set", values=QUICK)
+    rect = open_fenestra_sidebar(gui)
+    find_button(gui, rect, "FENESTRA_OT_solve_openings")
+    x, y = find_button(gui, rect, "FENESTRA_OT_check_setup")
+    assert right_click(gui, x, y) == "FENESTRA_OT_check_setup"
+    time.sleep(0.5)
+    gui.command("screenshot", name="check_setup_menu")
+    gui.key("Down")  # from Add to Quick Favorites, under the pointer, to Change Shortcut
+    gui.key("Return")
+    time.sleep(0.8)
+    gui.command("screenshot", name="change_shortcut")
+    gui.key("ctrl+F8")
+    time.sleep(0.5)
+    item = keymap_item(gui, "fenestra.check_setup")
+    assert (item["type"], item["ctrl"], item["shift"]) == ('F8', True, False), item
+    before = calls(gui, "fenestra.check_setup")
+    gui.point_at_view()
+    time.sleep(0.3)
+    gui.key("ctrl+F8")
+    gui.wait_for(lambda s: s["calls"].get("fenestra.check_setup", 0) > before, timeout=30,
+                 what="Check Setup run by its new shortcut")
+    gui.command("restore_panels")
+
+
+def saturation(colours):
+    """Mean spread of the channels: grey is 0, a false colour well above it."""
+    return sum(max(c) - min(c) for c in colours) / max(len(colours), 1)
+
+
+def test_painting_goals_shows_the_goals_not_the_results(gui, solved):
+    """The sensors in Vertex Paint: their goal colour attribute (mid grey) becomes the active one
+    and the false colour of the achieved light is not drawn over it; back in Object Mode it is."""
+    gui.command("look_at_sensors")
+    time.sleep(1.5)
+    before = gui.command("sensors_seen", name="results_before_painting")
+    assert before["false_colour"] == ["Sensors"] and saturation(before["colours"]) > 0.1, before
+    gui.command("paint_goals")
+    time.sleep(1.5)
+    painting = gui.command("sensors_seen", name="painting_goals")
+    assert painting["mode"] == 'VERTEX_PAINT', painting
+    assert painting["active_colour"] == "fenestra_goal", painting
+    assert painting["false_colour"] == [], painting
+    assert len(painting["colours"]) > 20 and saturation(painting["colours"]) < 0.05, painting["colours"][:5]
+    brightness = sum(sum(c) / 3 for c in painting["colours"]) / len(painting["colours"])
+    assert brightness > 0.25, brightness  # the grey goals, not the black of the other attribute
+    gui.command("object_mode")
+    time.sleep(1.5)
+    after = gui.command("sensors_seen", name="results_after_painting")
+    assert after["false_colour"] == ["Sensors"] and saturation(after["colours"]) > 0.1, after
+    gui.command("show_all")
+    gui.command("select", name="Room")

@@ -40,7 +40,7 @@ def test_viewport_screenshots_show_the_sky_and_the_legend(tmp_path):
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=env)
     checks = [line for line in r.stdout.splitlines() if line.startswith("CHECK")]
     assert r.returncode == 0 and "RESULT all checks ok" in r.stdout, "\n".join(checks) + r.stdout[-3000:] + r.stderr[-3000:]
-    assert len(checks) == 9, checks
+    assert len(checks) == 10, checks
     for name in ("sky.png", "sky_brighter.png", "results.png", "hover.png"):
         assert (out / name).stat().st_size > 0
 

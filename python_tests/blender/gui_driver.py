@@ -8,7 +8,13 @@ then, while the test drives Blender with real key events, reports its state to C
 every few milliseconds (the running solve's also to CHANNEL/job.json, from a thread) and follows the test's commands (CHANNEL/command-N.json, answered in
 CHANNEL/reply-N.json): "set" scene.fenestra settings (optionally as an undo step), "snapshot" of
 the model and the study folder, "solve_from_script" (an operator call, to read a refusal),
-"quit". The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
+"sidebar" (opens the 3D View's sidebar with the Fenestra tab and Item alone, returns its
+rectangle; "restore_panels" brings the other tabs back), "keymap" (the
+user key configuration's items for Fenestra's commands), "look_at_sensors" (alone, from above,
+with a goal colour attribute), "paint_goals" / "object_mode" (into Vertex Paint and back),
+"sensors_seen" (what the 3D View shows of them), "show_all",
+"screenshot", "quit". It also counts the calls of Fenestra's commands (state "calls") and records
+which operator the last right-click menu on a button was for (state "context_menu"). The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
 
 import hashlib
 import json
@@ -22,13 +28,15 @@ import bpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "examples"))
+sys.path.insert(0, HERE)
 import build_blend_examples as examples  # noqa: E402
 
 CHANNEL = sys.argv[sys.argv.index("--") + 1]
 STUDY = os.path.join(CHANNEL, "study")
 TICK_S = 0.01
 JOBS_LOCK = threading.Lock()
-state = {"next_command": 0, "jobs": 0, "last_job": None}
+state = {"next_command": 0, "jobs": 0, "last_job": None, "calls": {}, "context_menu": {"count": 0, "operator": None}}
+COMMANDS = ("fenestra.solve_openings", "fenestra.evaluate_openings", "fenestra.annual_daylight", "fenestra.check_setup")
 
 
 def write_json(path, value):
@@ -48,7 +56,39 @@ def setup():
     km.keymap_items.new("fenestra.solve_openings", 'F5', 'PRESS')
     for o in bpy.context.view_layer.objects:
         o.select_set(False)
+    count_calls()
+    bpy.types.UI_MT_button_context_menu.append(record_context_menu)
     undo_push("Fenestra GUI test set up")
+
+
+def count_calls():
+    """Wraps Fenestra's commands' invoke and execute (looked up at each call) to count their calls."""
+    for idname in COMMANDS:
+        group, name = idname.split(".")
+        cls = bpy.types.Operator.bl_rna_get_subclass_py("%s_OT_%s" % (group.upper(), name))
+        for method in ("invoke", "execute"):
+            if hasattr(cls, method):
+                setattr(cls, method, counted(idname, getattr(cls, method)))
+
+
+def counted(idname, method):
+    """The method, counting its calls. Blender passes as many arguments as the function names."""
+    def invoke(self, context, event):
+        state["calls"][idname] = state["calls"].get(idname, 0) + 1
+        return method(self, context, event)
+
+    def execute(self, context):
+        state["calls"][idname] = state["calls"].get(idname, 0) + 1
+        return method(self, context)
+    return invoke if method.__name__ == "invoke" else execute
+
+
+def record_context_menu(menu, context):
+    """The right-click menu of a button: for which operator (None for other buttons)."""
+    op = getattr(context, "button_operator", None)
+    menu_state = state["context_menu"]
+    menu_state["count"] += 1
+    menu_state["operator"] = op.bl_rna.identifier if op is not None else None
 
 
 def in_view3d():
@@ -106,7 +146,8 @@ def report_state():
         "now": time.monotonic(), "running": solve_job.running() is not None, "job": job_state(),
         "mode": bpy.context.mode, "goal_level": f.goals.level, "results_valid": f.results.valid,
         "relative_rms": f.results.relative_rms, "seconds_total": f.results.seconds_total,
-        "solve_polls": bpy.ops.fenestra.solve_openings.poll(), "view3d": view3d_centre()})
+        "solve_polls": bpy.ops.fenestra.solve_openings.poll(), "view3d": view3d_centre(),
+        "calls": state["calls"], "context_menu": state["context_menu"]})
 
 
 def digest_of_file(path):
@@ -153,6 +194,121 @@ def solve_from_script():
             return {"error": str(exc)}
 
 
+def view3d():
+    window = bpy.context.window_manager.windows[0]
+    area = max((a for a in window.screen.areas if a.type == 'VIEW_3D'), key=lambda a: a.width * a.height)
+    return window, area
+
+
+def to_x(window, region, x, y):
+    """Region coordinates (origin bottom left) in X screen coordinates (origin top left)."""
+    return [window.x + region.x + int(x), window.height - (region.y + int(y))]
+
+
+def sidebar():
+    """Opens the sidebar on the Fenestra tab; returns its rectangle [left, top, right, bottom] in X
+    screen coordinates."""
+    window, area = view3d()
+    area.spaces.active.show_region_ui = True
+    if "hidden_panels" not in state:  # the other tabs' panels out, and some of Fenestra's closed
+        state["hidden_panels"] = []
+        for name in dir(bpy.types):
+            cls = getattr(bpy.types, name)
+            if (isinstance(cls, type) and issubclass(cls, bpy.types.Panel) and getattr(cls, "bl_space_type", "") == 'VIEW_3D'
+                    and getattr(cls, "bl_region_type", "") == 'UI' and getattr(cls, "bl_category", "") != "Fenestra"
+                    and not name.startswith("FENESTRA_")):
+                try:
+                    bpy.utils.unregister_class(cls)
+                    state["hidden_panels"].append(cls)
+                except RuntimeError:
+                    pass
+        for name in ("FENESTRA_PT_domain", "FENESTRA_PT_sensors", "FENESTRA_PT_sky"):
+            panel = getattr(bpy.types, name)
+            bpy.utils.unregister_class(panel)
+            panel.bl_options = {'DEFAULT_CLOSED'}
+            bpy.utils.register_class(panel)
+    region = next(r for r in area.regions if r.type == 'UI')
+    return to_x(window, region, 0, region.height) + to_x(window, region, region.width, 0)
+
+
+def keymap_items():
+    keyconfig = bpy.context.window_manager.keyconfigs.user
+    return [[km.name, kmi.idname, kmi.type, kmi.shift, kmi.ctrl, kmi.alt, kmi.active]
+            for km in keyconfig.keymaps for kmi in km.keymap_items if kmi.idname in COMMANDS]
+
+
+def sensors_seen(name):
+    """The sensors as the 3D View shows them: a screenshot (CHANNEL/NAME.png), the colour at each
+    sensor's screen position, what the false colour draws, the active colour attribute and mode."""
+    from bpy_extras.view3d_utils import location_3d_to_region_2d
+    from fenestra.blender.result import result_display
+    import numpy as np
+    window, area = view3d()
+    region = next(r for r in area.regions if r.type == 'WINDOW')
+    path = os.path.join(CHANNEL, name + ".png")
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        bpy.ops.screen.screenshot_area(filepath=path)
+        shown = result_display.current(bpy.context)
+    image = bpy.data.images.load(path)
+    w, h = image.size
+    pixels = np.zeros(w * h * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    pixels = pixels.reshape(h, w, 4)[:, :, :3]
+    sensors = bpy.data.objects["Sensors"]
+    colours = []
+    for v in sensors.data.vertices:
+        p = location_3d_to_region_2d(region, area.spaces.active.region_3d, sensors.matrix_world @ v.co)
+        x, y = int(p.x) + region.x - area.x, int(p.y) + region.y - area.y
+        if 0 <= x < w and 0 <= y < h:
+            colours.append(pixels[y, x].tolist())
+    return {"colours": colours, "false_colour": sorted(shown[1]) if shown else [], "mode": sensors.mode,
+            "active_colour": sensors.data.color_attributes.active_color_name}
+
+
+def look_at_sensors():
+    """The sensors alone (the other objects hidden), from above, in Solid shading; with a goal
+    colour attribute (mid grey) beside another colour attribute that is active."""
+    from fenestra.blender.com import names
+    from mathutils import Vector
+    sensors = bpy.data.objects["Sensors"]
+    colours = sensors.data.color_attributes
+    if names.GOAL_ATTRIBUTE not in colours:
+        goal = colours.new(names.GOAL_ATTRIBUTE, 'FLOAT_COLOR', 'POINT')
+        goal.data.foreach_set("color_srgb", [0.5, 0.5, 0.5, 1.0] * len(sensors.data.vertices))
+        other = colours.new("Other", 'FLOAT_COLOR', 'POINT')
+        other.data.foreach_set("color_srgb", [0.0, 0.0, 0.0, 1.0] * len(sensors.data.vertices))
+    colours.active_color_name = "Other"
+    for o in bpy.context.view_layer.objects:
+        o.hide_set(o is not sensors)
+    window, area = view3d()
+    space = area.spaces.active
+    space.shading.type = 'SOLID'
+    r3d = space.region_3d
+    r3d.view_perspective = 'ORTHO'
+    r3d.view_rotation = (1.0, 0.0, 0.0, 0.0)  # from above
+    r3d.view_location = sensors.matrix_world @ (sum((Vector(c) for c in sensors.bound_box), Vector()) / 8)
+    r3d.view_distance = 14.0
+    for o in bpy.context.view_layer.objects:
+        o.select_set(o is sensors)
+    bpy.context.view_layer.objects.active = sensors
+    return {}
+
+
+def paint_goals():
+    window, area = view3d()
+    with bpy.context.temp_override(window=window, area=area):
+        bpy.ops.object.mode_set(mode='VERTEX_PAINT')
+    return {}
+
+
+def object_mode():
+    window, area = view3d()
+    with bpy.context.temp_override(window=window, area=area):
+        bpy.ops.object.mode_set(mode='OBJECT')
+    return {}
+
+
 def follow_commands():
     path = os.path.join(CHANNEL, "command-%d.json" % state["next_command"])
     if not os.path.exists(path):
@@ -167,6 +323,37 @@ def follow_commands():
             reply = snapshot()
         elif name == "solve_from_script":
             reply = solve_from_script()
+        elif name == "restore_panels":  # the other tabs' panels back (Vertex Paint's header needs some)
+            hidden = state.pop("hidden_panels", [])
+            while hidden:  # parents before their sub-panels
+                ready = [c for c in hidden if not getattr(c, "bl_parent_id", "")
+                         or hasattr(bpy.types, c.bl_parent_id)]
+                for cls in ready or hidden:
+                    bpy.utils.register_class(cls)
+                    hidden.remove(cls)
+            reply = {}
+        elif name == "sidebar":
+            reply = {"rect": sidebar()}
+        elif name == "keymap":
+            reply = {"items": keymap_items()}
+        elif name == "look_at_sensors":
+            reply = look_at_sensors()
+        elif name == "show_all":
+            for o in bpy.context.view_layer.objects:
+                o.hide_set(False)
+            reply = {}
+        elif name == "paint_goals":
+            reply = paint_goals()
+        elif name == "object_mode":
+            reply = object_mode()
+        elif name == "sensors_seen":
+            reply = sensors_seen(args["name"])
+        elif name == "screenshot":
+            path = os.path.join(CHANNEL, args["name"] + ".png")
+            window = bpy.context.window_manager.windows[0]
+            with bpy.context.temp_override(window=window):
+                bpy.ops.screen.screenshot(filepath=path)
+            reply = {"path": path}
         elif name == "select":
             for o in bpy.context.view_layer.objects:
                 o.select_set(o.name == args["name"])

@@ -79,7 +79,10 @@ def setup():
     space.show_gizmo = False
     space.overlay.show_floor = space.overlay.show_axis_x = space.overlay.show_axis_y = False
     space.shading.type = 'MATERIAL'
-    space.shading.use_scene_world = True  # the World, not a studio light
+    # Preview Sky turned on the World in Material Preview and Rendered (off by default: a studio light).
+    check("preview_sky_shows_the_world", space.shading.use_scene_world and space.shading.use_scene_world_render,
+          "use_scene_world %s, use_scene_world_render %s"
+          % (space.shading.use_scene_world, space.shading.use_scene_world_render))
     r3d = space.region_3d
     r3d.view_perspective = 'PERSP'
     r3d.view_location = (2.0, -6.0, 1.5)

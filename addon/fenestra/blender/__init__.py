@@ -10,7 +10,8 @@ Its rooms, bottom to top (each imports only its own and those below; docs/archit
   figures) and what the viewport shows of it; Preview Sky's World;
 - props/: scene.fenestra and object.fenestra;
 - draw/: what the 3D View draws (domain, false colour, legend, sensor labels, Inspect Sensors);
-- ui/: the operators, the panels, a running job's modal half and progress.
+- ui/: the operators, the panels, the Fenestra menu and its shortcuts, painting goals, a running
+  job's modal half and progress.
 compat.py (Blender versions' differences) serves every room but com/. This module registers the
 classes in order (the panels' order in the sidebar is their registration order).
 """
@@ -20,8 +21,9 @@ import bpy
 from .com import contributions_cache, solve_job
 from .draw import false_colour_overlay, legend, overlay, sensor_hover, sensor_labels
 from .props import properties
-from .ui import (annual_operator, annual_panel, check_setup, climate_panel, evaluate_openings, menu, operators,
-                 panels, result_operators, result_panels, solve_guard, solve_progress, tradeoff_operators)
+from .ui import (annual_operator, annual_panel, check_setup, climate_panel, evaluate_openings, goal_painting, menu,
+                 operators, panels, result_operators, result_panels, shortcuts, solve_guard, solve_progress,
+                 tradeoff_operators)
 
 classes = (properties.classes + operators.classes + result_operators.classes + sensor_hover.classes
            + evaluate_openings.classes + solve_progress.classes + panels.classes + climate_panel.classes
@@ -40,6 +42,8 @@ def register():
     solve_progress.register()
     solve_guard.register()
     menu.register()
+    shortcuts.register()
+    goal_painting.register()
 
 
 def unregister():
@@ -47,6 +51,8 @@ def unregister():
     if job is not None:
         job.wait(solve_job.CANCEL_WAIT_AT_EXIT_S)
     contributions_cache.clear()
+    goal_painting.unregister()
+    shortcuts.unregister()
     menu.unregister()
     solve_guard.unregister()
     solve_progress.unregister()

@@ -9,9 +9,14 @@ import atexit
 import threading
 import time
 
+from . import stage_words
+
 _current = None  # the job last started on a worker thread
 
 CANCEL_WAIT_AT_EXIT_S = 5.0
+# How often a job on a worker thread reads the core's status line: some stages show theirs for a
+# few milliseconds before their traces (stage_words.py).
+WATCH_S = 0.001
 
 
 class SolveJob:
@@ -30,6 +35,8 @@ class SolveJob:
         self.computed_contributions = None  # by this job, for the next solve to reuse
         self.progress = fenestra.Progress()
         self.phase = "reading the study"
+        self._words = stage_words.StageWords()
+        self._words_lock = threading.Lock()
         self.result = None
         self.error = None
         self.cancel_reason = None
@@ -66,6 +73,8 @@ class SolveJob:
         return result
 
     def _work(self):
+        watcher = threading.Thread(target=self._watch, name="fenestra-solve-stages", daemon=True)
+        watcher.start()
         try:
             self.result = self.run()
         except BaseException as exc:  # handed to Blender's side
@@ -73,6 +82,11 @@ class SolveJob:
         finally:
             self.ended = time.monotonic()
             self.done.set()
+
+    def _watch(self):
+        """Reads the status line until the job ends, so that no stage's own line is missed."""
+        while not self.done.wait(WATCH_S):
+            self._see()
 
     # -- control (Blender's main thread) ---------------------------------------------------------
 
@@ -97,10 +111,17 @@ class SolveJob:
         from ... import api as fenestra
         return isinstance(self.error, fenestra.Cancelled)
 
+    def _see(self):
+        status = self.progress.status
+        if not status:
+            return None
+        with self._words_lock:
+            return self._words.see(status)
+
     @property
     def status(self):
-        """What it does now, in words: the native stage, else the job's own phase."""
-        return self.progress.status or self.phase
+        """What it does now, in words: the native stage (stage_words.py), else the job's own phase."""
+        return self._see() or self.phase
 
     @property
     def fraction(self):

@@ -11,7 +11,10 @@ from . import annual_results, climate_results, sensor_results
 
 
 def sensor_objects(context):
-    return [o for o in context.visible_objects if o.type == 'MESH' and o.fenestra.is_sensor]
+    """The visible sensor objects whose values are shown: not one in Vertex Paint, whose goals are
+    being painted (ui/goal_painting.py)."""
+    return [o for o in context.visible_objects
+            if o.type == 'MESH' and o.fenestra.is_sensor and o.mode != 'VERTEX_PAINT']
 
 
 def _solve_values(context, settings, quantity):

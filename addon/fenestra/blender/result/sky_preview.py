@@ -2,7 +2,11 @@
 
 The map is in cd/m² (thousands at the zenith); the World shows it at *Preview Strength*, and the
 scene's exposure is set so that the zenith comes out mid grey: at the default strength the World is
-not a white glare. A later strength change only rescales the World (the map is kept)."""
+not a white glare. A later strength change only rescales the World (the map is kept).
+
+Blender's Material Preview and Rendered shading light the viewport with a studio light unless
+*Scene World* is on (View3DShading.use_scene_world, use_scene_world_render), which it is not by
+default: Preview Sky turns it on in the 3D Views it is given, so that the World shows."""
 
 import math
 import os
@@ -49,6 +53,24 @@ def preview(scene):
     if exposure is not None:
         scene.view_settings.exposure = exposure
     return summary, exposure
+
+
+def show_world_in_viewports(screens):
+    """Turns on Scene World in Material Preview and Rendered shading in every 3D View of `screens`;
+    returns how many of them had it off (in either)."""
+    changed = 0
+    for screen in screens:
+        for area in screen.areas:
+            if area.type != 'VIEW_3D':
+                continue
+            for space in area.spaces:
+                if space.type != 'VIEW_3D':
+                    continue
+                shading = space.shading
+                if not (shading.use_scene_world and shading.use_scene_world_render):
+                    shading.use_scene_world = shading.use_scene_world_render = True
+                    changed += 1
+    return changed
 
 
 def strength_changed(sky_settings, context):

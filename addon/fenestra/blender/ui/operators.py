@@ -170,9 +170,14 @@ class FENESTRA_OT_preview_sky(bpy.types.Operator):
         except (ValueError, OSError) as exc:
             self.report({'ERROR'}, user_messages.for_user(exc))
             return {'CANCELLED'}
+        # The screen the button was pressed in; from a script without one, every window's.
+        screens = [context.screen] if context.screen else [w.screen for w in context.window_manager.windows]
+        turned_on = sky_preview.show_world_in_viewports(screens)
         light = summary["horizontal_illuminance"]
-        self.report({'INFO'}, "Sky %.0f lux + sun %.0f lux on the horizontal (mean over the interval)%s"
-                    % (light["sky"], light["sun"], "" if exposure is None else ", exposure %+.1f" % exposure))
+        self.report({'INFO'}, "Sky %.0f lux + sun %.0f lux on the horizontal (mean over the interval)%s%s"
+                    % (light["sky"], light["sun"], "" if exposure is None else ", exposure %+.1f" % exposure,
+                       "" if not turned_on else "; Scene World turned on in Material Preview and Rendered "
+                       "shading of %s" % counted(turned_on, "3D View")))
         return {'FINISHED'}
 
 
