@@ -213,7 +213,7 @@ def test_the_verification(small_room):
     def work(p):
         return fenestra.solve(scene, contributions=c, progress=p)
 
-    assert_cancelled_soon(*cancel_in_stage(work, "tracing the scene with its openings"))
+    assert_cancelled_soon(*cancel_in_stage(work, "solving: checking with real cutters"))
 
 
 def test_the_exact_evaluation_polls(small_room):

@@ -607,7 +607,7 @@ class OpeningSolve {
                                      [&](const PanelRectangle& r) { return thick_panel(r.panel); });
       if (!thick || edge_steps(scene_.domain.element_size(), constraints_.module, true).size() < 2)
         return stop_reason::kNoThickWallEdge;
-      if (progress_) progress_->start("solving: edges in thick walls, with real cutters", 1);
+      const StageStatus stage(progress_, "solving: edges in thick walls, with real cutters");
       const int paths = thick_wall_cut_paths(c_.paths_per_sensor);
       // Free sizes: placed here, every side then moved at once (thick_wall_joint_edges); sizes
       // from a catalogue slide by pairs of edges instead, which the joint steps cannot.
@@ -654,7 +654,7 @@ class OpeningSolve {
     if (skipped) return skip_stage(&out_.stages, "thick-wall joint edges", skipped);
     double before = 0.0;  // the start's judged cut
     thick_seconds_ += run_stage(&out_.stages, "thick-wall joint edges", [&] {
-      if (progress_) progress_->start("solving: all edges in thick walls together, with real cutters", 1);
+      const StageStatus stage(progress_, "solving: all edges in thick walls together, with real cutters");
       const int paths = out_.thick_wall_edges.paths_per_cut;
       const int judge_paths = joint_edge_judge_paths(paths, c_.paths_per_sensor);
       ThickWallJointEdges joint = joint_thick_wall_edges(scene_.domain, records_, objective_, constraints_,
@@ -698,7 +698,7 @@ class OpeningSolve {
     if (skipped) return skip_stage(&out_.stages, "thick-wall merges", skipped);
     const double before = goal_error(out_.goals, chosen_.value).relative_rms;
     thick_seconds_ += run_stage(&out_.stages, "thick-wall merges", [&] {
-      if (progress_) progress_->start("solving: openings in thick walls merged or removed, with real cutters", 1);
+      const StageStatus stage(progress_, "solving: openings in thick walls merged or removed, with real cutters");
       const ThickWallMerges merges =
           merge_thick_wall_openings(scene_.domain, records_, objective_, constraints_, final_rects_,
                                     out_.thick_wall_edges.paths_per_cut, kThickWallEdgeCutStream, progress_);
@@ -811,7 +811,7 @@ class OpeningSolve {
     if (!settings_.tradeoffs) return skip_stage(&out_.stages, "trade-offs", tradeoffs_skipped_ = stop_reason::kNoTradeoffs);
     if (out_.openings.empty()) return skip_stage(&out_.stages, "trade-offs", tradeoffs_skipped_ = stop_reason::kNoOpenings);
     const double seconds = run_stage(&out_.stages, "trade-offs", [&] {
-      if (progress_) progress_->start("solving: fewer openings", 1);
+      const StageStatus stage(progress_, "solving: fewer openings");
       TradeoffResult answer;
       answer.openings = out_.openings;
       answer.predicted = out_.predicted;
@@ -887,6 +887,7 @@ class OpeningSolve {
   void verification() {
     if (!settings_.verify) return skip_stage(&out_.stages, "verification", stop_reason::kNoVerify);
     const double seconds = run_stage(&out_.stages, "verification", [&] {
+      const StageStatus stage(progress_, "solving: checking with real cutters");
       std::vector<OpeningInput> cutters;
       for (const OpeningRectangle& o : out_.openings) cutters.emplace_back(o.parameter);
       const SensorValues v = records_.cut(cutters, settings_.verify_paths, 0);

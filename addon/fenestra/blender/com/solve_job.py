@@ -14,9 +14,6 @@ from . import stage_words
 _current = None  # the job last started on a worker thread
 
 CANCEL_WAIT_AT_EXIT_S = 5.0
-# How often a job on a worker thread reads the core's status line: some stages show theirs for a
-# few milliseconds before their traces (stage_words.py).
-WATCH_S = 0.001
 
 
 class SolveJob:
@@ -73,8 +70,6 @@ class SolveJob:
         return result
 
     def _work(self):
-        watcher = threading.Thread(target=self._watch, name="fenestra-solve-stages", daemon=True)
-        watcher.start()
         try:
             self.result = self.run()
         except BaseException as exc:  # handed to Blender's side
@@ -82,11 +77,6 @@ class SolveJob:
         finally:
             self.ended = time.monotonic()
             self.done.set()
-
-    def _watch(self):
-        """Reads the status line until the job ends, so that no stage's own line is missed."""
-        while not self.done.wait(WATCH_S):
-            self._see()
 
     # -- control (Blender's main thread) ---------------------------------------------------------
 

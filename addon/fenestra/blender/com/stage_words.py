@@ -1,14 +1,13 @@
 """A running solve's stage in the user's words, from the native core's status lines (no bpy).
 
 The core names a stage when it starts it ("solving: edges in thick walls, with real cutters"), and
-every trace with real cutters names itself "tracing the scene with its openings", whatever stage
-runs it: the edge search in thick walls traces each candidate so, and so does the final check.
-Told apart by the stage last named, they read "refining edges in the thick wall: ..." and "checking
-with real cutters". A second "tracing contribution paths" after the solver has begun is a finer
-trace for the thick wall's edges, not a new start. Other lines are shown as the core words them.
-
-Status lines are read by polling: StageWords must see each stage's own line (SolveJob watches the
-line often enough, docs/blender.md "Progress"), or a trace is told by an older stage."""
+the stages that trace with real cutters (the edge search in thick walls, the trade-offs, the final
+check) keep their line while they trace (StageStatus, native/src/util/progress.h): they read
+"refining edges in the thick wall: ..." and "checking with real cutters". A trace with real cutters
+outside a stage (Evaluate) names itself "tracing the scene with its openings"; one after a thick-wall
+stage (should a stage not hold its line) is told by that stage. A second "tracing contribution
+paths" after the solver has begun is a finer trace, not a new start. Other lines are shown as the
+core words them."""
 
 THICK_WALL_EDGES = "refining edges in the thick wall: tracing finer steps"
 THICK_WALL_JOINT = "refining edges in the thick wall: all edges together"
@@ -25,6 +24,7 @@ THICK_WALL_STAGES = {
     "solving: all edges in thick walls together, with real cutters": THICK_WALL_JOINT,
     "solving: openings in thick walls merged or removed, with real cutters": THICK_WALL_MERGES,
 }
+CHECK_STAGE = "solving: checking with real cutters"
 
 
 class StageWords:
@@ -45,8 +45,10 @@ class StageWords:
             self.stage = status
         if status in THICK_WALL_STAGES:
             self.label = THICK_WALL_STAGES[status]
+        elif status == CHECK_STAGE:
+            self.label = CHECK
         elif status == CUTS:
-            self.label = THICK_WALL_STAGES.get(self.stage, CHECK)
+            self.label = THICK_WALL_STAGES.get(self.stage, CHECK if self.stage == CHECK_STAGE else CUTS)
         elif status == CONTRIBUTIONS and self.stage is not None:
             self.label = FINER_GRID
         else:
