@@ -138,5 +138,44 @@ TEST(Composition, StackedOpeningsKeepTheRuleByGivingOneUp) {
   }
 }
 
+// Sills and heads aligned automatically: kept where they cost at most a point of error, else the
+// openings stay as they were and the step says so; one opening on a facade has nothing to align.
+TEST(Composition, AutomaticAlignmentIsKeptOnlyWhereItIsCheap) {
+  const OpeningDomain d = domain_of({{Vec3(0, 0, 0), Vec3(6, 0, 0), Vec3(6, 0, 3), Vec3(0, 0, 3)}});
+  const std::vector<PanelRectangle> apart = {{0, 0.5, 2.0, 0.75, 2.0}, {0, 3.5, 5.0, 1.0, 2.25}};
+  OpeningConstraints c;
+  c.min_gap = 0.25, c.min_width = c.min_height = 0.5;
+  c.align_sills = c.align_heads = c.automatic_alignment = true;
+  EXPECT_TRUE(composition_violations(d, c, apart).empty());  // automatic: nothing the answer breaks
+  const auto sills_equal = [](const std::vector<PanelRectangle>& set) {
+    return set.size() == 2 && std::abs(set[0].v0 - set[1].v0) < 1e-6;
+  };
+  // Cheap: every set of the same area is as good (alignment costs nothing).
+  const auto by_area = [](const std::vector<PanelRectangle>& set) {
+    double area = 0.0;
+    for (const PanelRectangle& r : set) area += r.width() * r.height();
+    return 0.2 + 0.001 * std::abs(area - 3.75);
+  };
+  const Composition cheap = compose_facades(d, c, apart, by_area, nullptr);
+  ASSERT_EQ(cheap.steps.size(), 2u);
+  for (const CompositionStep& step : cheap.steps) {
+    EXPECT_TRUE(step.automatic && step.kept && step.met) << step.rule;
+    EXPECT_LE(step.error_after, step.error_before + kAutomaticAlignmentCost);
+  }
+  EXPECT_TRUE(sills_equal(cheap.openings));
+  // Dear: lined-up sills cost 5 points of error.
+  const auto apart_is_better = [&](const std::vector<PanelRectangle>& set) {
+    return sills_equal(set) ? 0.25 : 0.2;
+  };
+  const Composition dear = compose_facades(d, c, apart, apart_is_better, nullptr);
+  ASSERT_FALSE(dear.steps.empty());
+  EXPECT_EQ(dear.steps[0].rule, "align_sills");
+  EXPECT_FALSE(dear.steps[0].kept);
+  EXPECT_NEAR(dear.steps[0].error_before, 0.2, 1e-12);
+  EXPECT_FALSE(sills_equal(dear.openings));
+  // One opening: no step at all.
+  EXPECT_TRUE(compose_facades(d, c, {apart[0]}, by_area, nullptr).steps.empty());
+}
+
 }  // namespace
 }  // namespace fenestra

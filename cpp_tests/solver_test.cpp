@@ -48,6 +48,10 @@ TEST(SolverLeastGlazing, ThePassingDesignWithLeastGlassComesFirst) {
   EXPECT_EQ(passing_by_glazing({{1.38, true}, {1.1, false}, {0.5, true}, {0.5, true}}),
             (std::vector<size_t>{2, 3, 0}));
   EXPECT_TRUE(passing_by_glazing({{1.0, false}}).empty());
+  // At equal glazing (within 5 %), fewer and larger openings first; beyond it, less glass first.
+  EXPECT_EQ(passing_by_glazing({{2.0, true, 3}, {2.08, true, 1}, {2.5, true, 1}, {2.09, true, 2}}),
+            (std::vector<size_t>{1, 3, 0, 2}));
+  EXPECT_EQ(passing_by_glazing({{2.0, true, 3}, {2.2, true, 1}}), (std::vector<size_t>{0, 1}));
 }
 
 TEST(SolverGoals, UnitsWeightsAndUniformLevels) {

@@ -136,6 +136,7 @@ json constraints_json(const OpeningConstraints& c) {
                                                 {"symmetric", c.symmetric},       {"equal_spacing", c.equal_spacing}};
   for (const auto& [name, on] : rules)
     if (on) j[name] = true;
+  if (c.automatic_alignment) j["automatic_alignment"] = true;  // align_* automatic: kept where cheap
   if (!c.sill_heights.empty()) j["sill_heights"] = c.sill_heights;
   j["automatic"] = c.automatic_keys;  // the keys above that took their automatic value
   return j;
@@ -184,7 +185,7 @@ json solve_result_json(const Scene& scene, const SolveResult& r) {
          json steps = json::array();
          for (const CompositionStep& c : r.composition)
            steps.push_back({{"rule", c.rule}, {"met", c.met}, {"error_before", c.error_before},
-                            {"error_after", c.error_after}});
+                            {"error_after", c.error_after}, {"automatic", c.automatic}, {"kept", c.kept}});
          return steps;
        }()},
       {"constraint_violations", r.constraint_violations},

@@ -157,6 +157,9 @@ OpeningConstraints parse_constraints(const ScenePath& sp, const json& j, double 
       taken.erase(taken.begin() + static_cast<std::ptrdiff_t>(drop));
     }
     c = with(taken);
+    // Facades whose sills and heads line up, where that costs little light (composition.h).
+    if (!full_height && !j.contains("align_sills") && !j.contains("align_heads") && !j.contains("sill_heights"))
+      c.align_sills = c.align_heads = c.automatic_alignment = true;
   }
   try {
     check_feasible(c, element_size);

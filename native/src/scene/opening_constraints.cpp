@@ -559,9 +559,9 @@ std::string catalogue_fit_problem(const OpeningDomain& domain, const OpeningCons
 std::string composition_problem(const OpeningDomain& domain, const OpeningConstraints& constraints) {
   const std::vector<int> facade = facades_of(domain);
   for (size_t p = 0; p < facade.size(); ++p)
-    if (constraints.for_panel(static_cast<int>(p)).composes() && facade[p] >= 0) return {};
+    if (constraints.for_panel(static_cast<int>(p)).composes_by_choice() && facade[p] >= 0) return {};
   for (size_t p = 0; p < facade.size(); ++p)
-    if (constraints.for_panel(static_cast<int>(p)).composes())
+    if (constraints.for_panel(static_cast<int>(p)).composes_by_choice())
       return "align_sills, align_heads, equal_widths, same_type_in_row, symmetric, equal_spacing and sill_heights "
              "apply to flat walls, and the opening domain has none where they are set";
   return {};

@@ -42,6 +42,9 @@ struct OpeningConstraints {
   // Facade composition (solve/composition.h), on flat walls; a facade is the coplanar wall panels,
   // and takes the rules of its first panel.
   bool align_sills = false, align_heads = false;  // one sill (head) height per facade
+  // align_sills and align_heads set by "automatic" (neither given): kept only where they cost the
+  // answer at most kAutomaticAlignmentCost of relative RMS error, else left out (and said so).
+  bool automatic_alignment = false;
   bool equal_widths = false;                      // one width per facade
   bool same_type_in_row = false;                  // openings with one sill on a facade: one size
   bool symmetric = false;                         // each panel's openings mirror about its vertical axis
@@ -50,6 +53,11 @@ struct OpeningConstraints {
   bool composes() const {
     return align_sills || align_heads || equal_widths || same_type_in_row || symmetric || equal_spacing ||
            !sill_heights.empty();
+  }
+  // The rules the user set (not the automatic alignment).
+  bool composes_by_choice() const {
+    return ((align_sills || align_heads) && !automatic_alignment) || equal_widths || same_type_in_row || symmetric ||
+           equal_spacing || !sill_heights.empty();
   }
   // Empty: any size within the limits above. Otherwise every opening's size is one of the
   // catalogue's (on the kind of panel it lists sizes for); openings on the element grid are
@@ -71,6 +79,10 @@ struct OpeningConstraints {
   bool any() const;  // whether anything is constrained beyond plain rectangles
   std::string to_string() const;
 };
+
+// Automatic alignment of sills and heads is kept when it raises the relative RMS error by at most
+// this: one point, one per cent of the goals' light.
+inline constexpr double kAutomaticAlignmentCost = 0.01;
 
 // What an opening is when the user says nothing: the value each key takes when it is not given
 // and "automatic" is on. With full_height (doors and floor-to-ceiling glazing allowed), walls keep

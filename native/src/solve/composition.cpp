@@ -111,8 +111,12 @@ class Composer {
   // the rules so far (tune), and records what the rule cost.
   template <typename Apply>
   void step(const std::string& rule, Apply apply) {
+    const bool automatic = c_.automatic_alignment && (rule == "align_sills" || rule == "align_heads");
+    if (automatic && !a_facade_has_two_openings()) return;  // nothing to line up
+    const Openings before = openings_;
     CompositionStep s;
     s.rule = rule;
+    s.automatic = automatic;
     s.error_before = error_;
     met_all_ = true;
     apply();
@@ -120,7 +124,20 @@ class Composer {
     if (met_all_) tune();
     s.met = met_all_;
     s.error_after = error_;
+    if (automatic && (!s.met || s.error_after > s.error_before + kAutomaticAlignmentCost)) {
+      s.kept = false;  // too dear: the openings as they were
+      openings_ = before;
+      error_ = s.error_before;
+      applied_.pop_back();
+    }
     steps_.push_back(s);
+  }
+
+  bool a_facade_has_two_openings() const {
+    std::map<int, int> count;
+    for (const PanelRectangle& r : openings_)
+      if (facade(r) >= 0 && ++count[facade(r)] >= 2) return true;
+    return false;
   }
 
   // The constraints with only the rules applied so far (what tune must keep).
@@ -486,9 +503,10 @@ std::vector<std::string> composition_violations(const OpeningDomain& domain, con
     auto all_same = [&](auto value) {
       return std::all_of(list.begin(), list.end(), [&](const PanelRectangle& r) { return near(value(r), value(list.front())); });
     };
-    if (rules.align_sills && !all_same([&](const PanelRectangle& r) { return heights.sill(r); }))
+    const bool required = !rules.automatic_alignment;  // automatic: kept only where cheap (composition.h)
+    if (required && rules.align_sills && !all_same([&](const PanelRectangle& r) { return heights.sill(r); }))
       out.push_back(name + ": sills not aligned (align_sills)");
-    if (rules.align_heads && !all_same([&](const PanelRectangle& r) { return heights.head(r); }))
+    if (required && rules.align_heads && !all_same([&](const PanelRectangle& r) { return heights.head(r); }))
       out.push_back(name + ": heads not aligned (align_heads)");
     if (rules.equal_widths && !all_same([](const PanelRectangle& r) { return r.width(); }))
       out.push_back(name + ": widths differ (equal_widths)");

@@ -10,7 +10,9 @@
 // the candidate the error function scores best, among those whose openings stay admissible and
 // apart, is kept. Then a local search over moves that keep the rules so far (a facade's sills,
 // heads or widths all together, an opening sliding along its wall) lets the openings recover what
-// they can. What each rule costs is reported: the error before it and after its search.
+// they can. What each rule costs is reported: the error before it and after its search. Sills and
+// heads aligned automatically (automatic_alignment) are tried only on facades with two openings or
+// more, and undone when they cost more than kAutomaticAlignmentCost.
 #include <functional>
 #include <string>
 #include <vector>
@@ -25,8 +27,11 @@ class Progress;
 
 struct CompositionStep {
   std::string rule;                // the constraint's key
-  double error_before = 0.0, error_after = 0.0;  // of the error function (relative, squared)
+  double error_before = 0.0, error_after = 0.0;  // of the error function (relative RMS)
   bool met = true;                 // false: no candidate kept the openings admissible
+  // An automatic rule (automatic_alignment): kept only where it met and cost at most
+  // kAutomaticAlignmentCost; else the openings are as before it (error_after: what it would cost).
+  bool automatic = false, kept = true;
 };
 
 struct Composition {

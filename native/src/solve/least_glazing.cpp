@@ -26,11 +26,20 @@ double glazing_area(const std::vector<OpeningRectangle>& openings) {
 }  // namespace
 
 std::vector<size_t> passing_by_glazing(const std::vector<GlazingCandidate>& candidates) {
-  std::vector<size_t> order;
+  std::vector<size_t> left;
   for (size_t i = 0; i < candidates.size(); ++i)
-    if (candidates[i].meets) order.push_back(i);
-  std::stable_sort(order.begin(), order.end(),
+    if (candidates[i].meets) left.push_back(i);
+  std::stable_sort(left.begin(), left.end(),
                    [&](size_t a, size_t b) { return candidates[a].area_m2 < candidates[b].area_m2; });
+  std::vector<size_t> order;
+  while (!left.empty()) {
+    const double equal = candidates[left.front()].area_m2 * (1.0 + kEqualGlazingShare);
+    size_t pick = 0;  // the fewest openings among the equal glazing; the least glass breaks ties
+    for (size_t k = 1; k < left.size() && candidates[left[k]].area_m2 <= equal; ++k)
+      if (candidates[left[k]].openings < candidates[left[pick]].openings) pick = k;
+    order.push_back(left[pick]);
+    left.erase(left.begin() + static_cast<std::ptrdiff_t>(pick));
+  }
   return order;
 }
 
@@ -41,7 +50,8 @@ int least_glazing_entry(const Scene& scene, RecordQueries& records, const Climat
   std::vector<GlazingCandidate> candidates;
   for (TradeoffResult& entry : *tradeoffs) {
     entry.climate = entry.answer ? answer_figures : tradeoff_climate(records, problem, entry, SolveResult());
-    candidates.push_back({glazing_area(entry.openings), all_climate_goals_met(goals, entry.climate)});
+    candidates.push_back({glazing_area(entry.openings), all_climate_goals_met(goals, entry.climate),
+                          static_cast<int>(entry.openings.size())});
   }
   for (size_t i : passing_by_glazing(candidates)) {
     TradeoffResult& entry = (*tradeoffs)[i];

@@ -14,9 +14,14 @@ namespace fenestra {
 struct GlazingCandidate {
   double area_m2 = 0.0;  // glazing area
   bool meets = false;    // every climate goal met
+  int openings = 0;      // how many
 };
 
-// The candidates that meet the goals, least glass first (equal areas keep their order).
+// Glazing areas within this share of the least are equal: fewer, larger openings are preferred.
+inline constexpr double kEqualGlazingShare = 0.05;
+
+// The candidates that meet the goals, least glass first; among those within kEqualGlazingShare of
+// the least glass left, the fewest openings first (then less glass; equal ones keep their order).
 std::vector<size_t> passing_by_glazing(const std::vector<GlazingCandidate>& candidates);
 
 class RecordQueries;  // solve/record_queries.h

@@ -775,11 +775,17 @@ class OpeningSolve {
       const Composition composed = compose_facades(scene_.domain, constraints_, final_rects_, error_of, progress_);
       out_.composition = composed.steps;
       for (const CompositionStep& step : composed.steps)
-        if (!step.met)
+        if (step.automatic && !step.kept)
+          out_.warnings.push_back(step.rule + " (automatic) was left out: " +
+                                  (step.met ? "it would raise the error from " + percent_text(step.error_before) +
+                                                  " to " + percent_text(step.error_after) + ", more than " +
+                                                  percent_text(kAutomaticAlignmentCost)
+                                            : std::string("no admissible way to meet it was found on every facade")));
+        else if (!step.met)
           out_.warnings.push_back(step.rule + ": no admissible way to meet it was found on every facade; left as it was");
         else if (step.error_after > step.error_before + 1e-3)
-          out_.warnings.push_back(step.rule + " raises the error from " + percent_text(step.error_before) + " to " +
-                                  percent_text(step.error_after));
+          out_.warnings.push_back(step.rule + (step.automatic ? " (automatic)" : "") + " raises the error from " +
+                                  percent_text(step.error_before) + " to " + percent_text(step.error_after));
       if (composed.openings != final_rects_) {
         final_rects_ = composed.openings;
         chosen_ = values_of(final_rects_);
