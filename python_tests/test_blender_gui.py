@@ -42,7 +42,8 @@ LONG_VERIFICATION = {"solve.paths": 4096, "goals.level": 0.0}
 class Gui:
     """A Blender window under Xvfb, its driver's state and commands, and real input through xdotool."""
 
-    def __init__(self, tmp):
+    def __init__(self, tmp, scene="room"):
+        """Blender with the driver, which builds `scene`: "room" (the room example) or "empty"."""
         self.channel = str(tmp / "channel")
         os.makedirs(self.channel)
         self.commands = 0
@@ -63,7 +64,7 @@ class Gui:
         self.log = open(self.log_path, "w")
         self.blender = subprocess.Popen(
             [BLENDER, "--factory-startup", "--window-geometry", "0", "0", str(SIZE[0]), str(SIZE[1]), empty,
-             "--python", os.path.join(HERE, "blender", "gui_driver.py"), "--", self.channel],
+             "--python", os.path.join(HERE, "blender", "gui_driver.py"), "--", self.channel, scene],
             env=self.env, stdin=subprocess.DEVNULL, stdout=self.log, stderr=subprocess.STDOUT)
         try:
             self.state = self.wait_for(lambda s: s["view3d"] is not None, timeout=120, what="Blender's window")
@@ -363,9 +364,10 @@ def test_f3_finds_each_command(gui, solved, typed, idname, values):
     gui.command("set", values=QUICK)
 
 
-def open_fenestra_sidebar(gui):
-    """The sidebar open, on the Fenestra tab (a real click on the tab); returns its rectangle."""
-    left, top, right, bottom = gui.command("sidebar")["rect"]
+def open_fenestra_sidebar(gui, **panels):
+    """The sidebar open, on the Fenestra tab (a real click on the tab); returns its rectangle.
+    `closed` (panel class names) chooses the panels closed, the first time."""
+    left, top, right, bottom = gui.command("sidebar", **panels)["rect"]
     time.sleep(0.5)
     gui.xdotool("mousemove", str(right - 12), str(top + 80))  # the second tab: Item, Fenestra
     time.sleep(0.2)
@@ -374,9 +376,9 @@ def open_fenestra_sidebar(gui):
     return left, top, right, bottom
 
 
-def right_click(gui, x, y):
-    """A right-click at (x, y); returns the operator the button's context menu is for (None for a
-    button without one, "" when no button menu opened)."""
+def button_menu(gui, x, y):
+    """A right-click at (x, y); returns what the button's context menu is for ({"operator": ...,
+    "property": ...}, None where the button has neither), or None when no button menu opened."""
     before = gui.read_state()["context_menu"]["count"]
     gui.xdotool("mousemove", str(x), str(y))
     time.sleep(0.15)
@@ -384,24 +386,34 @@ def right_click(gui, x, y):
     try:
         s = gui.wait_for(lambda s: s["context_menu"]["count"] > before, timeout=1.0, what="a context menu")
     except AssertionError:
-        return ""
-    return s["context_menu"]["operator"]
+        return None
+    return s["context_menu"]
 
 
-def find_button(gui, rect, operator):
-    """Right-clicks down the middle of the sidebar until a button's menu is for `operator`; closes
-    it and returns the button's (x, y)."""
+def right_click(gui, x, y):
+    """A right-click at (x, y); returns the operator the button's context menu is for (None for a
+    button without one, "" when no button menu opened)."""
+    menu = button_menu(gui, x, y)
+    return "" if menu is None else menu["operator"]
+
+
+def find_button(gui, rect, operator=None, prop=None, start=None):
+    """Right-clicks down the middle of the sidebar (from `start`, or its top) until a button's menu
+    is for `operator` (an operator's class name) or `prop` (a property's name); closes it and
+    returns the button's (x, y)."""
     left, top, right, bottom = rect
     x = (left + right) // 2
     seen = []
-    for y in range(top + 20, bottom - 10, 16):
-        found = right_click(gui, x, y)
+    for y in range(start or top + 20, bottom - 10, 16):
+        menu = button_menu(gui, x, y)
         gui.key("Escape")
         time.sleep(0.2)
-        seen.append(found)
-        if found == operator:
+        found = (None, None) if menu is None else (menu["operator"], menu["property"])
+        seen.append(found[0] or found[1])
+        if (operator is not None and found[0] == operator) or (prop is not None and found[1] == prop):
             return x, y
-    raise AssertionError("no button for %s in the sidebar; menus for %s" % (operator, sorted(set(map(str, seen)))))
+    raise AssertionError("no button for %s in the sidebar; menus for %s"
+                         % (operator or prop, sorted(set(map(str, seen)))))
 
 
 def keymap_item(gui, idname):

@@ -1,9 +1,9 @@
 """Blender's side of the GUI tests (python_tests/test_blender_gui.py), in a Blender with a window:
 
-    blender --window-geometry 0 0 W H EMPTY.blend --python gui_driver.py -- CHANNEL
+    blender --window-geometry 0 0 W H EMPTY.blend --python gui_driver.py -- CHANNEL [SCENE]
 
-Builds the room example (examples/build_blend_examples.py) with the add-on, study folder
-CHANNEL/study, maps F5 to Solve Openings in the Window keymap (as a user's shortcut would), and
+Builds the room example (examples/build_blend_examples.py; SCENE "room", the default) or nothing
+(SCENE "empty") with the add-on, study folder CHANNEL/study, maps F5 to Solve Openings in the Window keymap (as a user's shortcut would), and
 then, while the test drives Blender with real key events, reports its state to CHANNEL/state.json
 every few milliseconds (the running solve's also to CHANNEL/job.json, from a thread) and follows the test's commands (CHANNEL/command-N.json, answered in
 CHANNEL/reply-N.json): "set" scene.fenestra settings (optionally as an undo step), "snapshot" of
@@ -13,8 +13,11 @@ rectangle; "restore_panels" brings the other tabs back), "keymap" (the
 user key configuration's items for Fenestra's commands), "look_at_sensors" (alone, from above,
 with a goal colour attribute), "paint_goals" / "object_mode" (into Vertex Paint and back),
 "sensors_seen" (what the 3D View shows of them), "show_all",
-"screenshot", "quit". It also counts the calls of Fenestra's commands (state "calls") and records
-which operator the last right-click menu on a button was for (state "context_menu"). The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
+"solid_room" (a room modelled as one solid: addon_sensor_grid.solid), "sensor_grids" (the sensor
+objects and their points), "reports" (the window's reports, as the Info editor lists them),
+"from_above" (the 3D View in X-ray from above), "popup" (where a screenshot differs from another
+one: a popup's extent), "screenshot", "quit". It also counts the calls of Fenestra's commands (state "calls") and records
+which operator or property the last right-click menu on a button was for (state "context_menu"). The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
 
 import hashlib
 import json
@@ -31,12 +34,16 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "examples"))
 sys.path.insert(0, HERE)
 import build_blend_examples as examples  # noqa: E402
 
-CHANNEL = sys.argv[sys.argv.index("--") + 1]
+ARGS = sys.argv[sys.argv.index("--") + 1:]
+CHANNEL = ARGS[0]
+SCENE = ARGS[1] if len(ARGS) > 1 else "room"
 STUDY = os.path.join(CHANNEL, "study")
 TICK_S = 0.01
 JOBS_LOCK = threading.Lock()
-state = {"next_command": 0, "jobs": 0, "last_job": None, "calls": {}, "context_menu": {"count": 0, "operator": None}}
-COMMANDS = ("fenestra.solve_openings", "fenestra.evaluate_openings", "fenestra.annual_daylight", "fenestra.check_setup")
+state = {"next_command": 0, "jobs": 0, "last_job": None, "calls": {},
+         "context_menu": {"count": 0, "operator": None, "property": None}}
+COMMANDS = ("fenestra.solve_openings", "fenestra.evaluate_openings", "fenestra.annual_daylight", "fenestra.check_setup",
+            "fenestra.add_sensor_grid")
 
 
 def write_json(path, value):
@@ -48,8 +55,9 @@ def write_json(path, value):
 
 def setup():
     examples.enable_addon()
-    with in_view3d():  # the operators that build it need a window's context
-        examples.build_room()
+    if SCENE == "room":
+        with in_view3d():  # the operators that build it need a window's context
+            examples.build_room()
     f = bpy.context.scene.fenestra
     f.solve.study_directory = STUDY
     km = bpy.context.window_manager.keyconfigs.addon.keymaps.new(name="Window", space_type='EMPTY')
@@ -84,11 +92,13 @@ def counted(idname, method):
 
 
 def record_context_menu(menu, context):
-    """The right-click menu of a button: for which operator (None for other buttons)."""
+    """The right-click menu of a button: for which operator or property (None for other buttons)."""
     op = getattr(context, "button_operator", None)
+    prop = getattr(context, "button_prop", None)
     menu_state = state["context_menu"]
     menu_state["count"] += 1
     menu_state["operator"] = op.bl_rna.identifier if op is not None else None
+    menu_state["property"] = prop.identifier if prop is not None else None
 
 
 def in_view3d():
@@ -205,9 +215,9 @@ def to_x(window, region, x, y):
     return [window.x + region.x + int(x), window.height - (region.y + int(y))]
 
 
-def sidebar():
-    """Opens the sidebar on the Fenestra tab; returns its rectangle [left, top, right, bottom] in X
-    screen coordinates."""
+def sidebar(closed=("FENESTRA_PT_domain", "FENESTRA_PT_sensors", "FENESTRA_PT_sky")):
+    """Opens the sidebar on the Fenestra tab, the first time with the panels named in `closed`
+    closed; returns its rectangle [left, top, right, bottom] in X screen coordinates."""
     window, area = view3d()
     area.spaces.active.show_region_ui = True
     if "hidden_panels" not in state:  # the other tabs' panels out, and some of Fenestra's closed
@@ -222,7 +232,7 @@ def sidebar():
                     state["hidden_panels"].append(cls)
                 except RuntimeError:
                     pass
-        for name in ("FENESTRA_PT_domain", "FENESTRA_PT_sensors", "FENESTRA_PT_sky"):
+        for name in closed:
             panel = getattr(bpy.types, name)
             bpy.utils.unregister_class(panel)
             panel.bl_options = {'DEFAULT_CLOSED'}
@@ -309,6 +319,107 @@ def object_mode():
     return {}
 
 
+def solid_room():
+    """A room modelled as one solid (python_tests/blender/addon_sensor_grid.py: a 4 x 5 x 3 m cavity,
+    walls 0.3 m, slabs 0.2 m, the cavity's south face the opening domain) named 'Room', selected and
+    active; uniform goals and sky, so that Check Setup has a whole study to check."""
+    import addon_sensor_grid
+    room = addon_sensor_grid.solid("Room", [(0.0, 4.0)])
+    for o in bpy.context.view_layer.objects:
+        o.select_set(o is room)
+    bpy.context.view_layer.objects.active = room
+    f = bpy.context.scene.fenestra
+    f.goals.source, f.goals.units, f.goals.level = 'UNIFORM', 'NORMALIZED', 0.5
+    f.sky.type = 'UNIFORM'
+    undo_push("Solid room")
+    return {"cavity": [[0.0, 0.0, 0.0], [4.0, 5.0, 3.0]]}
+
+
+def sensor_grids():
+    """The sensor objects (name, world coordinates of each point), the grid's settings and Check
+    Setup's verdict."""
+    grids = []
+    for obj in sorted((o for o in bpy.data.objects if o.fenestra.is_sensor), key=lambda o: o.name):
+        grids.append({"name": obj.name, "points": [list(obj.matrix_world @ v.co) for v in obj.data.vertices]})
+    f = bpy.context.scene.fenestra
+    return {"grids": grids, "height": f.sensor_height, "spacing": f.sensor_spacing,
+            "setup_checked": f.setup_checked, "setup_warnings": f.setup_warnings}
+
+
+def reports():
+    """The window's reports as the Info editor lists them (the Timeline shows the Info editor for a
+    moment: its Copy puts the selected reports on the clipboard)."""
+    window = bpy.context.window_manager.windows[0]
+    area = min((a for a in window.screen.areas if a.type != 'VIEW_3D'), key=lambda a: a.y)  # the Timeline
+    kind, ui_type = area.type, area.ui_type
+    area.type = 'INFO'
+    try:
+        region = next(r for r in area.regions if r.type == 'WINDOW')
+        with bpy.context.temp_override(window=window, area=area, region=region):
+            bpy.ops.info.select_all(action='SELECT')
+            bpy.ops.info.report_copy()
+            bpy.ops.info.select_all(action='DESELECT')
+    finally:
+        area.type = kind
+        area.ui_type = ui_type
+    return bpy.context.window_manager.clipboard.splitlines()
+
+
+def from_above(location, distance):
+    """The 3D View from above, orthographic, in Solid shading with X-ray (through the ceiling)."""
+    window, area = view3d()
+    space = area.spaces.active
+    space.shading.type = 'SOLID'
+    space.shading.show_xray = True
+    r3d = space.region_3d
+    r3d.view_perspective = 'ORTHO'
+    r3d.view_rotation = (1.0, 0.0, 0.0, 0.0)
+    r3d.view_location = location
+    r3d.view_distance = distance
+    return {}
+
+
+def window_pixels(name):
+    """CHANNEL/NAME.png (a screenshot of the window) as (h, w, 3) values, top row first."""
+    import numpy as np
+    image = bpy.data.images.load(os.path.join(CHANNEL, name + ".png"))
+    w, h = image.size
+    pixels = np.zeros(w * h * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    return pixels.reshape(h, w, 4)[::-1, :, :3]
+
+
+def popup(before, after, x, y, message):
+    """Where screenshot `after` differs from `before` around (x, y) (X coordinates): the extent
+    [left, top, right, bottom] of the changed pixels connected to that point by changed rows and
+    columns; and the lines long_message.py shows for `message`, with the widest one's width in
+    pixels."""
+    import blf
+    import numpy as np
+    from fenestra.blender.ui import long_message
+    changed = np.abs(window_pixels(after) - window_pixels(before)).max(axis=2) > 0.02
+    h, w = changed.shape
+    rows = changed.any(axis=1)
+    top = bottom = min(max(y, 0), h - 1)
+    while top > 0 and rows[top - 1]:
+        top -= 1
+    while bottom < h - 1 and rows[bottom + 1]:
+        bottom += 1
+    columns = changed[top:bottom + 1].any(axis=0)
+    left = right = min(max(x, 0), w - 1)
+    while left > 0 and columns[left - 1]:
+        left -= 1
+    while right < w - 1 and columns[right + 1]:
+        right += 1
+    lines = long_message.popup_lines(message)
+    scale = bpy.context.preferences.system.ui_scale
+    blf.size(0, 11 * scale)
+    widest = max((blf.dimensions(0, line)[0] for line in lines), default=0.0)
+    return {"extent": [left, top, right, bottom], "changed": bool(changed[top:bottom + 1, left:right + 1].any()),
+            "lines": lines, "widest": widest, "line_height": 20 * scale}
+
+
 def follow_commands():
     path = os.path.join(CHANNEL, "command-%d.json" % state["next_command"])
     if not os.path.exists(path):
@@ -333,7 +444,17 @@ def follow_commands():
                     hidden.remove(cls)
             reply = {}
         elif name == "sidebar":
-            reply = {"rect": sidebar()}
+            reply = {"rect": sidebar(**args)}
+        elif name == "solid_room":
+            reply = solid_room()
+        elif name == "sensor_grids":
+            reply = sensor_grids()
+        elif name == "reports":
+            reply = {"reports": reports()}
+        elif name == "from_above":
+            reply = from_above(**args)
+        elif name == "popup":
+            reply = popup(**args)
         elif name == "keymap":
             reply = {"items": keymap_items()}
         elif name == "look_at_sensors":

@@ -6,9 +6,10 @@ docs/blender-annual.png):
 with user preferences whose splash screen is off (BLENDER_USER_CONFIG) and the add-on on Blender's
 add-on path (BLENDER_USER_SCRIPTS/addons/fenestra). The room of addon_study.py with one window and a
 year of Chicago weather: a solve, then Annual Daylight started as from its button (modal, on a worker
-thread), and a screenshot of the whole window once it is done: the Fenestra tab with the Sky and
-Annual Daylight panels, the sensors in false colour (daylight autonomy) seen from above, and the
-legend. Prints one line per check, "CHECK name ok|FAILED numbers", and exits 1 when a check fails
+thread), and a screenshot of the whole window once it is done (annual_window.png beside OUT.png):
+the Fenestra tab with the Sky and Annual Daylight panels, the sensors in false colour (daylight
+autonomy) seen from above, and the legend; OUT.png is the 3D View's area (viewport and sidebar)
+cropped from it. Prints one line per check, "CHECK name ok|FAILED numbers", and exits 1 when a check fails
 or a step raises."""
 
 import math
@@ -105,9 +106,10 @@ def shoot():
     from fenestra.blender.draw import legend
     from fenestra.blender.result import result_display
     window, area, region = view3d()
+    whole = os.path.join(os.path.dirname(OUT), "annual_window.png")
     with bpy.context.temp_override(window=window):
-        bpy.ops.screen.screenshot(filepath=OUT)
-    pixels = window_pixels(OUT)
+        bpy.ops.screen.screenshot(filepath=whole)
+    pixels = window_pixels(whole)
     scale, shown = result_display.current(bpy.context)
     check("annual_scale", scale.quantity == 'DA' and scale.top == 100.0, "%s 0..%g" % (scale.title, scale.top))
     # The legend's bar, in window pixels: the colour map where it belongs, and its title above.
@@ -134,6 +136,7 @@ def shoot():
         errors.append(float(np.abs(patch - colour).max(axis=1).min()))
     check("sensors_in_false_colour", max(errors) < 0.08,
           "worst sensor off its colour by %.3f (DA %.0f..%.0f %%)" % (max(errors), values.min(), values.max()))
+    window_script.save_area(pixels, area, OUT)
     a = bpy.context.scene.fenestra.annual
     print("ANNUAL sDA %.3f ASE %.3f DA %.3f mean %.0f lx EN17037 %r; screenshot %s"
           % (a.spatial_daylight_autonomy, a.annual_sunlight_exposure, a.daylight_autonomy, a.mean_illuminance,

@@ -189,11 +189,7 @@ def shoot():
     check("sensors_in_da_colours", max(errors) < 0.08,
           "worst sensor off its colour by %.3f (DA %.0f..%.0f %%)" % (max(errors), low, high))
     # OUT: the 3D View's area (the viewport and the sidebar), cropped from the window.
-    crop = pixels[area.y:area.y + area.height, area.x:area.x + area.width]
-    image = bpy.data.images.new("climate_crop", crop.shape[1], crop.shape[0])
-    image.pixels.foreach_set(np.dstack([crop, np.ones(crop.shape[:2])]).astype(np.float32).ravel())
-    image.filepath_raw, image.file_format = OUT, 'PNG'
-    image.save()
+    window_script.save_area(pixels, area, OUT)
     print("CLIMATE %s; glazing %.2f of %.2f m²; screenshot %s" % (
         "; ".join("%s: %.3f %s" % (g.description, g.achieved, "met" if g.met else "not met") for g in c.goals),
         c.glazing_area, c.domain_area, OUT))

@@ -1,11 +1,13 @@
 """What the screenshot scripts that drive Blender's window share: timer callbacks that end Blender
-on an exception, the checks' verdict as the exit status, and a sidebar showing only the Fenestra tab."""
+on an exception, the checks' verdict as the exit status, a sidebar showing only the Fenestra tab,
+and an area cropped from a screenshot of the window."""
 
 import os
 import sys
 import traceback
 
 import bpy
+import numpy as np
 
 
 def guarded(step):
@@ -43,3 +45,14 @@ def only_the_fenestra_tab(closed_panels):
         bpy.utils.unregister_class(panel)
         panel.bl_options = {'DEFAULT_CLOSED'}
         bpy.utils.register_class(panel)
+
+
+def save_area(pixels, area, path, name="area_crop"):
+    """Writes `area` (its viewport and sidebar), cropped from the window's screenshot `pixels` ((h, w, 3)
+    display values, bottom row first), to the PNG `path`."""
+    crop = pixels[area.y:area.y + area.height, area.x:area.x + area.width]
+    image = bpy.data.images.new(name, crop.shape[1], crop.shape[0])
+    image.pixels.foreach_set(np.dstack([crop, np.ones(crop.shape[:2])]).astype(np.float32).ravel())
+    image.filepath_raw, image.file_format = path, 'PNG'
+    image.save()
+    bpy.data.images.remove(image)
