@@ -1,6 +1,7 @@
-"""Errors too long for the status bar, which cuts a message at its width: reported as usual (the
-Info editor and scripts keep the whole text) and, in a window, also shown whole in a popup by the
-mouse, wrapped to lines that fit."""
+"""Errors too long for the status bar, which cuts a message at its width. In a window Blender shows
+an operator's error in a popup by the mouse too, one label per line of the message: a long one is
+reported wrapped to lines that fit, so that the popup shows it whole. Scripts and background runs
+get the message on one line, as the core words it."""
 
 import textwrap
 
@@ -17,16 +18,9 @@ def popup_lines(message):
     return textwrap.wrap(message, POPUP_LINE_CHARACTERS)
 
 
-def report_error(operator, message, title=None):
-    """operator.report({'ERROR'}, message), and the popup for a long message in a window."""
-    operator.report({'ERROR'}, message)
+def report_error(operator, message):
+    """operator.report({'ERROR'}, message), wrapped for Blender's popup when long, in a window."""
     lines = popup_lines(message)
-    window_manager = bpy.context.window_manager
-    if not lines or bpy.app.background or window_manager is None or not window_manager.windows:
-        return
-
-    def draw(menu, context):
-        for line in lines:
-            menu.layout.label(text=line)
-
-    window_manager.popup_menu(draw, title=title or operator.bl_label, icon='ERROR')
+    if lines and not bpy.app.background:
+        message = "\n".join(lines)
+    operator.report({'ERROR'}, message)
