@@ -4,12 +4,13 @@ window catalogues, and the refusal of catalogues and constraints that cannot be 
 The small room of test_ground_truth: a 3 m wide, 2.5 m high south wall of 0.35 m elements."""
 
 import json
+import os
 
 import numpy as np
 import pytest
 
 import fenestra
-from conftest import box_obj
+from conftest import EXAMPLES, box_obj
 from test_ground_truth import PATHS, TARGET, grid_window, small_scene
 
 FAST = {"paths": 1024, "generations": 40, "population": 24, "seed": 1, "verify": False}
@@ -326,12 +327,18 @@ def test_facade_rules_hold_in_the_result_and_say_what_they_cost(tmp_path, rules)
     assert result["openings"]
     assert result["constraints_met"], result["constraint_violations"]
     assert fenestra.constraint_violations(scene, result["openings"]) == []
-    steps = result["composition"]
+    steps = [s for s in result["composition"] if s["kept"]]  # (sills and heads aligned by default: where cheap)
     assert steps and all(s["met"] for s in steps), steps
     assert steps[-1]["error_after"] == pytest.approx(result["error"]["relative_rms"], rel=1e-6)
     for s in steps:
         if s["error_after"] > s["error_before"] + 1e-3:
-            assert any(w.startswith(s["rule"] + " raises the error from") for w in result["warnings"]), s
+            rule = s["rule"] + (" (automatic)" if s["automatic"] else "")
+            assert any(w.startswith(rule + " raises the error from") for w in result["warnings"]), s
+    for s in result["composition"]:
+        if not s["kept"]:
+            assert s["automatic"] and s["error_after"] > s["error_before"] + 0.01, s
+            assert any(w.startswith(s["rule"] + " (automatic) was left out: it would raise the error from")
+                       for w in result["warnings"]), s
     sills, heads = sills_and_heads(result)
     widths = [o["width"] for o in result["openings"]]
     if rules.get("align_sills"):
@@ -350,6 +357,38 @@ def test_facade_rules_hold_in_the_result_and_say_what_they_cost(tmp_path, rules)
     breaking = [grid_window(scene, (2, 5), (0, 2)), grid_window(scene, (4, 8), (5, 6)),
                 grid_window(scene, (3, 6), (10, 11))]
     assert fenestra.constraint_violations(scene, breaking)
+
+
+def test_sills_and_heads_align_by_default_where_that_costs_at_most_a_point(tmp_path):
+    """No facade rule given: sills and heads are aligned automatically where that raises the error by
+    at most a point, else left as placed and said so; "align_sills": false turns it off."""
+    d = three_windows_goals(tmp_path, {})
+    scene = fenestra.scene_from_dict(d, tmp_path)
+    assert json.loads(scene.constraints_json())["automatic_alignment"] is True
+    result = fenestra.solve(scene)
+    steps = result["composition"]
+    assert [s["rule"] for s in steps] == ["align_sills", "align_heads"] and all(s["automatic"] for s in steps)
+    sills, heads = sills_and_heads(result)
+    for s, values in zip(steps, (sills, heads)):
+        if s["kept"]:
+            assert s["error_after"] <= s["error_before"] + 0.01 + 1e-9, s
+            assert np.ptp(values) <= 1e-3, (s, values)
+        else:
+            assert s["error_after"] > s["error_before"] + 0.01, s
+            assert any(w.startswith(s["rule"] + " (automatic) was left out") for w in result["warnings"])
+    assert result["constraints_met"], result["constraint_violations"]  # left out: nothing broken
+    d["solver"]["constraints"]["align_sills"] = False
+    off = fenestra.solve(fenestra.scene_from_dict(d, tmp_path))
+    assert off["composition"] == []
+
+
+def test_climate_goals_keep_openings_of_a_square_meter(tmp_path):
+    automatic = fenestra.automatic_constraints(climate=True)
+    assert automatic["min_area"][0] == pytest.approx(1.0)
+    assert "min_area" not in fenestra.automatic_constraints()
+    # A scene with climate goals (examples/annual_room): its constraints keep them, and say so.
+    c = json.loads(fenestra.load_scene(os.path.join(EXAMPLES, "annual_room", "climate.json")).constraints_json())
+    assert c["min_area"] == pytest.approx(1.0) and "min_area" in c["automatic"]
 
 
 def test_facade_rules_need_a_wall(tmp_path):

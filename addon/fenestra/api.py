@@ -88,10 +88,11 @@ def catalogues():
     return _core.catalogues()
 
 
-def automatic_constraints(full_height=False):
+def automatic_constraints(full_height=False, climate=False):
     """The solver.constraints keys that take an automatic value when not given: {key: (value,
-    explanation)}, lengths in meters. full_height: doors and floor-to-ceiling glazing allowed."""
-    return _core.automatic_constraints(_arg.flag(full_height, "full_height"))
+    explanation)}, lengths in meters, areas in m^2. full_height: doors and floor-to-ceiling glazing
+    allowed; climate: a study with climate goals (openings of at least 1 m^2)."""
+    return _core.automatic_constraints(_arg.flag(full_height, "full_height"), _arg.flag(climate, "climate"))
 
 
 def _warn_sky(scene):

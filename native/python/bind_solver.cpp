@@ -53,16 +53,17 @@ void bind_nnls(py::module_& m) {
 void bind_automatic_constraints(py::module_& m) {
   m.def(
       "automatic_constraints",
-      [](bool full_height) {
+      [](bool full_height, bool climate) {
         py::dict out;
-        for (const fenestra::AutomaticConstraint& a : fenestra::automatic_constraints(full_height))
+        for (const fenestra::AutomaticConstraint& a : fenestra::automatic_constraints(full_height, climate))
           out[a.key] = py::make_tuple(a.value, a.why);
         return out;
       },
-      py::arg("full_height") = false,
+      py::arg("full_height") = false, py::arg("climate") = false,
       "The solver.constraints keys that take an automatic value when not given (and \"automatic\" is\n"
-      "on): {key: (value, explanation)}, lengths in meters. full_height: doors and floor-to-ceiling\n"
-      "glazing allowed (no automatic sill, head or margin).");
+      "on): {key: (value, explanation)}, lengths in meters, areas in m^2. full_height: doors and\n"
+      "floor-to-ceiling glazing allowed (no automatic sill, head or margin); climate: a study with\n"
+      "climate goals (openings of at least 1 m^2).");
 }
 
 void bind_catalogues(py::module_& m) {

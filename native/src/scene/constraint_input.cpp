@@ -72,7 +72,8 @@ WindowCatalogue parse_catalogue(const ScenePath& sp, const json& j, const std::s
 
 }  // namespace
 
-OpeningConstraints parse_constraints(const ScenePath& sp, const json& j, double element_size, const std::string& key) {
+OpeningConstraints parse_constraints(const ScenePath& sp, const json& j, double element_size, const std::string& key,
+                                     bool climate) {
   if (!j.is_object()) sp.fail(key, "expected an object");
   check_known_keys(sp, j, key,
                    {"min_area", "max_area", "min_aspect", "max_aspect", "min_width", "max_width", "min_height",
@@ -134,7 +135,7 @@ OpeningConstraints parse_constraints(const ScenePath& sp, const json& j, double 
   };
   if (automatic) {
     std::vector<AutomaticConstraint> taken;
-    for (const AutomaticConstraint& a : automatic_constraints(full_height)) {
+    for (const AutomaticConstraint& a : automatic_constraints(full_height, climate)) {
       const bool a_size = std::string(a.key) == "min_width" || std::string(a.key) == "min_height";
       if (!j.contains(a.key) && !(a_size && !c.catalogue.empty())) taken.push_back(a);  // a catalogue sets sizes
     }
@@ -188,7 +189,8 @@ void apply_panel_constraints(const ScenePath& sp, const json& solver, Scene* sce
       if (!entry.at("constraints").is_object()) sp.fail(key + ".constraints", "expected an object");
       merged.update(entry.at("constraints"));
     }
-    const OpeningConstraints set = parse_constraints(sp, merged, scene->domain.element_size(), key + ".constraints");
+    const OpeningConstraints set = parse_constraints(sp, merged, scene->domain.element_size(), key + ".constraints",
+                                                     !scene->sensors.climate_goals.empty());
     int matched = 0;
     for (size_t p = 0; p < panels.size(); ++p) {
       bool match = panels[p].material >= 0 &&

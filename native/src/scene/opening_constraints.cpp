@@ -145,13 +145,14 @@ bool OpeningConstraints::any() const {
          panel_width_per_opening > 0.0 || !catalogue.empty() || composes();
 }
 
-std::vector<AutomaticConstraint> automatic_constraints(bool full_height) {
+std::vector<AutomaticConstraint> automatic_constraints(bool full_height, bool climate) {
   std::vector<AutomaticConstraint> list = {
       {"min_width", 0.5, "openings at least 0.5 m wide"},
       {"min_height", 0.5, "openings at least 0.5 m high"},
       {"min_gap", 0.5, "a pier of at least 0.5 m between two openings"},
       {"panel_width_per_opening", 3.0, "at most one opening per 3 m of a panel's width"},
   };
+  if (climate) list.push_back({"min_area", kClimateMinArea, "with climate goals, openings of at least 1 m2"});
   if (!full_height) {
     list.push_back({"margin", 0.2, "0.2 m clear of a panel's edges and corners"});
     list.push_back({"sill_min", 0.3, "sills at least 0.3 m above a wall's bottom"});
@@ -165,7 +166,7 @@ void set_constraint(OpeningConstraints* c, const std::string& key, double value)
       {"min_width", &c->min_width}, {"min_height", &c->min_height},
       {"min_gap", &c->min_gap},     {"panel_width_per_opening", &c->panel_width_per_opening},
       {"margin", &c->margin},       {"sill_min", &c->sill_min},
-      {"head_clearance", &c->head_clearance}};
+      {"head_clearance", &c->head_clearance}, {"min_area", &c->min_area}};
   for (const auto& [name, field] : keys)
     if (key == name) {
       *field = value;

@@ -92,7 +92,10 @@ struct AutomaticConstraint {
   double value;
   const char* why;  // one line for the docs and the add-on's panel
 };
-std::vector<AutomaticConstraint> automatic_constraints(bool full_height);
+// With climate goals (`climate`), openings also keep kClimateMinArea: a year's sDA and ASE are met
+// by rooms' windows, not by holes of a quarter of a square meter in a corner.
+std::vector<AutomaticConstraint> automatic_constraints(bool full_height, bool climate = false);
+inline constexpr double kClimateMinArea = 1.0;  // m^2
 // Sets `key` (one of automatic_constraints()' keys) to `value`.
 void set_constraint(OpeningConstraints* c, const std::string& key, double value);
 

@@ -98,7 +98,8 @@ Scene parse_scene(const std::string& text, const std::string& base_dir, const st
     scene.solver = parse_solver(sp, j.value("solver", json()));
     const json solver = j.value("solver", json());
     const json given = solver.is_object() ? solver.value("constraints", json::object()) : json::object();
-    scene.solver.constraints = parse_constraints(sp, given, scene.domain.element_size(), "solver.constraints");
+    scene.solver.constraints = parse_constraints(sp, given, scene.domain.element_size(), "solver.constraints",
+                                                 !scene.sensors.climate_goals.empty());
     apply_panel_constraints(sp, j.value("solver", json()), &scene);
     const std::string no_fit = catalogue_fit_problem(scene.domain, scene.solver.constraints);
     if (!no_fit.empty()) sp.fail("solver.constraints.catalogue", no_fit);

@@ -9,23 +9,26 @@ _cache = {}
 _CATALOGUE_SIZES = ("min_width", "min_height")
 
 
-def _defaults(full_height):
-    if full_height not in _cache:
+def _defaults(full_height, climate):
+    if (full_height, climate) not in _cache:
         from ...api import automatic_constraints
-        _cache[full_height] = automatic_constraints(full_height=full_height)
-    return _cache[full_height]
+        _cache[full_height, climate] = automatic_constraints(full_height=full_height, climate=climate)
+    return _cache[full_height, climate]
 
 
 def _text(key, value):
     if key == "panel_width_per_opening":
         return "auto 1 per %g m" % value
+    if key == "min_area":
+        return "auto %g m\u00b2" % value
     return "auto %g m" % value
 
 
-def automatic_values(constraints):
-    """{key: greyed text} for the keys left at 0 that the solver fills in."""
+def automatic_values(constraints, climate=False):
+    """{key: greyed text} for the keys left at 0 that the solver fills in; `climate`: the study has
+    climate goals."""
     if not constraints.automatic or native.unavailable() is not None:
         return {}
-    values = _defaults(bool(constraints.full_height))
+    values = _defaults(bool(constraints.full_height), bool(climate))
     return {key: _text(key, value) for key, (value, _why) in values.items()
             if getattr(constraints, key) == 0 and not (constraints.catalogue != 'NONE' and key in _CATALOGUE_SIZES)}

@@ -219,7 +219,9 @@ class FENESTRA_PT_constraints(FenestraPanel, bpy.types.Panel):
         row.prop(c, "full_height", text="Full Height")
         layout.prop(c, "catalogue")
         layout.label(text="0 = unset, automatic greyed" if c.automatic else "0 = unset")
-        automatic = constraint_defaults.automatic_values(c)
+        settings = context.scene.fenestra
+        climate = settings.sky.type == 'CLIMATE' and len(settings.goals.climate) > 0
+        automatic = constraint_defaults.automatic_values(c, climate)
         col = layout.column(align=True)
         for key in c.KEYS:
             if key in automatic:  # left at 0: greyed, named with the value the solver will use
