@@ -387,7 +387,7 @@ def test_climate_goals_keep_openings_of_a_square_meter(tmp_path):
     assert automatic["min_area"][0] == pytest.approx(1.0)
     assert "min_area" not in fenestra.automatic_constraints()
     # A scene with climate goals (examples/annual_room): its constraints keep them, and say so.
-    c = json.loads(fenestra.load_scene(os.path.join(EXAMPLES, "annual_room", "climate.json")).constraints_json())
+    c = json.loads(fenestra.load_scene(os.path.join(EXAMPLES, "annual_room", "design.json")).constraints_json())
     assert c["min_area"] == pytest.approx(1.0) and "min_area" in c["automatic"]
 
 
