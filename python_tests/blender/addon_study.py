@@ -211,10 +211,17 @@ class Solve(unittest.TestCase):
         automatic = fenestra.automatic_constraints()
         self.assertEqual(set(shown), set(automatic))
         self.assertEqual(shown["min_width"], "auto %g m" % automatic["min_width"][0])
+        # With climate goals, openings of at least 1 m2; sills and heads aligned where cheap.
+        self.assertEqual(constraint_defaults.automatic_values(c, climate=True)["min_area"], "auto 1 m\u00b2")
+        self.assertEqual(constraint_defaults.aligned_by_default(c), ("align_sills", "align_heads"))
+        c.align_heads = True  # chosen: a rule, not a default
+        self.assertEqual(constraint_defaults.aligned_by_default(c), ())
+        c.align_heads = False
         c.min_width = 0.8  # set: no longer automatic
         self.assertNotIn("min_width", constraint_defaults.automatic_values(c))
         c.full_height = True
         self.assertNotIn("sill_min", constraint_defaults.automatic_values(c))
+        self.assertEqual(constraint_defaults.aligned_by_default(c), ())
         c.catalogue = 'residential'
         self.assertNotIn("min_height", constraint_defaults.automatic_values(c))
         c.automatic = False

@@ -32,3 +32,17 @@ def automatic_values(constraints, climate=False):
     values = _defaults(bool(constraints.full_height), bool(climate))
     return {key: _text(key, value) for key, (value, _why) in values.items()
             if getattr(constraints, key) == 0 and not (constraints.catalogue != 'NONE' and key in _CATALOGUE_SIZES)}
+
+
+# Sills and heads the solver aligns by default, where that costs at most a point of error.
+_ALIGNED = ("align_sills", "align_heads")
+
+
+def aligned_by_default(constraints):
+    """The composition keys the solver applies by default (docs/solver.md, "Facade composition"):
+    with Automatic on, Full Height off and none of Align Sills, Align Heads or Sill Heights set."""
+    if not constraints.automatic or constraints.full_height or constraints.sill_heights.strip():
+        return ()
+    if any(getattr(constraints, key) for key in _ALIGNED):
+        return ()
+    return _ALIGNED

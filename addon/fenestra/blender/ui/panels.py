@@ -231,9 +231,15 @@ class FENESTRA_PT_constraints(FenestraPanel, bpy.types.Panel):
             else:
                 col.prop(c, key)
         layout.label(text="Facade Composition")
+        aligned_by_default = constraint_defaults.aligned_by_default(c)
         grid = layout.grid_flow(row_major=True, columns=0, even_columns=True, align=True)  # as many as fit
         for key in c.COMPOSITION:
-            grid.prop(c, key)
+            if key in aligned_by_default:  # greyed, named with what the solver will do
+                row = grid.row(align=True)
+                row.active = False
+                row.prop(c, key, text="%s (auto where cheap)" % c.bl_rna.properties[key].name)
+            else:
+                grid.prop(c, key)
         layout.label(text="Sill Heights (m, e.g. 0.9, 1.2):")
         layout.prop(c, "sill_heights", text="")
         try:
