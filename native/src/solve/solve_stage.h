@@ -52,6 +52,7 @@ inline constexpr const char* kNoThickWallEdgeSearch = "skipped: the thick-wall e
 inline constexpr const char* kOneOpening = "skipped: one opening";
 inline constexpr const char* kCutsWithinNoise = "skipped: the openings' cut meets the goals within its noise";
 inline constexpr const char* kNoFacadeRules = "skipped: no facade rules";
+inline constexpr const char* kNothingToAlign = "skipped: no facade has two openings to align";
 inline constexpr const char* kNoTradeoffs = "skipped: solver.tradeoffs is off";
 inline constexpr const char* kNoLeastGlazing = "skipped: goals.least_glazing is off";
 inline constexpr const char* kNoVerify = "skipped: solver.verify is off";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -74,6 +75,22 @@ double traced_share(size_t traced, size_t cut) {
 bool composes(const OpeningDomain& domain, const OpeningConstraints& constraints) {
   for (size_t p = 0; p < domain.panels().size(); ++p)
     if (constraints.for_panel(static_cast<int>(p)).composes()) return true;
+  return false;
+}
+
+// Rules the user set (not only the automatic alignment of sills and heads).
+bool composes_by_choice(const OpeningDomain& domain, const OpeningConstraints& constraints) {
+  for (size_t p = 0; p < domain.panels().size(); ++p)
+    if (constraints.for_panel(static_cast<int>(p)).composes_by_choice()) return true;
+  return false;
+}
+
+// Whether some facade holds two openings or more.
+bool a_facade_has_two(const OpeningDomain& domain, const std::vector<PanelRectangle>& openings) {
+  const std::vector<int> facade = facades_of(domain);
+  std::map<int, int> count;
+  for (const PanelRectangle& r : openings)
+    if (facade[static_cast<size_t>(r.panel)] >= 0 && ++count[facade[static_cast<size_t>(r.panel)]] >= 2) return true;
   return false;
 }
 
@@ -768,6 +785,8 @@ class OpeningSolve {
     if (!composes(scene_.domain, constraints_))
       return skip_stage(&out_.stages, "composition", stop_reason::kNoFacadeRules);
     if (final_rects_.empty()) return skip_stage(&out_.stages, "composition", stop_reason::kNoOpenings);
+    if (!composes_by_choice(scene_.domain, constraints_) && !a_facade_has_two(scene_.domain, final_rects_))
+      return skip_stage(&out_.stages, "composition", stop_reason::kNothingToAlign);
     const std::function<double(const std::vector<PanelRectangle>&)> error_of =
         [this](const std::vector<PanelRectangle>& set) { return goal_error(out_.goals, values_of(set).value).relative_rms; };
     compose_seconds_ = run_stage(&out_.stages, "composition", [&] {
