@@ -797,8 +797,8 @@ class OpeningSolve {
         if (step.automatic && !step.kept)
           out_.warnings.push_back(step.rule + " (automatic) was left out: " +
                                   (step.met ? "it would raise the error from " + percent_text(step.error_before) +
-                                                  " to " + percent_text(step.error_after) + ", more than " +
-                                                  percent_text(kAutomaticAlignmentCost)
+                                                  " to " + percent_text(step.error_after) + ", by more than " +
+                                                  decimal_text(100.0 * kAutomaticAlignmentCost, "%g") + " point"
                                             : std::string("no admissible way to meet it was found on every facade")));
         else if (!step.met)
           out_.warnings.push_back(step.rule + ": no admissible way to meet it was found on every facade; left as it was");
