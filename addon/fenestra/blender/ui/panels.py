@@ -257,17 +257,23 @@ def draw_tradeoffs(box, r, per_sensor_goals):
     box.label(text="Trade-offs (predicted)" if per_sensor_goals else "Trade-offs")
     col = box.column(align=True)
     for i, t in enumerate(r.tradeoffs):
-        text = "%s: %.2f m\u00b2" % (counted(t.openings, "opening"), t.glazing_area)
+        text = "%s, %.2f m\u00b2" % (counted(t.openings, "opening"), t.glazing_area)
+        icon = 'NONE'
         if per_sensor_goals:
             text += ", %.1f %%" % (100 * t.relative_rms)
-        else:
-            text += {1: ", goals met", 0: ", goals not met"}.get(t.climate_met, "")
-        op = col.operator("fenestra.apply_tradeoff", depress=(i == r.tradeoff_shown), text=text)
+        else:  # met or not at a glance; each goal's figure below, a line each (the sidebar is narrow)
+            icon = {1: 'CHECKMARK', 0: 'X'}.get(t.climate_met, 'NONE')
+        op = col.operator("fenestra.apply_tradeoff", depress=(i == r.tradeoff_shown), text=text, icon=icon)
         op.index = i
         if not per_sensor_goals and t.climate_line:
-            row = col.row()
-            row.active = False
-            row.label(text="  " + t.climate_line + (" (real cutters)" if t.climate_by_cutters else ""))
+            for part in t.climate_line.split(", "):
+                row = col.row()
+                row.active = False
+                row.label(text="    " + part)
+            if t.climate_by_cutters:
+                row = col.row()
+                row.active = False
+                row.label(text="    (real cutters)")
 
 
 class FENESTRA_PT_results(FenestraPanel, bpy.types.Panel):
