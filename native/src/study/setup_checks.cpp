@@ -287,7 +287,7 @@ void near_surfaces(const Scene& scene, std::vector<SetupWarning>* out) {
   tbb::parallel_for(size_t(0), total, [&](size_t i) {
     const Vec3& p = scene.sensors.points[i];
     const Vec3& n = scene.sensors.normals[i];
-    const float radius = kNearSurface + lift_at(p);
+    const float radius = kNearSurface;  // local coordinates: floats resolve far below a centimetre
     if (nearest_in_view(surfaces, mesh, p, n, radius, &domain).found())
       found[i] = 1;
     else if (nearest_in_view(surfaces, mesh, p, n, radius).found())
