@@ -2,6 +2,8 @@
 into `scene.fenestra.results.climate`, and each sensor's year (DA300, annual mean, direct-sun
 hours) onto the result's sensors for the false colour. Nothing is computed here."""
 
+import re
+
 from . import sensor_table
 
 
@@ -95,18 +97,23 @@ def tradeoff_climate(climate, entry):
 
 
 def tradeoff_line(climate, entry):
-    """A trade-off's climate figures in one line: 'sDA300/50% 62.0 % met, ASE1000,250 3.0 % met'."""
+    """A trade-off's climate figures in one line: 'sDA 62.0 % met, ASE window 3.0 % met' (a goal's
+    sensor group after its metric)."""
     figures = entry.get("climate") or {}
     parts = []
     for k, goal in enumerate(climate.get("goals", []) if climate else []):
         achieved, met = _at(figures.get("achieved"), k), _at(figures.get("met"), k)
         if achieved is not None:
             state = "" if met is None else " met" if met else " not met"
-            parts.append("%s %s%s" % (SHORT.get(goal.get("metric"), goal.get("metric", "")),
-                                      text(achieved, goal.get("unit", "")), state))
+            group = _GROUP.search(goal.get("description", ""))
+            parts.append("%s%s %s%s" % (SHORT.get(goal.get("metric"), goal.get("metric", "")),
+                                        " " + group.group(1) if group else "", text(achieved, goal.get("unit", "")),
+                                        state))
     return ", ".join(parts)
 
 
+# The sensor group a goal's description names at its end: "sDA300/50% >= 50 % (West office)".
+_GROUP = re.compile(r"\(([^()]+)\)\s*$")
 # Short names of the metrics for one-line summaries.
 SHORT = {"sda": "sDA", "ase": "ASE", "en17037": "EN 17037", "udi": "UDI", "mean": "Mean"}
 
