@@ -11,14 +11,14 @@ the model and the study folder, "solve_from_script" (an operator call, to read a
 "sidebar" (opens the 3D View's sidebar with the Fenestra tab and Item alone, returns its
 rectangle; "restore_panels" brings the other tabs back), "keymap" (the
 user key configuration's items for Fenestra's commands), "look_at_sensors" (alone, from above,
-with a goal colour attribute), "paint_goals" / "object_mode" (into Vertex Paint and back),
-"sensors_seen" (what the 3D View shows of them), "show_all",
+with a goal colour attribute), "sensors_seen" (what the 3D View shows of them), "show_all",
 "solid_room" (a room modelled as one solid: addon_sensor_grid.solid), "sensor_grids" (the sensor
 objects and their points), "reports" (the window's reports, as the Info editor lists them),
 "from_above" (the 3D View in X-ray from above), "popup" (where a screenshot differs from another
 one: a popup's extent), "screenshot", "quit". It also counts the calls of Fenestra's commands (state "calls") and records
 which operator or property the last right-click menu on a button was for (state "context_menu"). The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
 
+import contextlib
 import hashlib
 import json
 import os
@@ -40,6 +40,10 @@ SCENE = ARGS[1] if len(ARGS) > 1 else "room"
 STUDY = os.path.join(CHANNEL, "study")
 TICK_S = 0.01
 JOBS_LOCK = threading.Lock()
+# Blender (3.4 to 4.5, with Python 3.11) can crash when an operator runs from Python under a context
+# override while another Python thread holds the GIL (docs/blender.md, "Scripts and threads"): the
+# monitor thread waits, holding no GIL, while this driver runs one (overridden()).
+QUIET = threading.RLock()
 state = {"next_command": 0, "jobs": 0, "last_job": None, "calls": {},
          "context_menu": {"count": 0, "operator": None, "property": None}}
 COMMANDS = ("fenestra.solve_openings", "fenestra.evaluate_openings", "fenestra.annual_daylight", "fenestra.check_setup",
@@ -101,11 +105,18 @@ def record_context_menu(menu, context):
     menu_state["property"] = prop.identifier if prop is not None else None
 
 
+@contextlib.contextmanager
+def overridden(**members):
+    """Context.temp_override(**members), the monitor thread paused meanwhile (QUIET)."""
+    with QUIET, bpy.context.temp_override(**members):
+        yield
+
+
 def in_view3d():
     """A context with the window and its 3D View, as an operator run from the viewport sees."""
     window = bpy.context.window_manager.windows[0]
     area = next(a for a in window.screen.areas if a.type == 'VIEW_3D')
-    return bpy.context.temp_override(window=window, area=area)
+    return overridden(window=window, area=area)
 
 
 def undo_push(message):
@@ -143,7 +154,8 @@ def monitor_jobs():
     writes state.json, can be held up by redraws for a good part of a second."""
     while True:
         try:
-            write_json(os.path.join(CHANNEL, "job.json"), {"now": time.monotonic(), "job": job_state()})
+            with QUIET:
+                write_json(os.path.join(CHANNEL, "job.json"), {"now": time.monotonic(), "job": job_state()})
         except Exception:
             traceback.print_exc()
         time.sleep(0.003)
@@ -256,7 +268,7 @@ def sensors_seen(name):
     window, area = view3d()
     region = next(r for r in area.regions if r.type == 'WINDOW')
     path = os.path.join(CHANNEL, name + ".png")
-    with bpy.context.temp_override(window=window, area=area, region=region):
+    with overridden(window=window, area=area, region=region):
         bpy.ops.screen.screenshot_area(filepath=path)
         shown = result_display.current(bpy.context)
     image = bpy.data.images.load(path)
@@ -305,20 +317,6 @@ def look_at_sensors():
     return {}
 
 
-def paint_goals():
-    window, area = view3d()
-    with bpy.context.temp_override(window=window, area=area):
-        bpy.ops.object.mode_set(mode='VERTEX_PAINT')
-    return {}
-
-
-def object_mode():
-    window, area = view3d()
-    with bpy.context.temp_override(window=window, area=area):
-        bpy.ops.object.mode_set(mode='OBJECT')
-    return {}
-
-
 def solid_room():
     """A room modelled as one solid (python_tests/blender/addon_sensor_grid.py: a 4 x 5 x 3 m cavity,
     walls 0.3 m, slabs 0.2 m, the cavity's south face the opening domain) named 'Room', selected and
@@ -355,7 +353,7 @@ def reports():
     area.type = 'INFO'
     try:
         region = next(r for r in area.regions if r.type == 'WINDOW')
-        with bpy.context.temp_override(window=window, area=area, region=region):
+        with overridden(window=window, area=area, region=region):
             bpy.ops.info.select_all(action='SELECT')
             bpy.ops.info.report_copy()
             bpy.ops.info.select_all(action='DESELECT')
@@ -463,16 +461,12 @@ def follow_commands():
             for o in bpy.context.view_layer.objects:
                 o.hide_set(False)
             reply = {}
-        elif name == "paint_goals":
-            reply = paint_goals()
-        elif name == "object_mode":
-            reply = object_mode()
         elif name == "sensors_seen":
             reply = sensors_seen(args["name"])
         elif name == "screenshot":
             path = os.path.join(CHANNEL, args["name"] + ".png")
             window = bpy.context.window_manager.windows[0]
-            with bpy.context.temp_override(window=window):
+            with overridden(window=window):
                 bpy.ops.screen.screenshot(filepath=path)
             reply = {"path": path}
         elif name == "select":

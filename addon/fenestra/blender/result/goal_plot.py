@@ -94,8 +94,9 @@ def show(context, image):
             area.tag_redraw()
             return
     windows = set(context.window_manager.windows)
-    with context.temp_override(area=context.area, region=context.region):
-        bpy.ops.screen.area_dupli('INVOKE_DEFAULT')  # the current area, in a window of its own
+    # The button's own context, not an override: an operator under one can crash Blender while
+    # another Python thread runs (docs/blender.md, "Scripts and threads").
+    bpy.ops.screen.area_dupli('INVOKE_DEFAULT')  # the current area, in a window of its own
     new = [w for w in context.window_manager.windows if w not in windows]
     if not new:
         return
