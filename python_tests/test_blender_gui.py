@@ -24,6 +24,9 @@ CANCEL_BOUND_S = 0.5
 # From the key to the stop: Blender's own event handling too, which with software OpenGL on a busy
 # machine waits for redraws of a good part of a second.
 KEY_TO_STOP_BOUND_S = 3.0
+# Blender's tooltip comes 0.5 s after the pointer rests; with both cores tracing, seconds later.
+TOOLTIP_WAIT_S = 20.0
+TOOLTIP_NUDGE_S = 2.0
 
 pytestmark = pytest.mark.skipif(None in (BLENDER, XVFB, XDOTOOL), reason="needs Blender, Xvfb and xdotool")
 
@@ -457,4 +460,65 @@ def test_right_click_changes_the_shortcut_of_check_setup(gui, solved):
     gui.key("ctrl+F8")
     gui.wait_for(lambda s: s["calls"].get("fenestra.check_setup", 0) > before, timeout=30,
                  what="Check Setup run by its new shortcut")
+    gui.command("restore_panels")
+
+
+def tooltip_box(gui, before, after, x, y, rect):
+    """The extent of what changed from screenshot `before` to `after` under the button at (x, y) when
+    it looks like a tooltip there (three lines or more below the button, wider than the sidebar
+    `rect`), else None."""
+    box = gui.command("popup", before=before, after=after, x=x, y=y + 50, message="")
+    left, top, right, bottom = box["extent"]
+    if box["changed"] and bottom - (y + 10) >= 3 * 14 and right - left > rect[2] - rect[0]:
+        return box["extent"]
+    return None
+
+
+def glide(gui, x, y, steps=20):
+    """The pointer from the 3D View's centre to (x, y) in small steps, as a hand moves it."""
+    x0, y0 = gui.state["view3d"]
+    for i in range(1, steps + 1):
+        gui.xdotool("mousemove", str(round(x0 + (x - x0) * i / steps)), str(round(y0 + (y - y0) * i / steps)))
+        time.sleep(0.02)
+
+
+def test_the_progress_bar_explains_itself_on_hover(gui, solved):
+    """During a solve, the pointer brought to rest on the Solve panel's progress bar (where Solve
+    Openings was) brings Blender's tooltip: a box under the bar, three lines or more (the stage, then
+    what the bar shows and that Esc or Cancel stops the solve), wider than the sidebar; a second
+    later, after the bar's own updates, it is still there.
+
+    With software OpenGL and both cores tracing, Blender's window is slow (about one event loop a
+    second over the 3D View) and a tooltip does not always come for a pointer held perfectly still:
+    like a hand, the pointer moves by a pixel every TOOLTIP_NUDGE_S until it does (within
+    TOOLTIP_WAIT_S)."""
+    gui.command("set", values=QUICK)
+    rect = open_fenestra_sidebar(gui)
+    x, y = find_button(gui, rect, "FENESTRA_OT_solve_openings")
+    gui.command("set", values=dict(QUICK, **LONG_TRACING))
+    gui.point_at_view()
+    number = gui.press_solve()
+    gui.wait_for_stage(number, "tracing")
+    try:
+        time.sleep(1.0)
+        gui.command("screenshot", name="progress_unhovered")
+        glide(gui, x, y)
+        box, nudges, deadline = None, 0, time.monotonic() + TOOLTIP_WAIT_S
+        while box is None and time.monotonic() < deadline:
+            time.sleep(TOOLTIP_NUDGE_S)
+            gui.command("screenshot", name="progress_tooltip")
+            box = tooltip_box(gui, "progress_unhovered", "progress_tooltip", x, y, rect)
+            if box is None:
+                nudges += 1
+                gui.xdotool("mousemove", str(x + nudges % 2), str(y))
+        print("tooltip after %d nudges: %s" % (nudges, box))
+        assert box is not None, "no tooltip under the bar at (%d, %d) in %.0f s" % (x, y, TOOLTIP_WAIT_S)
+        time.sleep(1.0)
+        gui.command("screenshot", name="progress_tooltip_later")
+        assert tooltip_box(gui, "progress_unhovered", "progress_tooltip_later", x, y, rect) is not None
+        assert gui.read_state("job.json")["job"]["outcome"] is None, "the solve ended before the checks"
+    finally:
+        gui.point_at_view()
+        gui.key("Escape")
+        gui.wait_until_ended(number)
     gui.command("restore_panels")

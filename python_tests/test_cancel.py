@@ -160,6 +160,43 @@ def test_loading_a_daylight_sky_releases_the_gil_and_reports(small_room):
     assert all(0.0 <= f < 0.5 for f in fractions) and fractions[-1] > 0.0
 
 
+
+def test_off_the_main_thread_the_work_runs_on_the_callers_thread(small_room):
+    """A job's own thread (Blender's add-on solves on one) runs the native work itself, without a
+    callback: no helper thread, and no Python runs on it meanwhile (its profile sees no call while
+    the sky builds), while the main thread runs Python freely (docs/blender.md, "Scripts and
+    threads")."""
+    path = long_daylight(small_room)
+    progress = fenestra.Progress()
+    events, outcome = [], {}
+
+    def job():
+        sys.setprofile(lambda frame, event, arg: events.append(event))
+        try:
+            fenestra.load_scene(path, progress=progress)
+        except BaseException as exc:
+            outcome["error"] = exc
+        finally:
+            sys.setprofile(None)
+
+    thread = threading.Thread(target=job, name="a job", daemon=True)
+    thread.start()
+    deadline = time.monotonic() + 120
+    while not progress.status.startswith("building the daylight sky"):
+        assert thread.is_alive() and time.monotonic() < deadline, (progress.status, outcome)
+        time.sleep(0.002)
+    seen, ticks, start = len(events), 0, time.monotonic()
+    while time.monotonic() - start < 0.5:
+        ticks += 1
+    quiet = len(events) - seen
+    names = [t.name for t in threading.enumerate()]
+    progress.cancel()
+    thread.join(LATENCY_BOUND_S + 30)
+    assert isinstance(outcome.get("error"), fenestra.Cancelled), outcome
+    assert "fenestra-worker" not in names, names
+    assert quiet == 0, "%d profile events on the job's thread in half a second of native work" % quiet
+    assert ticks > 1000, ticks
+
 def solvable(small_room, **solver):
     scene = scene_dict(small_room)
     scene["sensors"]["goals"], scene["sensors"]["goal_units"] = [0.5, 0.3, 0.4], "normalized"

@@ -191,8 +191,15 @@ def _run(work, progress, callback):
     waited for, through further Ctrl-C, before the exception is raised: no native work is left
     running on a thread when the interpreter exits (that aborted the process).
     (Thread.join is not used to wait: in Python 3.11 an interrupted join can leave the thread
-    marked as finished while it still runs.)"""
+    marked as finished while it still runs.)
+
+    Off the main thread, without a callback, the work runs on the caller's thread: Ctrl-C only
+    reaches the main thread, and no Python wakes meanwhile (Blender's add-on solves on a thread of
+    its own while a script may run operators on the main one: docs/blender.md, "Scripts and
+    threads")."""
     progress = progress if progress is not None else Progress()
+    if callback is None and threading.current_thread() is not threading.main_thread():
+        return work(progress)
     outcome = {}
     done = threading.Event()
 
