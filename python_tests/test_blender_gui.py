@@ -474,6 +474,14 @@ def tooltip_box(gui, before, after, x, y, rect):
     return None
 
 
+def scroll(gui, rect, button, clicks):
+    """Mouse wheel clicks over the sidebar `rect` (button "5" scrolls down, "4" up)."""
+    gui.xdotool("mousemove", str((rect[0] + rect[2]) // 2), str((rect[1] + rect[3]) // 2))
+    time.sleep(0.2)
+    gui.xdotool("click", "--repeat", str(clicks), "--delay", "50", button)
+    time.sleep(0.8)
+
+
 def glide(gui, x, y, steps=20):
     """The pointer from the 3D View's centre to (x, y) in small steps, as a hand moves it."""
     x0, y0 = gui.state["view3d"]
@@ -522,3 +530,30 @@ def test_the_progress_bar_explains_itself_on_hover(gui, solved):
         gui.key("Escape")
         gui.wait_until_ended(number)
     gui.command("restore_panels")
+
+
+def test_goals_vs_achieved_opens_in_a_window_of_its_own(gui, solved):
+    """A real click on Goals vs Achieved Plot (Results panel) opens a second window whose area is an
+    Image Editor showing goals_vs_achieved.png, and the main window keeps its areas."""
+    gui.command("set", values=QUICK)
+    before = gui.command("windows")["windows"]
+    assert len(before) == 1, before
+    rect = open_fenestra_sidebar(gui)
+    scroll(gui, rect, "5", 40)  # down to the Results panel, with the wheel
+    x, y = find_button(gui, rect, "FENESTRA_OT_show_goal_plot")
+    calls_before = calls(gui, "fenestra.show_goal_plot")
+    gui.xdotool("mousemove", str(x), str(y))
+    time.sleep(0.3)
+    gui.xdotool("click", "1")
+    deadline = time.monotonic() + 60
+    while len(gui.command("windows")["windows"]) < 2 and time.monotonic() < deadline:
+        time.sleep(0.5)
+    windows = gui.command("windows")["windows"]
+    try:
+        assert calls(gui, "fenestra.show_goal_plot") == calls_before + 1
+        assert len(windows) == 2 and windows[0] == before[0], windows
+        assert windows[1] == [['IMAGE_EDITOR', "goals_vs_achieved.png"]], windows
+    finally:
+        gui.command("close_other_windows")
+        scroll(gui, rect, "4", 40)
+        gui.command("restore_panels")

@@ -14,7 +14,8 @@ user key configuration's items for Fenestra's commands), "look_at_sensors" (alon
 with a goal colour attribute), "sensors_seen" (what the 3D View shows of them), "show_all",
 "solid_room" (a room modelled as one solid: addon_sensor_grid.solid), "sensor_grids" (the sensor
 objects and their points), "reports" (the window's reports, as the Info editor lists them),
-"from_above" (the 3D View in X-ray from above), "popup" (where a screenshot differs from another
+"from_above" (the 3D View in X-ray from above), "windows" (each window's areas) and
+"close_other_windows", "popup" (where a screenshot differs from another
 one: a popup's extent), "screenshot", "quit". It also counts the calls of Fenestra's commands (state "calls") and records
 which operator or property the last right-click menu on a button was for (state "context_menu"). The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
 
@@ -47,6 +48,7 @@ QUIET = threading.RLock()
 state = {"next_command": 0, "jobs": 0, "last_job": None, "calls": {},
          "context_menu": {"count": 0, "operator": None, "property": None}}
 COMMANDS = ("fenestra.solve_openings", "fenestra.evaluate_openings", "fenestra.annual_daylight", "fenestra.check_setup",
+            "fenestra.show_goal_plot",
             "fenestra.add_sensor_grid")
 
 
@@ -457,6 +459,15 @@ def follow_commands():
             reply = {"items": keymap_items()}
         elif name == "look_at_sensors":
             reply = look_at_sensors()
+        elif name == "windows":  # each window's areas: type and, for an Image Editor, its image
+            reply = {"windows": [[[a.type, a.spaces.active.image.name if a.type == 'IMAGE_EDITOR'
+                                   and a.spaces.active.image else None] for a in w.screen.areas]
+                                 for w in bpy.context.window_manager.windows]}
+        elif name == "close_other_windows":
+            for w in list(bpy.context.window_manager.windows)[1:]:
+                with overridden(window=w):
+                    bpy.ops.wm.window_close()
+            reply = {}
         elif name == "show_all":
             for o in bpy.context.view_layer.objects:
                 o.hide_set(False)
