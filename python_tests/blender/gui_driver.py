@@ -2,8 +2,8 @@
 
     blender --window-geometry 0 0 W H EMPTY.blend --python gui_driver.py -- CHANNEL [SCENE]
 
-Builds the room example (examples/build_blend_examples.py; SCENE "room", the default) or nothing
-(SCENE "empty") with the add-on, study folder CHANNEL/study, maps F5 to Solve Openings in the Window keymap (as a user's shortcut would), and
+Builds the room example (examples/build_blend_examples.py; SCENE "room", the default), a floor of
+two rooms with climate goals (SCENE "climate") or nothing (SCENE "empty") with the add-on, study folder CHANNEL/study, maps F5 to Solve Openings in the Window keymap (as a user's shortcut would), and
 then, while the test drives Blender with real key events, reports its state to CHANNEL/state.json
 every few milliseconds (the running solve's also to CHANNEL/job.json, from a thread) and follows the test's commands (CHANNEL/command-N.json, answered in
 CHANNEL/reply-N.json): "set" scene.fenestra settings (optionally as an undo step), "snapshot" of
@@ -14,7 +14,7 @@ user key configuration's items for Fenestra's commands), "look_at_sensors" (alon
 with a goal colour attribute), "sensors_seen" (what the 3D View shows of them), "show_all",
 "solid_room" (a room modelled as one solid: addon_sensor_grid.solid), "sensor_grids" (the sensor
 objects and their points), "reports" (the window's reports, as the Info editor lists them),
-"from_above" (the 3D View in X-ray from above), "windows" (each window's areas) and
+"from_above" (the 3D View in X-ray from above), "results" (what the Results panels read), "windows" (each window's areas) and
 "close_other_windows", "popup" (where a screenshot differs from another
 one: a popup's extent), "screenshot", "quit". It also counts the calls of Fenestra's commands (state "calls") and records
 which operator or property the last right-click menu on a button was for (state "context_menu"). The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
@@ -48,7 +48,7 @@ QUIET = threading.RLock()
 state = {"next_command": 0, "jobs": 0, "last_job": None, "calls": {},
          "context_menu": {"count": 0, "operator": None, "property": None}}
 COMMANDS = ("fenestra.solve_openings", "fenestra.evaluate_openings", "fenestra.annual_daylight", "fenestra.check_setup",
-            "fenestra.show_goal_plot",
+            "fenestra.show_goal_plot", "fenestra.apply_tradeoff",
             "fenestra.add_sensor_grid")
 
 
@@ -64,6 +64,9 @@ def setup():
     if SCENE == "room":
         with in_view3d():  # the operators that build it need a window's context
             examples.build_room()
+    elif SCENE == "climate":
+        with in_view3d():
+            climate_floor()
     f = bpy.context.scene.fenestra
     f.solve.study_directory = STUDY
     km = bpy.context.window_manager.keyconfigs.addon.keymaps.new(name="Window", space_type='EMPTY')
@@ -73,6 +76,41 @@ def setup():
     count_calls()
     bpy.types.UI_MT_button_context_menu.append(record_context_menu)
     undo_push("Fenestra GUI test set up")
+
+
+def climate_floor():
+    """addon_climate.py's floor of two rooms (a sensor grid each, a year of Chicago weather), an sDA
+    and an ASE goal per room, Least Glazing: a climate solve with trade-offs to click."""
+    import addon_climate
+    import addon_study
+    addon_climate.OUT = addon_study.OUT = os.path.join(CHANNEL, "climate")
+    grids = addon_climate.floor(("West office", "East office"))
+    f = bpy.context.scene.fenestra
+    f.goals.source = 'NONE'
+    for grid in grids:
+        addon_climate.add_goal('SDA', sda_area=50.0, sensor_group=grid.name)
+        addon_climate.add_goal('ASE', sensor_group=grid.name)
+    f.goals.least_glazing = True
+
+
+def results():
+    """What the Results and Climate Goals panels read: the trade-offs, which one is shown, the
+    openings, each climate goal's figure; and the false colour legend's title."""
+    import numpy as np
+    from fenestra.blender.result import result_display
+    r = bpy.context.scene.fenestra.results
+    c = r.climate
+    window, area = view3d()
+    with overridden(window=window, area=area):
+        shown = result_display.current(bpy.context)
+    legend = shown[0].title_for(np.concatenate(list(shown[1].values()))) if shown else None
+    return {"valid": r.valid, "legend": legend, "tradeoff_shown": r.tradeoff_shown, "openings": r.openings,
+            "open_elements": r.open_elements, "cutters": sorted(o.name for o in bpy.data.objects if o.fenestra.is_opening),
+            "tradeoffs": [{"openings": t.openings, "glazing_area": t.glazing_area, "climate_met": t.climate_met,
+                           "climate_line": t.climate_line} for t in r.tradeoffs],
+            "climate": {"valid": c.valid, "tradeoff": c.tradeoff, "glazing_area": c.glazing_area,
+                        "goals": [[g.description, *g.lead()] for g in c.goals], "rooms": len(c.rooms)},
+            "study_path": r.study_path}
 
 
 def count_calls():
@@ -459,6 +497,8 @@ def follow_commands():
             reply = {"items": keymap_items()}
         elif name == "look_at_sensors":
             reply = look_at_sensors()
+        elif name == "results":
+            reply = results()
         elif name == "windows":  # each window's areas: type and, for an Image Editor, its image
             reply = {"windows": [[[a.type, a.spaces.active.image.name if a.type == 'IMAGE_EDITOR'
                                    and a.spaces.active.image else None] for a in w.screen.areas]

@@ -42,6 +42,19 @@ class Scale:
         title, self.units = TITLES[quantity]
         self.title = title + (" (%s)" % self.units if self.units else "")
 
+    def title_for(self, values):
+        """The legend's title over `values` (NaN: none at that sensor), saying why none has one."""
+        values = np.asarray(values, np.float64)
+        if not np.isfinite(values).any():
+            if self.quantity == 'DAYLIGHT_FACTOR':
+                return self.title + ": not known (choose it again)"
+            if self.quantity.startswith("CLIMATE_"):  # a trade-off's openings: only the answer's year is kept
+                return self.title + ": not known for a trade-off (Annual Daylight gives it)"
+            return self.title + ": no goals"
+        if self.quantity == 'RATIO' and not np.isfinite(values).all():
+            return self.title + ", grey: no goal"
+        return self.title
+
     def position(self, values):
         values = np.asarray(values, np.float64)
         with np.errstate(divide="ignore", invalid="ignore"):

@@ -84,12 +84,7 @@ def _draw():
         width = blf.dimensions(0, label)[0]
         blf.position(0, bar[0] + p * (bar[2] - bar[0]) - width / 2, bar[1] - 4 * scale - TEXT * scale, 0)
         blf.draw(0, label)
-    title = scale_info.title
-    every = np.concatenate(list(values.values()))
-    if not np.isfinite(every).any():
-        title += ": not known (choose it again)" if scale_info.quantity == 'DAYLIGHT_FACTOR' else ": no goals"
-    elif scale_info.quantity == 'RATIO' and not np.isfinite(every).all():
-        title += ", grey: no goal"
+    title = scale_info.title_for(np.concatenate(list(values.values())))
     blf.position(0, bar[0], bar[3] + 0.6 * TEXT * scale, 0)
     blf.draw(0, title)
 
