@@ -200,13 +200,20 @@ class Gui:
                              timeout=timeout, what="the solve to end")
 
 
-@pytest.fixture(scope="module")
-def gui(tmp_path_factory):
-    g = Gui(tmp_path_factory.mktemp("gui"))
-    try:
-        yield g
-    finally:
-        g.close()
+def gui_fixture(folder, scene="room"):
+    """A module's `gui` fixture: one Blender window (Gui on `scene`, in a temporary folder named
+    `folder`) for all of the module's tests."""
+    @pytest.fixture(scope="module")
+    def gui(tmp_path_factory):
+        g = Gui(tmp_path_factory.mktemp(folder), scene)
+        try:
+            yield g
+        finally:
+            g.close()
+    return gui
+
+
+gui = gui_fixture("gui")
 
 
 @pytest.fixture(scope="module")
@@ -340,6 +347,16 @@ def test_f3_finds_solve_openings_in_the_fenestra_menu(gui, solved):
 
 def calls(gui, idname):
     return gui.read_state()["calls"].get(idname, 0)
+
+
+def click(gui, x, y, idname):
+    """A real click at (x, y) that must run `idname`; waits for it to have run."""
+    before = calls(gui, idname)
+    gui.xdotool("mousemove", str(x), str(y))
+    time.sleep(0.3)
+    gui.xdotool("click", "1")
+    gui.wait_for(lambda s: s["calls"].get(idname, 0) > before, timeout=60, what="%s run by the click" % idname)
+    time.sleep(0.5)
 
 
 @pytest.mark.parametrize("typed,idname,values", [

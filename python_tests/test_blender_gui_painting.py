@@ -10,18 +10,12 @@ import time
 
 import pytest
 
-from test_blender_gui import BLENDER, XDOTOOL, XVFB, Gui, solved  # noqa: F401 (solved: a fixture)
+from test_blender_gui import BLENDER, XDOTOOL, XVFB, gui_fixture, solved  # noqa: F401 (solved: a fixture)
 
 pytestmark = pytest.mark.skipif(None in (BLENDER, XVFB, XDOTOOL), reason="needs Blender, Xvfb and xdotool")
 
 
-@pytest.fixture(scope="module")
-def gui(tmp_path_factory):
-    g = Gui(tmp_path_factory.mktemp("gui_painting"))
-    try:
-        yield g
-    finally:
-        g.close()
+gui = gui_fixture("gui_painting")
 
 
 def saturation(colours):

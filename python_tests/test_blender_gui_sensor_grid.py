@@ -12,7 +12,7 @@ import time
 
 import pytest
 
-from test_blender_gui import BLENDER, XDOTOOL, XVFB, Gui, find_button, open_fenestra_sidebar
+from test_blender_gui import BLENDER, XDOTOOL, XVFB, calls, click, find_button, gui_fixture, open_fenestra_sidebar
 
 pytestmark = pytest.mark.skipif(None in (BLENDER, XVFB, XDOTOOL), reason="needs Blender, Xvfb and xdotool")
 
@@ -20,13 +20,7 @@ CAVITY = (4.0, 5.0, 3.0)  # m, its floor's upper face at z = 0
 TOL = 1e-4  # m
 
 
-@pytest.fixture(scope="module")
-def gui(tmp_path_factory):
-    g = Gui(tmp_path_factory.mktemp("gui_grid"), scene="empty")
-    try:
-        yield g
-    finally:
-        g.close()
+gui = gui_fixture("gui_grid", scene="empty")
 
 
 @pytest.fixture(scope="module")
@@ -35,10 +29,6 @@ def sidebar(gui):
     Sky closed); the sidebar's rectangle."""
     gui.command("solid_room")
     return open_fenestra_sidebar(gui, closed=["FENESTRA_PT_domain", "FENESTRA_PT_sky"])
-
-
-def calls(gui, idname):
-    return gui.read_state()["calls"].get(idname, 0)
 
 
 def type_into(gui, rect, prop, text):
@@ -52,16 +42,6 @@ def type_into(gui, rect, prop, text):
     gui.key("ctrl+a")
     gui.xdotool("type", "--delay", "60", text)
     gui.key("Return")
-    time.sleep(0.5)
-
-
-def click(gui, x, y, idname):
-    """A real click at (x, y) that must run `idname`; waits for it to have run."""
-    before = calls(gui, idname)
-    gui.xdotool("mousemove", str(x), str(y))
-    time.sleep(0.3)
-    gui.xdotool("click", "1")
-    gui.wait_for(lambda s: s["calls"].get(idname, 0) > before, timeout=60, what="%s run by the click" % idname)
     time.sleep(0.5)
 
 

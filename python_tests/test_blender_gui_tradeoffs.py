@@ -14,20 +14,14 @@ import time
 
 import pytest
 
-from test_blender_gui import BLENDER, XDOTOOL, XVFB, Gui, find_button, open_fenestra_sidebar, scroll
+from test_blender_gui import BLENDER, XDOTOOL, XVFB, click, find_button, gui_fixture, open_fenestra_sidebar, scroll
 
 pytestmark = pytest.mark.skipif(None in (BLENDER, XVFB, XDOTOOL), reason="needs Blender, Xvfb and xdotool")
 
 SOLVE_TIMEOUT_S = 600
 
 
-@pytest.fixture(scope="module")
-def gui(tmp_path_factory):
-    g = Gui(tmp_path_factory.mktemp("gui_tradeoffs"), scene="climate")
-    try:
-        yield g
-    finally:
-        g.close()
+gui = gui_fixture("gui_tradeoffs", scene="climate")
 
 
 @pytest.fixture(scope="module")
@@ -39,15 +33,6 @@ def solved(gui):
     r = gui.command("results")
     with open(os.path.join(os.path.dirname(r["study_path"]), "result.json")) as f:
         return r, json.load(f)
-
-
-def click_button(gui, x, y, idname):
-    before = gui.read_state()["calls"].get(idname, 0)
-    gui.xdotool("mousemove", str(x), str(y))
-    time.sleep(0.3)
-    gui.xdotool("click", "1")
-    gui.wait_for(lambda s: s["calls"].get(idname, 0) > before, timeout=60, what="%s run by the click" % idname)
-    time.sleep(1.0)
 
 
 def test_clicking_a_tradeoff_shows_its_climate_figures(gui, solved):
@@ -68,7 +53,7 @@ def test_clicking_a_tradeoff_shows_its_climate_figures(gui, solved):
             scroll(gui, rect, "4", 6)
     x1, y1 = find_button(gui, rect, "FENESTRA_OT_apply_tradeoff", start=y0 + 14)
     gui.command("screenshot", name="tradeoffs_answer")
-    click_button(gui, x1, y1, "fenestra.apply_tradeoff")
+    click(gui, x1, y1, "fenestra.apply_tradeoff")
     gui.command("screenshot", name="tradeoff_shown")
     shown = gui.command("results")
     entry = result["tradeoffs"][1]

@@ -300,8 +300,13 @@ class Solved(unittest.TestCase):
             self.assertEqual(item.climate_met, int(entry["climate"]["all_met"]))
         self.assertEqual(result["tradeoffs"][0]["climate"]["achieved"], [g["achieved"] for g in climate["goals"]])
         # Each trade-off's row says its glazing and each goal's figure, met or not.
+        climate_results = installed.blender("result.climate_results")
         for item, entry in zip(r.tradeoffs, result["tradeoffs"]):
             self.assertEqual(item.climate_line.count(" met"), len(climate["goals"]), item.climate_line)
+            # The panel's rows: a goal each, its check mark or cross from the core's verdict.
+            rows = climate_results.tradeoff_rows(item.climate_line)
+            self.assertEqual([met for _, met in rows], entry["climate"]["met"], rows)
+            self.assertFalse(any(text.endswith("met") for text, _ in rows), rows)
         # A trade-off shown: the climate goals' figures are its own, with no lux error table or
         # element count (its openings are rectangles); the rooms and the year go with the answer.
         # (A second trade-off, with other figures, is put in result.json when the solve found none.)

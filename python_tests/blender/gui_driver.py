@@ -34,6 +34,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "examples"))
 sys.path.insert(0, HERE)
 import build_blend_examples as examples  # noqa: E402
+import window_script  # noqa: E402
 
 ARGS = sys.argv[sys.argv.index("--") + 1:]
 CHANNEL = ARGS[0]
@@ -273,22 +274,8 @@ def sidebar(closed=("FENESTRA_PT_domain", "FENESTRA_PT_sensors", "FENESTRA_PT_sk
     window, area = view3d()
     area.spaces.active.show_region_ui = True
     if "hidden_panels" not in state:  # the other tabs' panels out, and some of Fenestra's closed
-        state["hidden_panels"] = []
-        for name in dir(bpy.types):
-            cls = getattr(bpy.types, name)
-            if (isinstance(cls, type) and issubclass(cls, bpy.types.Panel) and getattr(cls, "bl_space_type", "") == 'VIEW_3D'
-                    and getattr(cls, "bl_region_type", "") == 'UI' and getattr(cls, "bl_category", "") != "Fenestra"
-                    and not name.startswith("FENESTRA_")):
-                try:
-                    bpy.utils.unregister_class(cls)
-                    state["hidden_panels"].append(cls)
-                except RuntimeError:
-                    pass
-        for name in closed:
-            panel = getattr(bpy.types, name)
-            bpy.utils.unregister_class(panel)
-            panel.bl_options = {'DEFAULT_CLOSED'}
-            bpy.utils.register_class(panel)
+        state["hidden_panels"] = window_script.hide_other_tabs()
+        window_script.set_panel_options({name: {'DEFAULT_CLOSED'} for name in closed})
     region = next(r for r in area.regions if r.type == 'UI')
     return to_x(window, region, 0, region.height) + to_x(window, region, region.width, 0)
 

@@ -20,6 +20,7 @@ from mathutils import Euler
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import addon_study  # noqa: E402
+import window_script  # noqa: E402
 
 OUT = os.path.abspath(sys.argv[sys.argv.index("--") + 1])
 addon_study.OUT = tempfile.mkdtemp()  # the study folder
@@ -46,24 +47,11 @@ def setup():
     space.shading.show_xray = True
     space.shading.xray_alpha = 0.6
     f.solve.element_size, f.solve.quality = 0.3, 'PREVIEW'
-    # Only the Fenestra tab in the sidebar, so that it is the one shown.
-    for name in dir(bpy.types):
-        cls = getattr(bpy.types, name)
-        if (isinstance(cls, type) and issubclass(cls, bpy.types.Panel) and getattr(cls, "bl_space_type", "") == 'VIEW_3D'
-                and getattr(cls, "bl_region_type", "") == 'UI' and getattr(cls, "bl_category", "") != "Fenestra"
-                and not name.startswith("FENESTRA_")):
-            try:
-                bpy.utils.unregister_class(cls)
-            except RuntimeError:
-                pass
-    # The Constraints sub-panel open, so that its automatic values show; Sky and Checks closed, so
-    # that the Results fit below.
-    for name, options in (("FENESTRA_PT_constraints", set()), ("FENESTRA_PT_sky", {'DEFAULT_CLOSED'}),
-                          ("FENESTRA_PT_checks", {'DEFAULT_CLOSED'})):
-        panel = getattr(bpy.types, name)
-        bpy.utils.unregister_class(panel)
-        panel.bl_options = options
-        bpy.utils.register_class(panel)
+    # Only the Fenestra tab in the sidebar; the Constraints sub-panel open, so that its automatic
+    # values show; Sky and Checks closed, so that the Results fit below.
+    window_script.hide_other_tabs()
+    window_script.set_panel_options({"FENESTRA_PT_constraints": set(), "FENESTRA_PT_sky": {'DEFAULT_CLOSED'},
+                                     "FENESTRA_PT_checks": {'DEFAULT_CLOSED'}})
     window, area, region = view3d()
     space = area.spaces.active
     space.show_region_ui = True

@@ -29,8 +29,10 @@ def exit_with_verdict(failed):
     os._exit(1 if failed else 0)
 
 
-def only_the_fenestra_tab(closed_panels):
-    """The sidebar shows the Fenestra tab alone, with the panels named in `closed_panels` closed."""
+def hide_other_tabs():
+    """Takes the 3D View sidebar's panels of the other tabs out (unregistered), so that the Fenestra
+    tab is the one shown; returns their classes, to register back."""
+    hidden = []
     for name in dir(bpy.types):
         cls = getattr(bpy.types, name)
         if (isinstance(cls, type) and issubclass(cls, bpy.types.Panel) and getattr(cls, "bl_space_type", "") == 'VIEW_3D'
@@ -38,13 +40,25 @@ def only_the_fenestra_tab(closed_panels):
                 and not name.startswith("FENESTRA_")):
             try:
                 bpy.utils.unregister_class(cls)
+                hidden.append(cls)
             except RuntimeError:
                 pass
-    for name in closed_panels:
+    return hidden
+
+
+def set_panel_options(options):
+    """Registers each panel named in `options` again with those bl_options ({'DEFAULT_CLOSED'}: closed)."""
+    for name, bl_options in options.items():
         panel = getattr(bpy.types, name)
         bpy.utils.unregister_class(panel)
-        panel.bl_options = {'DEFAULT_CLOSED'}
+        panel.bl_options = bl_options
         bpy.utils.register_class(panel)
+
+
+def only_the_fenestra_tab(closed_panels):
+    """The sidebar shows the Fenestra tab alone, with the panels named in `closed_panels` closed."""
+    hide_other_tabs()
+    set_panel_options({name: {'DEFAULT_CLOSED'} for name in closed_panels})
 
 
 def save_area(pixels, area, path, name="area_crop"):

@@ -112,6 +112,20 @@ def tradeoff_line(climate, entry):
     return ", ".join(parts)
 
 
+def tradeoff_rows(line):
+    """A trade-off line's goals, a row each for a narrow panel: [(text, met)], the text without its
+    ' met' / ' not met' (the panel draws a check mark or a cross), met None where not known."""
+    rows = []
+    for part in filter(None, line.split(", ")):
+        for suffix, met in ((" not met", False), (" met", True)):
+            if part.endswith(suffix):
+                rows.append((part[:-len(suffix)], met))
+                break
+        else:
+            rows.append((part, None))
+    return rows
+
+
 # The sensor group a goal's description names at its end: "sDA300/50% >= 50 % (West office)".
 _GROUP = re.compile(r"\(([^()]+)\)\s*$")
 # Short names of the metrics for one-line summaries.
