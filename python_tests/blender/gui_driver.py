@@ -14,7 +14,7 @@ user key configuration's items for Fenestra's commands), "look_at_sensors" (alon
 with a goal colour attribute), "sensors_seen" (what the 3D View shows of them), "show_all",
 "solid_room" (a room modelled as one solid: addon_sensor_grid.solid), "sensor_grids" (the sensor
 objects and their points), "reports" (the window's reports, as the Info editor lists them),
-"from_above" (the 3D View in X-ray from above), "results" (what the Results panels read), "windows" (each window's areas) and
+"from_above" (the 3D View in X-ray from above), "results" (what the Results panels read), "shading" (the 3D View's), "windows" (each window's areas) and
 "close_other_windows", "popup" (where a screenshot differs from another
 one: a popup's extent), "screenshot", "quit". It also counts the calls of Fenestra's commands (state "calls") and records
 which operator or property the last right-click menu on a button was for (state "context_menu"). The add-on must be on Blender's add-on path (BLENDER_USER_SCRIPTS/addons/fenestra)."""
@@ -49,7 +49,7 @@ QUIET = threading.RLock()
 state = {"next_command": 0, "jobs": 0, "last_job": None, "calls": {},
          "context_menu": {"count": 0, "operator": None, "property": None}}
 COMMANDS = ("fenestra.solve_openings", "fenestra.evaluate_openings", "fenestra.annual_daylight", "fenestra.check_setup",
-            "fenestra.show_goal_plot", "fenestra.apply_tradeoff",
+            "fenestra.show_goal_plot", "fenestra.apply_tradeoff", "fenestra.preview_sky",
             "fenestra.add_sensor_grid")
 
 
@@ -486,6 +486,11 @@ def follow_commands():
             reply = look_at_sensors()
         elif name == "results":
             reply = results()
+        elif name == "shading":  # the 3D View's shading: type and whether it shows the scene's world
+            shading = view3d()[1].spaces.active.shading
+            reply = {"type": shading.type, "use_scene_world": shading.use_scene_world,
+                     "use_scene_world_render": shading.use_scene_world_render,
+                     "world": bpy.context.scene.world.name if bpy.context.scene.world else None}
         elif name == "windows":  # each window's areas: type and, for an Image Editor, its image
             reply = {"windows": [[[a.type, a.spaces.active.image.name if a.type == 'IMAGE_EDITOR'
                                    and a.spaces.active.image else None] for a in w.screen.areas]
