@@ -307,6 +307,17 @@ class Solved(unittest.TestCase):
             rows = climate_results.tradeoff_rows(item.climate_line)
             self.assertEqual([met for _, met in rows], entry["climate"]["met"], rows)
             self.assertFalse(any(text.endswith("met") for text, _ in rows), rows)
+            # Each row starts with the metric and its figure; the room's name follows.
+            for (text, _), goal, achieved in zip(rows, climate["goals"], entry["climate"]["achieved"]):
+                self.assertTrue(text.startswith("%s %.1f %%" % (goal["metric"].replace("sda", "sDA").replace("ase", "ASE"),
+                                                                100 * achieved)), (text, goal))
+        # A room named with ", " still gives one row per goal.
+        line = climate_results.tradeoff_line(
+            {"goals": [{"metric": "sda", "unit": "fraction", "description": "sDA300/50% >= 50 % (Room, north)"},
+                       {"metric": "ase", "unit": "fraction", "description": "ASE1000,250 <= 10 % (Room, north)"}]},
+            {"climate": {"achieved": [0.6, 0.2], "met": [True, False]}})
+        self.assertEqual(climate_results.tradeoff_rows(line),
+                         [("sDA 60.0 % (Room,north)", True), ("ASE 20.0 % (Room,north)", False)])
         # A trade-off shown: the climate goals' figures are its own, with no lux error table or
         # element count (its openings are rectangles); the rooms and the year go with the answer.
         # (A second trade-off, with other figures, is put in result.json when the solve found none.)

@@ -97,8 +97,9 @@ def tradeoff_climate(climate, entry):
 
 
 def tradeoff_line(climate, entry):
-    """A trade-off's climate figures in one line: 'sDA 62.0 % met, ASE window 3.0 % met' (a goal's
-    sensor group after its metric)."""
+    """A trade-off's climate figures in one line: 'sDA 62.0 % met, ASE 3.0 % (West office) met' (a
+    goal's sensor group after its figure, so that a narrow panel cuts the group's name, not the
+    figure; a ", " in the name loses its space, as the parts are split there: tradeoff_rows)."""
     figures = entry.get("climate") or {}
     parts = []
     for k, goal in enumerate(climate.get("goals", []) if climate else []):
@@ -106,9 +107,9 @@ def tradeoff_line(climate, entry):
         if achieved is not None:
             state = "" if met is None else " met" if met else " not met"
             group = _GROUP.search(goal.get("description", ""))
-            parts.append("%s%s %s%s" % (SHORT.get(goal.get("metric"), goal.get("metric", "")),
-                                        " " + group.group(1) if group else "", text(achieved, goal.get("unit", "")),
-                                        state))
+            parts.append("%s %s%s%s" % (SHORT.get(goal.get("metric"), goal.get("metric", "")),
+                                        text(achieved, goal.get("unit", "")),
+                                        " (%s)" % group.group(1).replace(", ", ",") if group else "", state))
     return ", ".join(parts)
 
 
