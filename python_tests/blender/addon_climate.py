@@ -309,7 +309,7 @@ class Solved(unittest.TestCase):
             self.assertFalse(any(text.endswith("met") for text, _ in rows), rows)
             # Each row starts with the metric and its figure; the room's name follows.
             for (text, _), goal, achieved in zip(rows, climate["goals"], entry["climate"]["achieved"]):
-                self.assertTrue(text.startswith("%s %.1f %%" % (goal["metric"].replace("sda", "sDA").replace("ase", "ASE"),
+                self.assertTrue(text.startswith("%s %.1f %%" % (climate_results.SHORT[goal["metric"]],
                                                                 100 * achieved)), (text, goal))
         # A room named with ", " still gives one row per goal.
         line = climate_results.tradeoff_line(

@@ -266,10 +266,10 @@ def draw_tradeoffs(box, r, per_sensor_goals):
         op = col.operator("fenestra.apply_tradeoff", depress=(i == r.tradeoff_shown), text=text, icon=icon)
         op.index = i
         if not per_sensor_goals and t.climate_line:
-            for text, met in climate_results.tradeoff_rows(t.climate_line):
+            for goal_line, met in climate_results.tradeoff_rows(t.climate_line):
                 row = col.row()
                 row.active = False
-                row.label(text=text, icon={True: 'CHECKMARK', False: 'X'}.get(met, 'BLANK1'))
+                row.label(text=goal_line, icon={True: 'CHECKMARK', False: 'X'}.get(met, 'BLANK1'))
             if t.climate_by_cutters:
                 row = col.row()
                 row.active = False
